@@ -1,0 +1,72 @@
+// The scene as the user described it: camera, materials and shapes, in double
+// precision on the host. The loader (scene/load.hpp) fills it from a JSON file
+// and validates every value; scene/flatten.hpp turns it into device buffers.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+namespace wp {
+
+// Thrown for anything wrong with a scene description. The message is one line
+// that names the file, the field (as a JSON pointer such as
+// "/shapes/3/radius") and, where the parser knows it, the byte position.
+class SceneError : public std::runtime_error {
+  public:
+    using std::runtime_error::runtime_error;
+};
+
+struct Camera {
+    glm::dvec3 eye{0.0};
+    glm::dvec3 look_at{0.0, 0.0, -1.0}; // a point the camera looks at
+    glm::dvec3 up{0.0, 1.0, 0.0};
+    double vertical_fov_degrees = 90.0; // full angle, top to bottom of the image
+    int width = 0;                      // pixels
+    int height = 0;
+};
+
+enum class MaterialKind : std::uint32_t {
+    Diffuse = 0, // Lambertian: f = reflectance / pi
+    Mirror = 1,  // perfect specular reflection scaled by reflectance
+    Emitter = 2, // reflects nothing; emits `emission` from its front face
+};
+
+struct Material {
+    std::string name;
+    MaterialKind kind = MaterialKind::Diffuse;
+    glm::dvec3 reflectance{0.0}; // in [0, 1] per channel
+    // Radiance emitted from the front face (the side the right-handed winding
+    // normal points to). Any material kind may emit; only triangles may carry
+    // an emissive material (spheres cannot be sampled as lights).
+    glm::dvec3 emission{0.0};
+
+    bool is_emissive() const { return emission.x > 0.0 || emission.y > 0.0 || emission.z > 0.0; }
+};
+
+// One triangle; its front face is the side of cross(v1 - v0, v2 - v0).
+struct Triangle {
+    std::array<glm::dvec3, 3> v;
+    std::uint32_t material = 0; // index into Scene::materials
+};
+
+struct Sphere {
+    glm::dvec3 center{0.0};
+    double radius = 1.0;
+    std::uint32_t material = 0;
+};
+
+struct Scene {
+    std::string source; // file name the scene came from, for messages
+    Camera camera;
+    std::vector<Material> materials;
+    std::vector<Triangle> triangles; // quads and meshes are split into triangles
+    std::vector<Sphere> spheres;
+    std::vector<std::string> warnings; // e.g. skipped zero-area triangles
+};
+
+} // namespace wp
