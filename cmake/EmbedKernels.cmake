@@ -1,6 +1,8 @@
 # Writes a C++ file that maps each kernel file's name to its text, so the
 # executable carries its OpenCL sources and runs from any directory.
-# Invoked as: cmake -DOUTPUT=out.cpp -DINPUTS="a.cl;b.h" -P EmbedKernels.cmake
+# Invoked as: cmake -DOUTPUT=out.cpp -DKERNEL_DIR=kernels -P EmbedKernels.cmake
+file(GLOB INPUTS ${KERNEL_DIR}/*.cl ${KERNEL_DIR}/*.h)
+list(SORT INPUTS)
 set(arrays "")
 set(entries "")
 set(index 0)

@@ -1,1 +1,75 @@
-int main() { return 0; }
+// wavepath: a wavefront Monte Carlo path tracer on OpenCL.
+//
+// This file only parses the command line and turns every failure into one
+// line on stderr and a non-zero exit; the subcommands live in commands.cpp.
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+
+#include "app/commands.hpp"
+#include "cl/device.hpp"
+#include "cl/error.hpp"
+#include "cl/program.hpp"
+#include "image/image.hpp"
+#include "scene/scene.hpp"
+
+int main(int argc, char** argv) {
+    CLI::App app{"wavepath: a wavefront Monte Carlo path tracer on OpenCL"};
+    app.require_subcommand(1);
+
+    app.add_subcommand("devices", "List every OpenCL platform and device");
+
+    wp::RenderCommand render;
+    std::string tonemap = "srgb";
+    CLI::App* r = app.add_subcommand("render", "Render a scene to an image");
+    r->add_option("scene", render.scene, "Scene file (JSON, see docs/scene-format.md)")
+        ->required()
+        ->check(CLI::ExistingFile);
+    r->add_option("--out,-o", render.out,
+                  "Output image; its extension picks the format: .exr or .pfm (linear HDR), "
+                  ".png (view)")
+        ->capture_default_str();
+    r->add_option("--png", render.png, "Also write a PNG view of the image");
+    r->add_option("--spp,-s", render.spp, "Samples per pixel")
+        ->capture_default_str()
+        ->check(CLI::Range(1u, 1u << 24));
+    r->add_option("--device,-d", render.device,
+                  "OpenCL device: an index P:D from `wavepath devices`, or part of its name "
+                  "(default: first GPU, else first CPU)");
+    r->add_option("--seed", render.seed, "Random seed; the same seed gives the same image")
+        ->capture_default_str();
+    r->add_option("--width", render.width, "Image width (default: the scene's)")
+        ->check(CLI::Range(1, 16384));
+    r->add_option("--height", render.height, "Image height (default: the scene's)")
+        ->check(CLI::Range(1, 16384));
+    r->add_option("--max-depth", render.max_depth,
+                  "Safety cap on bounces; Russian roulette ends paths long before it. Paths it "
+                  "cuts are counted and reported")
+        ->capture_default_str()
+        ->check(CLI::Range(1u, 1u << 20));
+    r->add_option("--tonemap", tonemap,
+                  "PNG view: 'srgb' (exposure, then the sRGB curve) or 'seed' (the report's: "
+                  "sqrt, divided by the image maximum, times 255.99)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"srgb", "seed"}));
+    r->add_option("--exposure", render.view.exposure_stops, "PNG exposure in stops (srgb view)")
+        ->capture_default_str();
+    r->add_flag("--general", render.general,
+                "Build the all-features kernels instead of the scene's specialised ones");
+
+    CLI11_PARSE(app, argc, argv);
+    render.view.tonemap = tonemap == "seed" ? wp::ToneMap::Seed : wp::ToneMap::Srgb;
+
+    try {
+        if (app.got_subcommand("devices"))
+            return wp::run_devices();
+        return wp::run_render(render);
+    } catch (const wp::BuildError& e) {
+        std::cerr << e.log() << "\nwavepath: error: " << e.what() << "\n";
+    } catch (const cl::Error& e) {
+        std::cerr << "wavepath: error: " << wp::describe_cl_error(e) << "\n";
+    } catch (const std::exception& e) {
+        std::cerr << "wavepath: error: " << e.what() << "\n";
+    }
+    return 1;
+}

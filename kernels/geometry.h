@@ -1,0 +1,141 @@
+/* Ray/primitive intersection and ray spawning, in float32.
+ *
+ * Triangles use the watertight test of Woop, Benthin and Wald (JCGT 2013): the
+ * ray is sheared so it runs along +z, and each edge function is computed from
+ * the two vertices of that edge alone. Two triangles sharing an edge compute
+ * exactly negated edge values (multiplication commutes and subtraction is
+ * exactly antisymmetric, as long as the compiler does not contract a*b - c*d
+ * into an FMA, hence FP_CONTRACT OFF), so a ray can never slip between them.
+ *
+ * Spheres solve the quadratic in the form that avoids catastrophic
+ * cancellation: the discriminant from the ray's perpendicular distance to the
+ * centre, and the two roots as c/q and q/a (Press et al., pbrt-v4).
+ */
+#ifndef WP_GEOMETRY_H
+#define WP_GEOMETRY_H
+
+#include "wp_shared.h"
+
+#pragma OPENCL FP_CONTRACT OFF
+
+/* Spawned rays start this far (relative to the largest coordinate of the
+ * point) off the surface, along the normal on the side they leave by. A
+ * relative offset keeps the scene scale-invariant: a fixed epsilon is too big
+ * for a millimetre scene and too small for a kilometre one. 2e-6 is about 17
+ * float ulps of the coordinate, well above the error of a reprojected hit point
+ * (a few ulps) and small enough that contact shadows stay closed. */
+#define WP_RAY_OFFSET_RELATIVE 2.0e-6f
+/* Keeps the offset non-zero at the exact origin. */
+#define WP_RAY_OFFSET_FLOOR 1.0e-30f
+
+static inline float wp_max_abs_component(float3 p) {
+    return fmax(fmax(fabs(p.x), fabs(p.y)), fabs(p.z));
+}
+
+static inline float wp_offset_distance(float3 p) {
+    return WP_RAY_OFFSET_RELATIVE * wp_max_abs_component(p) + WP_RAY_OFFSET_FLOOR;
+}
+
+/* Moves p off its surface to the side of `side_normal` (unit length). */
+static inline float3 wp_offset_ray_origin(float3 p, float3 side_normal) {
+    return p + side_normal * wp_offset_distance(p);
+}
+
+static inline float wp_axis(float3 v, int axis) {
+    return axis == 0 ? v.x : (axis == 1 ? v.y : v.z);
+}
+
+/* What the watertight test needs of a ray, computed once per ray. */
+typedef struct {
+    float3 origin;
+    int kx, ky, kz; /* kz: the direction's dominant axis */
+    float sx, sy, sz;
+} WpShearedRay;
+
+static inline WpShearedRay wp_shear_ray(float3 origin, float3 direction) {
+    WpShearedRay r;
+    float3 a = fabs(direction);
+    r.kz = (a.x > a.y) ? ((a.x > a.z) ? 0 : 2) : ((a.y > a.z) ? 1 : 2);
+    r.kx = (r.kz + 1) % 3;
+    r.ky = (r.kx + 1) % 3;
+    float dz = wp_axis(direction, r.kz);
+    if (dz < 0.0f) { /* keep the winding: swap the other two axes */
+        int k = r.kx;
+        r.kx = r.ky;
+        r.ky = k;
+    }
+    r.sx = wp_axis(direction, r.kx) / dz;
+    r.sy = wp_axis(direction, r.ky) / dz;
+    r.sz = 1.0f / dz;
+    r.origin = origin;
+    return r;
+}
+
+/* Returns 1 and sets *t if the ray hits the triangle at 0 < t < t_max.
+ * Both faces are hit; points on an edge or vertex count as inside. */
+static inline int wp_intersect_triangle(const WpShearedRay* ray, float3 p0, float3 p1, float3 p2,
+                                        float t_max, float* t) {
+    float3 a = p0 - ray->origin;
+    float3 b = p1 - ray->origin;
+    float3 c = p2 - ray->origin;
+    float az = wp_axis(a, ray->kz), bz = wp_axis(b, ray->kz), cz = wp_axis(c, ray->kz);
+    float ax = wp_axis(a, ray->kx) - ray->sx * az;
+    float ay = wp_axis(a, ray->ky) - ray->sy * az;
+    float bx = wp_axis(b, ray->kx) - ray->sx * bz;
+    float by = wp_axis(b, ray->ky) - ray->sy * bz;
+    float cx = wp_axis(c, ray->kx) - ray->sx * cz;
+    float cy = wp_axis(c, ray->ky) - ray->sy * cz;
+
+    float u = cx * by - cy * bx; /* edge p1-p2 */
+    float v = ax * cy - ay * cx; /* edge p2-p0 */
+    float w = bx * ay - by * ax; /* edge p0-p1 */
+    if ((u < 0.0f || v < 0.0f || w < 0.0f) && (u > 0.0f || v > 0.0f || w > 0.0f))
+        return 0;
+    float det = u + v + w;
+    if (det == 0.0f)
+        return 0; /* the ray lies in the triangle's plane */
+
+    /* Scaled distance: t = T / det, tested without dividing. */
+    float T = u * (ray->sz * az) + v * (ray->sz * bz) + w * (ray->sz * cz);
+    if (det > 0.0f ? (T <= 0.0f || T >= t_max * det) : (T >= 0.0f || T <= t_max * det))
+        return 0;
+    *t = T / det;
+    return 1;
+}
+
+/* Returns 1 and sets *t if the ray hits the sphere at 0 < t < t_max. */
+static inline int wp_intersect_sphere(float3 origin, float3 direction, float4 center_radius,
+                                      float t_max, float* t) {
+    float3 f = origin - center_radius.xyz;
+    float radius = center_radius.w;
+    float a = dot(direction, direction);
+    float half_b = dot(f, direction);
+    /* Perpendicular offset of the centre from the ray line: no cancellation
+     * between b^2 and 4ac when the sphere is small or far. */
+    float3 perpendicular = f - (half_b / a) * direction;
+    float l = length(perpendicular);
+    float discriminant = a * (radius - l) * (radius + l);
+    if (discriminant < 0.0f)
+        return 0;
+    float q = -(half_b + copysign(sqrt(discriminant), half_b));
+    float c = dot(f, f) - radius * radius;
+    float t_far = q / a;
+    float t_near = (q != 0.0f) ? c / q : t_far;
+    if (t_near > t_far) {
+        float s = t_near;
+        t_near = t_far;
+        t_far = s;
+    }
+    float hit = (t_near > 0.0f) ? t_near : t_far;
+    if (!(hit > 0.0f && hit < t_max))
+        return 0;
+    *t = hit;
+    return 1;
+}
+
+/* Unnormalised front-face normal of a triangle. */
+static inline float3 wp_triangle_normal(const WpTriangle* tri) {
+    return cross(tri->v1.xyz - tri->v0.xyz, tri->v2.xyz - tri->v0.xyz);
+}
+
+#endif /* WP_GEOMETRY_H */

@@ -1,0 +1,55 @@
+/* Counter-based random numbers.
+ *
+ * Every random number is a pure function of (seed, pixel, sample, bounce,
+ * dimension): no generator state lives in the path, any device and any
+ * work-group size give the same numbers, and any split of the samples between
+ * waves or devices sums to the same estimate. The host includes this file too,
+ * so tests can reproduce the exact numbers a kernel used.
+ *
+ * The mixer is Chris Wellons' "lowbias32" integer hash (a bijection on 32-bit
+ * words with low avalanche bias); chaining it over the key words decorrelates
+ * neighbouring counters.
+ */
+#ifndef WP_RNG_H
+#define WP_RNG_H
+
+#include "wp_shared.h"
+
+/* Dimensions used at each bounce; a bounce owns WP_DIMS_PER_BOUNCE of them. */
+#define WP_DIM_JITTER_X 0u
+#define WP_DIM_JITTER_Y 1u
+#define WP_DIM_LIGHT_PICK 2u
+#define WP_DIM_LIGHT_U 3u
+#define WP_DIM_LIGHT_V 4u
+#define WP_DIM_BSDF_U 5u
+#define WP_DIM_BSDF_V 6u
+#define WP_DIM_ROULETTE 7u
+#define WP_DIMS_PER_BOUNCE 8u
+
+static inline wp_uint wp_mix32(wp_uint x) {
+    x ^= x >> 16;
+    x *= 0x7feb352du;
+    x ^= x >> 15;
+    x *= 0x846ca68bu;
+    x ^= x >> 16;
+    return x;
+}
+
+static inline wp_uint wp_hash(wp_uint seed, wp_uint pixel, wp_uint sample, wp_uint counter) {
+    wp_uint h = wp_mix32(seed + 0x9e3779b9u);
+    h = wp_mix32(h ^ pixel);
+    h = wp_mix32(h ^ sample);
+    return wp_mix32(h ^ counter);
+}
+
+/* A float uniform in [0, 1): the top 24 bits, so every value is exact. */
+static inline wp_float wp_to_unit_float(wp_uint bits) {
+    return (wp_float)(bits >> 8) * (1.0f / 16777216.0f);
+}
+
+static inline wp_float wp_random(wp_uint seed, wp_uint pixel, wp_uint sample, wp_uint bounce,
+                                 wp_uint dimension) {
+    return wp_to_unit_float(wp_hash(seed, pixel, sample, bounce * WP_DIMS_PER_BOUNCE + dimension));
+}
+
+#endif /* WP_RNG_H */

@@ -1,0 +1,26 @@
+/* The scene features a program is compiled for.
+ *
+ * The host derives them from the scene and passes -D options (see
+ * src/render/features.cpp); code for an absent feature compiles to nothing.
+ * Left undefined, a feature is on, which gives the general kernels.
+ */
+#ifndef WP_SCENE_FEATURES_H
+#define WP_SCENE_FEATURES_H
+
+#ifndef WP_HAS_TRIANGLES
+#define WP_HAS_TRIANGLES 1
+#endif
+#ifndef WP_HAS_SPHERES
+#define WP_HAS_SPHERES 1
+#endif
+#ifndef WP_HAS_DIFFUSE
+#define WP_HAS_DIFFUSE 1
+#endif
+#ifndef WP_HAS_MIRROR
+#define WP_HAS_MIRROR 1
+#endif
+#ifndef WP_HAS_LIGHTS /* emissive triangles to sample by next-event estimation */
+#define WP_HAS_LIGHTS 1
+#endif
+
+#endif /* WP_SCENE_FEATURES_H */

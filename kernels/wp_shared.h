@@ -1,0 +1,99 @@
+/* Data shared by the host (C++) and the kernels (OpenCL C 1.2).
+ *
+ * Both sides include this one header, so a struct cannot drift between them;
+ * tests/cl/test_layout.cpp still checks every size and offset on the device
+ * against the host's, because the two compilers lay structs out separately.
+ * Rules that keep the layouts equal: 16-byte vectors first, then 4-byte
+ * scalars, explicit padding to a multiple of 16 bytes, no bool, no pointers.
+ */
+#ifndef WP_SHARED_H
+#define WP_SHARED_H
+
+#ifdef __OPENCL_VERSION__
+typedef uint wp_uint;
+typedef float wp_float;
+typedef float4 wp_float4;
+#else
+#include <CL/cl_platform.h>
+typedef cl_uint wp_uint;
+typedef cl_float wp_float;
+typedef cl_float4 wp_float4;
+#endif
+
+/* Material kinds (WpMaterial.kind). */
+#define WP_MATERIAL_DIFFUSE 0u
+#define WP_MATERIAL_MIRROR 1u
+#define WP_MATERIAL_EMITTER 2u
+
+/* Marks a ray that hit nothing (WpHit.primitive). */
+#define WP_NO_HIT 0xffffffffu
+
+/* Path flags (path_flags[]). */
+#define WP_PATH_SPECULAR 1u /* the last bounce was specular (or none yet): emitters count */
+
+/* Counters the kernels bump with atomics (one buffer of WP_COUNTER_COUNT uints). */
+#define WP_COUNTER_NEXT_RAYS 0   /* length of the next bounce's ray queue */
+#define WP_COUNTER_SHADOW_RAYS 1 /* length of the shadow-ray queue */
+#define WP_COUNTER_CAPPED 2      /* paths cut by the safety depth cap */
+#define WP_COUNTER_NONFINITE 3   /* samples dropped at the film for NaN or Inf */
+#define WP_COUNTER_COUNT 4
+
+/* A triangle: vertices in xyz (w unused). Its front face is the side of
+ * cross(v1 - v0, v2 - v0); only emitters care which side is the front. */
+typedef struct {
+    wp_float4 v0;
+    wp_float4 v1;
+    wp_float4 v2;
+    wp_uint material;
+    wp_uint pad0, pad1, pad2;
+} WpTriangle;
+
+typedef struct {
+    wp_float4 center_radius; /* xyz centre, w radius */
+    wp_uint material;
+    wp_uint pad0, pad1, pad2;
+} WpSphere;
+
+typedef struct {
+    wp_float4 reflectance; /* rgb in [0, 1] */
+    wp_float4 emission;    /* rgb radiance from the front face */
+    wp_uint kind;          /* WP_MATERIAL_* */
+    wp_uint pad0, pad1, pad2;
+} WpMaterial;
+
+/* One emissive triangle, chosen with probability proportional to its area:
+ * cdf is the running sum of areas up to and including this one, divided by
+ * the total, so light sampling is a search for the first cdf > u. */
+typedef struct {
+    wp_uint triangle;
+    wp_float cdf;
+    wp_uint pad0, pad1;
+} WpLight;
+
+/* The pinhole camera: a ray through film position (sx, sy) in [-1, 1]^2
+ * (x right, y up) has direction forward + sx * right + sy * up, where right
+ * and up are already scaled by the half-extent of the image plane at unit
+ * distance. */
+typedef struct {
+    wp_float4 eye;
+    wp_float4 forward;
+    wp_float4 right;
+    wp_float4 up;
+} WpCamera;
+
+/* Everything a wave needs besides buffers, passed by value to the kernels. */
+typedef struct {
+    WpCamera camera;
+    wp_uint width;          /* pixels */
+    wp_uint height;
+    wp_uint seed;           /* user seed: the image is a function of it */
+    wp_uint sample_index;   /* the sample this wave computes for every pixel */
+    wp_uint triangle_count;
+    wp_uint sphere_count;
+    wp_uint light_count;
+    wp_float light_area;    /* total emissive area: 1 / pdf of uniform area sampling */
+    wp_uint max_depth;      /* safety cap on bounces; paths cut are counted */
+    wp_uint pad0, pad1, pad2;
+} WpFrame;
+
+#endif /* WP_SHARED_H */

@@ -1,0 +1,23 @@
+// One OpenCL device with its own context and in-order command queue.
+//
+// Everything that renders holds one of these per device, so that a render can
+// later span several devices by giving each its own context, programs,
+// buffers and film (see docs/architecture.md).
+#pragma once
+
+#include "cl/cl.hpp"
+#include "cl/device.hpp"
+
+namespace wp {
+
+struct DeviceContext {
+    DeviceInfo info;
+    cl::Context context;
+    cl::CommandQueue queue;
+
+    explicit DeviceContext(DeviceInfo device, bool profiling = false)
+        : info(std::move(device)), context(info.device),
+          queue(context, info.device, profiling ? CL_QUEUE_PROFILING_ENABLE : 0) {}
+};
+
+} // namespace wp

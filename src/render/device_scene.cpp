@@ -1,0 +1,130 @@
+#include "render/device_scene.hpp"
+
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+namespace wp {
+namespace {
+
+wp_float4 to_float4(const glm::dvec3& v, double w = 0.0) {
+    wp_float4 r;
+    r.s[0] = static_cast<float>(v.x);
+    r.s[1] = static_cast<float>(v.y);
+    r.s[2] = static_cast<float>(v.z);
+    r.s[3] = static_cast<float>(w);
+    return r;
+}
+
+std::string flag(const char* name, bool on) {
+    return std::string("-D ") + name + (on ? "=1" : "=0");
+}
+
+} // namespace
+
+std::string SceneFeatures::build_options() const {
+    return flag("WP_HAS_TRIANGLES", triangles) + " " + flag("WP_HAS_SPHERES", spheres) + " " +
+           flag("WP_HAS_DIFFUSE", diffuse) + " " + flag("WP_HAS_MIRROR", mirror) + " " +
+           flag("WP_HAS_LIGHTS", lights);
+}
+
+std::string SceneFeatures::describe() const {
+    std::string out;
+    auto add = [&](bool on, const char* name) {
+        if (!on)
+            return;
+        if (!out.empty())
+            out += ' ';
+        out += name;
+    };
+    add(triangles, "triangles");
+    add(spheres, "spheres");
+    add(diffuse, "diffuse");
+    add(mirror, "mirror");
+    add(lights, "lights");
+    return out;
+}
+
+SceneFeatures analyse_features(const Scene& scene) {
+    SceneFeatures f;
+    f.triangles = !scene.triangles.empty();
+    f.spheres = !scene.spheres.empty();
+    auto uses = [&](MaterialKind kind) {
+        for (const Triangle& t : scene.triangles)
+            if (scene.materials[t.material].kind == kind)
+                return true;
+        for (const Sphere& s : scene.spheres)
+            if (scene.materials[s.material].kind == kind)
+                return true;
+        return false;
+    };
+    f.diffuse = uses(MaterialKind::Diffuse);
+    f.mirror = uses(MaterialKind::Mirror);
+    f.lights = false;
+    for (const Triangle& t : scene.triangles)
+        f.lights = f.lights || scene.materials[t.material].is_emissive();
+    return f;
+}
+
+DeviceScene flatten_scene(const Scene& scene) {
+    DeviceScene out;
+    out.width = scene.camera.width;
+    out.height = scene.camera.height;
+
+    for (const Material& m : scene.materials) {
+        WpMaterial w{};
+        w.reflectance = to_float4(m.reflectance);
+        w.emission = to_float4(m.emission);
+        w.kind = static_cast<wp_uint>(m.kind);
+        out.materials.push_back(w);
+    }
+
+    std::vector<double> areas;
+    double total_area = 0.0;
+    for (std::size_t i = 0; i < scene.triangles.size(); ++i) {
+        const Triangle& t = scene.triangles[i];
+        WpTriangle w{};
+        w.v0 = to_float4(t.v[0]);
+        w.v1 = to_float4(t.v[1]);
+        w.v2 = to_float4(t.v[2]);
+        w.material = t.material;
+        out.triangles.push_back(w);
+        if (scene.materials[t.material].is_emissive()) {
+            double area = 0.5 * glm::length(glm::cross(t.v[1] - t.v[0], t.v[2] - t.v[0]));
+            WpLight light{};
+            light.triangle = static_cast<wp_uint>(i);
+            out.lights.push_back(light);
+            areas.push_back(area);
+            total_area += area;
+        }
+    }
+    double running = 0.0;
+    for (std::size_t i = 0; i < out.lights.size(); ++i) {
+        running += areas[i];
+        out.lights[i].cdf = static_cast<float>(running / total_area);
+    }
+    if (!out.lights.empty())
+        out.lights.back().cdf = 1.0f; // never let rounding leave u in no bin
+    out.light_area = static_cast<float>(total_area);
+
+    for (const Sphere& s : scene.spheres) {
+        WpSphere w{};
+        w.center_radius = to_float4(s.center, s.radius);
+        w.material = s.material;
+        out.spheres.push_back(w);
+    }
+
+    const Camera& c = scene.camera;
+    glm::dvec3 forward = glm::normalize(c.look_at - c.eye);
+    glm::dvec3 right = glm::normalize(glm::cross(forward, c.up));
+    glm::dvec3 up = glm::cross(right, forward);
+    double half_height = std::tan(0.5 * c.vertical_fov_degrees * M_PI / 180.0);
+    double aspect = static_cast<double>(c.width) / static_cast<double>(c.height);
+    out.camera.eye = to_float4(c.eye);
+    out.camera.forward = to_float4(forward);
+    out.camera.right = to_float4(right * (half_height * aspect));
+    out.camera.up = to_float4(up * half_height);
+    return out;
+}
+
+} // namespace wp
