@@ -1,0 +1,27 @@
+// Reading a scene description (JSON, format in docs/scene-format.md) into a
+// validated wp::Scene. Every problem is reported as one SceneError whose
+// message names the source and the offending field as a JSON pointer, e.g.
+//   "hexroom.json: /shapes/3/radius: must be positive, got -1".
+// Zero-area triangles are not errors: they are skipped and listed in
+// Scene::warnings ("/shapes/7: skipped zero-area triangle").
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include "scene/scene.hpp"
+
+namespace wp {
+
+// Reads and parses the file. Throws SceneError("cannot open scene '<path>': <strerror>")
+// when the file cannot be opened or read, and whatever parse_scene throws otherwise.
+// Scene::source is the path as given.
+Scene load_scene(const std::filesystem::path& path);
+
+// Parses and validates a scene from JSON text. source_name is used in messages
+// and stored in Scene::source. Syntax errors are reported with the parser's byte
+// position, the line and column, and the JSON pointer of the value being read.
+Scene parse_scene(std::string_view json_text, const std::string& source_name);
+
+} // namespace wp

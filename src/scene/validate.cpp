@@ -1,0 +1,137 @@
+#include "scene/validate.hpp"
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <string>
+
+#include <glm/geometric.hpp>
+
+namespace wp {
+
+bool is_zero_area(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+    const glm::dvec3 e1 = b - a;
+    const glm::dvec3 e2 = c - a;
+    const glm::dvec3 e3 = c - b;
+    const double longest2 = std::max({glm::dot(e1, e1), glm::dot(e2, e2), glm::dot(e3, e3)});
+    const double twice_area = glm::length(glm::cross(e1, e2));
+    return twice_area == 0.0 || twice_area <= scene_limits::zero_area_relative * longest2;
+}
+
+bool view_direction_is_degenerate(const glm::dvec3& eye, const glm::dvec3& look_at) {
+    const double d = glm::length(look_at - eye);
+    const double scale = std::max(glm::length(eye), glm::length(look_at));
+    return d == 0.0 || d <= scene_limits::eye_look_at_relative * scale;
+}
+
+bool up_is_parallel(const glm::dvec3& eye, const glm::dvec3& look_at, const glm::dvec3& up) {
+    const glm::dvec3 d = look_at - eye;
+    const double c = glm::length(glm::cross(d, up));
+    return c == 0.0 || c <= scene_limits::up_parallel_relative * glm::length(d) * glm::length(up);
+}
+
+namespace {
+
+std::string fmt(double x) {
+    std::array<char, 64> buf{};
+    const auto res = std::to_chars(buf.data(), buf.data() + buf.size(), x);
+    return std::string(buf.data(), res.ptr);
+}
+
+class Checker {
+  public:
+    explicit Checker(const Scene& scene) : scene_(scene) {}
+
+    [[noreturn]] void fail(const std::string& field, const std::string& problem) const {
+        throw SceneError(scene_.source + ": " + field + ": " + problem);
+    }
+
+    void number(double x, const std::string& field, double lo, double hi) const {
+        if (!std::isfinite(x))
+            fail(field, "must be finite, got " + fmt(x));
+        if (x < lo || x > hi)
+            fail(field, "must be in [" + fmt(lo) + ", " + fmt(hi) + "], got " + fmt(x));
+    }
+
+    void vec(const glm::dvec3& v, const std::string& field, double lo, double hi) const {
+        for (int i = 0; i < 3; ++i)
+            number(v[i], field + "[" + std::to_string(i) + "]", lo, hi);
+    }
+
+    void point(const glm::dvec3& v, const std::string& field) const {
+        vec(v, field, -scene_limits::max_coordinate, scene_limits::max_coordinate);
+    }
+
+    void material_index(std::uint32_t m, const std::string& field) const {
+        if (m >= scene_.materials.size())
+            fail(field, "material index " + std::to_string(m) + " out of range (" +
+                            std::to_string(scene_.materials.size()) + " materials)");
+    }
+
+    void run() const {
+        const Camera& c = scene_.camera;
+        point(c.eye, "camera.eye");
+        point(c.look_at, "camera.look_at");
+        point(c.up, "camera.up");
+        if (!(c.vertical_fov_degrees > 0.0 && c.vertical_fov_degrees < 180.0))
+            fail("camera.vertical_fov_degrees",
+                 "must be between 0 and 180 (exclusive), got " + fmt(c.vertical_fov_degrees));
+        if (c.width < 1 || c.width > scene_limits::max_resolution)
+            fail("camera.width", "must be in [1, 16384], got " + std::to_string(c.width));
+        if (c.height < 1 || c.height > scene_limits::max_resolution)
+            fail("camera.height", "must be in [1, 16384], got " + std::to_string(c.height));
+        if (view_direction_is_degenerate(c.eye, c.look_at))
+            fail("camera.look_at", "must differ from camera.eye");
+        if (up_is_parallel(c.eye, c.look_at, c.up))
+            fail("camera.up", "is zero or parallel to the view direction");
+
+        for (std::size_t i = 0; i < scene_.materials.size(); ++i) {
+            const Material& m = scene_.materials[i];
+            const std::string f = "materials[" + std::to_string(i) + "] ('" + m.name + "')";
+            if (m.kind != MaterialKind::Diffuse && m.kind != MaterialKind::Mirror &&
+                m.kind != MaterialKind::Emitter)
+                fail(f + ".kind", "unknown material kind");
+            vec(m.reflectance, f + ".reflectance", 0.0, 1.0);
+            if (m.kind == MaterialKind::Emitter && m.reflectance != glm::dvec3(0.0))
+                fail(f + ".reflectance", "must be 0 for an emitter");
+            vec(m.emission, f + ".emission", 0.0, scene_limits::max_radiance);
+        }
+
+        for (std::size_t i = 0; i < scene_.triangles.size(); ++i) {
+            const Triangle& t = scene_.triangles[i];
+            const std::string f = "triangles[" + std::to_string(i) + "]";
+            for (int k = 0; k < 3; ++k)
+                point(t.v[static_cast<std::size_t>(k)], f + ".v[" + std::to_string(k) + "]");
+            material_index(t.material, f + ".material");
+            if (is_zero_area(t.v[0], t.v[1], t.v[2]))
+                fail(f, "zero-area triangle (the loader skips these)");
+        }
+
+        for (std::size_t i = 0; i < scene_.spheres.size(); ++i) {
+            const Sphere& s = scene_.spheres[i];
+            const std::string f = "spheres[" + std::to_string(i) + "]";
+            point(s.center, f + ".center");
+            if (!std::isfinite(s.radius) || s.radius <= 0.0 ||
+                s.radius > scene_limits::max_coordinate)
+                fail(f + ".radius", "must be positive and at most 1e30, got " + fmt(s.radius));
+            material_index(s.material, f + ".material");
+            if (scene_.materials[s.material].is_emissive())
+                fail(f + ".material", "spheres cannot be emitters: use triangles");
+        }
+
+        if (scene_.triangles.empty() && scene_.spheres.empty())
+            fail("shapes", "the scene has no shapes");
+    }
+
+  private:
+    const Scene& scene_;
+};
+
+} // namespace
+
+void validate_scene(const Scene& scene) {
+    Checker(scene).run();
+}
+
+} // namespace wp

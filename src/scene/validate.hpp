@@ -1,0 +1,47 @@
+// Limits and checks shared by the JSON loader and by code that builds a
+// wp::Scene directly (tests, generated stress scenes).
+#pragma once
+
+#include <glm/vec3.hpp>
+
+#include "scene/scene.hpp"
+
+namespace wp {
+
+namespace scene_limits {
+// Largest magnitude accepted for a coordinate or radius: float32 carries it
+// with room to spare for differences and squared lengths in the kernels.
+inline constexpr double max_coordinate = 1e30;
+// Largest accepted emitted radiance per channel.
+inline constexpr double max_radiance = 1e30;
+// Largest image side in pixels.
+inline constexpr int max_resolution = 16384;
+// A triangle is zero-area when |cross(e1, e2)| <= this * (longest edge)^2.
+inline constexpr double zero_area_relative = 1e-12;
+// Quad corners must lie within this * (largest corner distance) of one plane.
+inline constexpr double quad_planarity_relative = 1e-6;
+// up is "parallel" to the view direction when |cross(d, up)| <= this * |d| * |up|.
+inline constexpr double up_parallel_relative = 1e-6;
+// eye and look_at "coincide" when |look_at - eye| <= this * max(|eye|, |look_at|).
+inline constexpr double eye_look_at_relative = 1e-9;
+} // namespace scene_limits
+
+// True when the triangle (a, b, c) has zero area in the sense above (exactly
+// zero, or |cross(b - a, c - a)| <= 1e-12 * longest edge^2).
+bool is_zero_area(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c);
+
+// True when look_at is (numerically) the eye, so there is no view direction.
+bool view_direction_is_degenerate(const glm::dvec3& eye, const glm::dvec3& look_at);
+
+// True when up is zero or (numerically) parallel to look_at - eye.
+bool up_is_parallel(const glm::dvec3& eye, const glm::dvec3& look_at, const glm::dvec3& up);
+
+// Checks a complete Scene against every rule the loader enforces (finite values
+// within the limits above, reflectance in [0, 1], non-negative emission, positive
+// radius, resolution 1..16384, fov in (0, 180), a usable camera frame, material
+// indices in range, no emissive sphere, no zero-area triangle, at least one
+// shape). Throws SceneError("<source>: <field>: <problem>") naming the field in
+// C++ terms, e.g. "triangles[3].v[1]". parse_scene() calls it as a final check.
+void validate_scene(const Scene& scene);
+
+} // namespace wp

@@ -1,0 +1,494 @@
+// Every validation rule of the loader: each bad input gives one SceneError whose
+// message names the source and the faulty field's JSON pointer.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "scene/load.hpp"
+#include "scene/validate.hpp"
+
+namespace {
+
+const std::string kCamera =
+    R"({"eye": [-1, 0, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 90, "resolution": [8, 8]})";
+const std::string kMaterials = R"({
+    "white": {"type": "diffuse", "reflectance": [0.7, 0.7, 0.7]},
+    "mirror": {"type": "mirror", "reflectance": [1, 1, 1]},
+    "light": {"type": "emitter", "radiance": [100, 100, 100]}})";
+const std::string kShapes =
+    R"([{"type": "triangle", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "material": "white"}])";
+
+std::string scene(const std::string& camera = kCamera, const std::string& materials = kMaterials,
+                  const std::string& shapes = kShapes) {
+    return R"({"camera": )" + camera + R"(, "materials": )" + materials + R"(, "shapes": )" +
+           shapes + "}";
+}
+std::string with_camera(const std::string& c) {
+    return scene(c);
+}
+std::string with_materials(const std::string& m) {
+    return scene(kCamera, m);
+}
+std::string with_shapes(const std::string& s) {
+    return scene(kCamera, kMaterials, s);
+}
+std::string with_shape(const std::string& s) {
+    return with_shapes("[" + s + "]");
+}
+
+std::string error_of(const std::string& json, const std::string& source = "test.json") {
+    try {
+        (void)wp::parse_scene(json, source);
+    } catch (const wp::SceneError& e) {
+        return e.what();
+    }
+    return "<no error>";
+}
+
+struct Case {
+    const char* what;
+    std::string json;
+    std::string pointer; // must appear as "test.json: <pointer>: "
+    std::string fragment;
+};
+
+} // namespace
+
+TEST_CASE("loader: the base scene of the error table is valid", "[scene][load]") {
+    const wp::Scene s = wp::parse_scene(scene(), "test.json");
+    CHECK(s.triangles.size() == 1);
+    CHECK(s.materials.size() == 3);
+}
+
+TEST_CASE("loader: every validation error names its field", "[scene][load][errors]") {
+    const std::string tri = R"("type": "triangle", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]])";
+    const std::string sph = R"("type": "sphere", "center": [0, 0, 0])";
+    const std::vector<Case> cases{
+        // document structure
+        {"root not an object", "[1, 2]", "(root)", "expected a scene object"},
+        {"missing camera", R"({"materials": )" + kMaterials + R"(, "shapes": )" + kShapes + "}",
+         "/camera", "missing required field"},
+        {"missing materials", R"({"camera": )" + kCamera + R"(, "shapes": )" + kShapes + "}",
+         "/materials", "missing required field"},
+        {"missing shapes", R"({"camera": )" + kCamera + R"(, "materials": )" + kMaterials + "}",
+         "/shapes", "missing required field"},
+        {"unknown top-level key",
+         R"({"camrea": {}, "camera": )" + kCamera + R"(, "materials": )" + kMaterials +
+             R"(, "shapes": )" + kShapes + "}",
+         "/camrea", "unknown key 'camrea'"},
+        {"description not a string",
+         R"({"description": 5, "camera": )" + kCamera + R"(, "materials": )" + kMaterials +
+             R"(, "shapes": )" + kShapes + "}",
+         "/description", "expected a string"},
+        {"no shapes", with_shapes("[]"), "/shapes", "no shapes"},
+        {"shapes not an array", with_shapes("{}"), "/shapes", "expected an array"},
+        {"no materials", with_materials("{}"), "/materials", "at least one material"},
+        {"materials not an object", with_materials("[]"), "/materials", "expected an object"},
+
+        // camera
+        {"camera not an object", with_camera("[]"), "/camera", "expected an object"},
+        {"unknown camera key (typo)",
+         with_camera(
+             R"({"eye": [-1, 0, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fvo": 90, "resolution": [8, 8]})"),
+         "/camera/fvo", "unknown key 'fvo'"},
+        {"missing eye",
+         with_camera(R"({"look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 90, "resolution": [8, 8]})"),
+         "/camera/eye", "missing required field"},
+        {"eye with 2 numbers",
+         with_camera(
+             R"({"eye": [-1, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 90, "resolution": [8, 8]})"),
+         "/camera/eye", "expected an array of 3 numbers"},
+        {"eye not an array",
+         with_camera(
+             R"({"eye": 3, "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 90, "resolution": [8, 8]})"),
+         "/camera/eye", "expected an array of 3 numbers, got 3"},
+        {"eye with a string",
+         with_camera(
+             R"({"eye": ["a", 0, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 90, "resolution": [8, 8]})"),
+         "/camera/eye/0", "expected a number"},
+        {"eye beyond float32",
+         with_camera(
+             R"({"eye": [-1, 1e31, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 90, "resolution": [8, 8]})"),
+         "/camera/eye/1", "1e30"},
+        {"eye overflowing to infinity",
+         with_camera(
+             R"({"eye": [-1, 1e999, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 90, "resolution": [8, 8]})"),
+         "/camera/eye/1", "out of range"},
+        {"look_at and direction",
+         with_camera(
+             R"({"eye": [-1, 0, 0], "look_at": [0, 0, 0], "direction": [1, 0, 0], "up": [0, 0, 1], "fov": 90, "resolution": [8, 8]})"),
+         "/camera/direction", "not both"},
+        {"neither look_at nor direction",
+         with_camera(R"({"eye": [-1, 0, 0], "up": [0, 0, 1], "fov": 90, "resolution": [8, 8]})"),
+         "/camera/look_at", "missing"},
+        {"eye equal to look_at",
+         with_camera(
+             R"({"eye": [1, 2, 3], "look_at": [1, 2, 3], "up": [0, 0, 1], "fov": 90, "resolution": [8, 8]})"),
+         "/camera/look_at", "must differ from eye"},
+        {"zero direction",
+         with_camera(
+             R"({"eye": [1, 2, 3], "direction": [0, 0, 0], "up": [0, 0, 1], "fov": 90, "resolution": [8, 8]})"),
+         "/camera/direction", "zero vector"},
+        {"up parallel to the view direction",
+         with_camera(
+             R"({"eye": [-1, 0, 0], "look_at": [0, 0, 0], "up": [-2, 0, 0], "fov": 90, "resolution": [8, 8]})"),
+         "/camera/up", "parallel to the view direction"},
+        {"up almost parallel",
+         with_camera(
+             R"({"eye": [-1, 0, 0], "look_at": [0, 0, 0], "up": [1, 1e-9, 0], "fov": 90, "resolution": [8, 8]})"),
+         "/camera/up", "parallel"},
+        {"up parallel to direction",
+         with_camera(
+             R"({"eye": [-1, 0, 0], "direction": [0, 0, 3], "up": [0, 0, 1], "fov": 90, "resolution": [8, 8]})"),
+         "/camera/up", "parallel"},
+        {"zero up",
+         with_camera(
+             R"({"eye": [-1, 0, 0], "look_at": [0, 0, 0], "up": [0, 0, 0], "fov": 90, "resolution": [8, 8]})"),
+         "/camera/up", "zero vector"},
+        {"missing up",
+         with_camera(
+             R"({"eye": [-1, 0, 0], "look_at": [0, 0, 0], "fov": 90, "resolution": [8, 8]})"),
+         "/camera/up", "missing"},
+        {"fov zero",
+         with_camera(
+             R"({"eye": [-1, 0, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 0, "resolution": [8, 8]})"),
+         "/camera/fov", "between 0 and 180"},
+        {"fov 180",
+         with_camera(
+             R"({"eye": [-1, 0, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 180, "resolution": [8, 8]})"),
+         "/camera/fov", "got 180"},
+        {"fov negative",
+         with_camera(
+             R"({"eye": [-1, 0, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": -30, "resolution": [8, 8]})"),
+         "/camera/fov", "got -30"},
+        {"fov a string",
+         with_camera(
+             R"({"eye": [-1, 0, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": "90", "resolution": [8, 8]})"),
+         "/camera/fov", "expected a number, got \"90\""},
+        {"missing fov",
+         with_camera(
+             R"({"eye": [-1, 0, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "resolution": [8, 8]})"),
+         "/camera/fov", "missing"},
+        {"zero width",
+         with_camera(
+             R"({"eye": [-1, 0, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 90, "resolution": [0, 8]})"),
+         "/camera/resolution/0", "positive"},
+        {"negative height",
+         with_camera(
+             R"({"eye": [-1, 0, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 90, "resolution": [8, -4]})"),
+         "/camera/resolution/1", "got -4"},
+        {"non-integer width",
+         with_camera(
+             R"({"eye": [-1, 0, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 90, "resolution": [8.5, 8]})"),
+         "/camera/resolution/0", "expected an integer, got 8.5"},
+        {"width over the cap",
+         with_camera(
+             R"({"eye": [-1, 0, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 90, "resolution": [16385, 8]})"),
+         "/camera/resolution/0", "at most 16384"},
+        {"huge height",
+         with_camera(
+             R"({"eye": [-1, 0, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 90, "resolution": [8, 1e300]})"),
+         "/camera/resolution/1", "at most 16384"},
+        {"resolution with one number",
+         with_camera(
+             R"({"eye": [-1, 0, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 90, "resolution": [8]})"),
+         "/camera/resolution", "expected an array of 2 integers"},
+        {"resolution a string",
+         with_camera(
+             R"({"eye": [-1, 0, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 90, "resolution": "8x8"})"),
+         "/camera/resolution", "expected an array of 2 integers"},
+
+        // materials
+        {"material not an object", with_materials(R"({"white": [0.7, 0.7, 0.7]})"),
+         "/materials/white", "expected a material object"},
+        {"unknown material type",
+         with_materials(R"({"white": {"type": "glass", "reflectance": [1, 1, 1]}})"),
+         "/materials/white/type", "unknown material type 'glass'"},
+        {"missing material type", with_materials(R"({"white": {"reflectance": [1, 1, 1]}})"),
+         "/materials/white/type", "missing"},
+        {"missing reflectance", with_materials(R"({"white": {"type": "diffuse"}})"),
+         "/materials/white/reflectance", "missing"},
+        {"reflectance above 1",
+         with_materials(R"({"white": {"type": "diffuse", "reflectance": [1.5, 0.5, 0.5]}})"),
+         "/materials/white/reflectance/0", "[0, 1], got 1.5"},
+        {"negative reflectance",
+         with_materials(R"({"white": {"type": "mirror", "reflectance": [1, 1, -0.1]}})"),
+         "/materials/white/reflectance/2", "[0, 1], got -0.1"},
+        {"negative emission",
+         with_materials(
+             R"({"white": {"type": "diffuse", "reflectance": [0.5, 0.5, 0.5], "emission": [1, -1, 1]}})"),
+         "/materials/white/emission/1", "must not be negative"},
+        {"radiance over 1e30",
+         with_materials(R"({"white": {"type": "emitter", "radiance": [2e30, 1, 1]}})"),
+         "/materials/white/radiance/0", "at most 1e30"},
+        {"negative radiance",
+         with_materials(R"({"white": {"type": "emitter", "radiance": [1, 1, -5]}})"),
+         "/materials/white/radiance/2", "must not be negative"},
+        {"infinite radiance",
+         with_materials(R"({"white": {"type": "emitter", "radiance": [1, -1e999, 1]}})"),
+         "/materials/white/radiance/1", "out of range"},
+        {"missing radiance", with_materials(R"({"white": {"type": "emitter"}})"),
+         "/materials/white/radiance", "missing"},
+        {"emitter with a reflectance",
+         with_materials(
+             R"({"white": {"type": "emitter", "radiance": [1, 1, 1], "reflectance": [1, 1, 1]}})"),
+         "/materials/white/reflectance", "unknown key 'reflectance'"},
+        {"misspelt key",
+         with_materials(R"({"white": {"type": "diffuse", "reflectence": [1, 1, 1]}})"),
+         "/materials/white/reflectence", "unknown key"},
+        {"duplicate material name",
+         with_materials(
+             R"({"white": {"type": "diffuse", "reflectance": [1, 1, 1]}, "white": {"type": "mirror", "reflectance": [1, 1, 1]}})"),
+         "/materials/white", "duplicate key 'white'"},
+        {"material name with a slash is escaped",
+         with_materials(R"({"a/b~c": {"type": "plastic"}})"), "/materials/a~1b~0c/type",
+         "unknown material type"},
+
+        // shapes
+        {"shape not an object", with_shapes("[3]"), "/shapes/0", "expected a shape object"},
+        {"missing shape type", with_shape(R"({"vertices": [], "material": "white"})"),
+         "/shapes/0/type", "missing"},
+        {"unknown shape type", with_shape(R"({"type": "cube", "material": "white"})"),
+         "/shapes/0/type", "unknown shape type 'cube'"},
+        {"unknown shape key", with_shape("{" + tri + R"(, "material": "white", "colour": "red"})"),
+         "/shapes/0/colour", "unknown key 'colour'"},
+        {"key of another shape type",
+         with_shape("{" + tri + R"(, "material": "white", "radius": 1})"), "/shapes/0/radius",
+         "unknown key 'radius'"},
+        {"name not a string", with_shape("{" + tri + R"(, "material": "white", "name": 7})"),
+         "/shapes/0/name", "expected a string"},
+        {"missing material", with_shape("{" + tri + "}"), "/shapes/0/material", "missing"},
+        {"unknown material", with_shape("{" + tri + R"(, "material": "whte"})"),
+         "/shapes/0/material", "unknown material 'whte'"},
+        {"material not a string", with_shape("{" + tri + R"(, "material": 0})"),
+         "/shapes/0/material", "expected a string"},
+        {"error in a later shape",
+         with_shapes("[{" + tri + R"(, "material": "white"}, {)" + tri +
+                     R"(, "material": "nope"}])"),
+         "/shapes/1/material", "unknown material 'nope'"},
+        {"triangle with 4 vertices",
+         with_shape(
+             R"({"type": "triangle", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]], "material": "white"})"),
+         "/shapes/0/vertices", "exactly 3 points"},
+        {"vertex with 2 numbers",
+         with_shape(
+             R"({"type": "triangle", "vertices": [[0, 0, 0], [1, 0], [0, 1, 0]], "material": "white"})"),
+         "/shapes/0/vertices/1", "expected an array of 3 numbers"},
+        {"vertex coordinate null",
+         with_shape(
+             R"({"type": "triangle", "vertices": [[0, 0, 0], [1, 0, 0], [0, null, 0]], "material": "white"})"),
+         "/shapes/0/vertices/2/1", "expected a number, got null"},
+        {"vertex coordinate beyond float32",
+         with_shape(
+             R"({"type": "triangle", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, -3e30]], "material": "white"})"),
+         "/shapes/0/vertices/2/2", "1e30"},
+        {"vertex coordinate infinite",
+         with_shape(
+             R"({"type": "triangle", "vertices": [[0, 0, 0], [1, 0, 1e400], [0, 1, 0]], "material": "white"})"),
+         "/shapes/0/vertices/1/2", "out of range"},
+        {"NaN is not JSON",
+         with_shape(
+             R"({"type": "triangle", "vertices": [[0, 0, 0], [1, NaN, 0], [0, 1, 0]], "material": "white"})"),
+         "/shapes/0/vertices/1/1", "invalid JSON"},
+        {"quad with 3 vertices",
+         with_shape(
+             R"({"type": "quad", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "material": "white"})"),
+         "/shapes/0/vertices", "exactly 4 points"},
+        {"quad not coplanar",
+         with_shape(
+             R"({"type": "quad", "vertices": [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0.001]], "material": "white"})"),
+         "/shapes/0/vertices", "not coplanar"},
+        {"quad folded (bow tie)",
+         with_shape(
+             R"({"type": "quad", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]], "material": "white"})"),
+         "/shapes/0/vertices", "folded"},
+        {"mesh index out of range",
+         with_shape(
+             R"({"type": "mesh", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "triangles": [[0, 1, 3]], "material": "white"})"),
+         "/shapes/0/triangles/0/2", "out of range: the mesh has 3 vertices"},
+        {"negative mesh index",
+         with_shape(
+             R"({"type": "mesh", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "triangles": [[0, 1, 2], [-1, 1, 2]], "material": "white"})"),
+         "/shapes/0/triangles/1/0", "out of range"},
+        {"non-integer mesh index",
+         with_shape(
+             R"({"type": "mesh", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "triangles": [[0, 1.5, 2]], "material": "white"})"),
+         "/shapes/0/triangles/0/1", "expected an integer"},
+        {"mesh triangle with 4 indices",
+         with_shape(
+             R"({"type": "mesh", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "triangles": [[0, 1, 2, 0]], "material": "white"})"),
+         "/shapes/0/triangles/0", "expected an array of 3 vertex indices"},
+        {"mesh without triangles",
+         with_shape(
+             R"({"type": "mesh", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "material": "white"})"),
+         "/shapes/0/triangles", "missing"},
+        {"mesh with no triangles",
+         with_shape(
+             R"({"type": "mesh", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "triangles": [], "material": "white"})"),
+         "/shapes/0/triangles", "at least one triangle"},
+        {"mesh with no vertices",
+         with_shape(
+             R"({"type": "mesh", "vertices": [], "triangles": [[0, 0, 0]], "material": "white"})"),
+         "/shapes/0/vertices", "at least one point"},
+        {"mesh vertex bad",
+         with_shape(
+             R"({"type": "mesh", "vertices": [[0, 0, 0], [1, 0, true], [0, 1, 0]], "triangles": [[0, 1, 2]], "material": "white"})"),
+         "/shapes/0/vertices/1/2", "expected a number, got true"},
+        {"negative radius", with_shape("{" + sph + R"(, "radius": -1, "material": "white"})"),
+         "/shapes/0/radius", "must be positive, got -1"},
+        {"zero radius", with_shape("{" + sph + R"(, "radius": 0, "material": "white"})"),
+         "/shapes/0/radius", "must be positive, got 0"},
+        {"radius beyond float32",
+         with_shape("{" + sph + R"(, "radius": 1e31, "material": "white"})"), "/shapes/0/radius",
+         "1e30"},
+        {"infinite radius", with_shape("{" + sph + R"(, "radius": 1e999, "material": "white"})"),
+         "/shapes/0/radius", "out of range"},
+        {"radius a string", with_shape("{" + sph + R"(, "radius": "2", "material": "white"})"),
+         "/shapes/0/radius", "expected a number"},
+        {"missing radius", with_shape("{" + sph + R"(, "material": "white"})"), "/shapes/0/radius",
+         "missing"},
+        {"missing center", with_shape(R"({"type": "sphere", "radius": 1, "material": "white"})"),
+         "/shapes/0/center", "missing"},
+        {"sphere center beyond float32",
+         with_shape(
+             R"({"type": "sphere", "center": [0, 0, 5e30], "radius": 1, "material": "white"})"),
+         "/shapes/0/center/2", "1e30"},
+        {"emitter sphere", with_shape("{" + sph + R"(, "radius": 1, "material": "light"})"),
+         "/shapes/0/material", "spheres cannot be emitters: use triangles"},
+        {"emissive diffuse sphere",
+         scene(
+             kCamera,
+             R"({"glow": {"type": "diffuse", "reflectance": [0.5, 0.5, 0.5], "emission": [0, 0, 1]}})",
+             "[{" + sph + R"(, "radius": 1, "material": "glow"}])"),
+         "/shapes/0/material", "spheres cannot be emitters"},
+        {"all shapes skipped",
+         with_shape(
+             R"({"type": "triangle", "vertices": [[0, 0, 0], [1, 0, 0], [2, 0, 0]], "material": "white"})"),
+         "/shapes", "every shape was skipped"},
+    };
+
+    for (const Case& c : cases) {
+        INFO(c.what);
+        INFO(c.json);
+        const std::string msg = error_of(c.json);
+        INFO(msg);
+        CHECK(msg.rfind("test.json", 0) == 0);
+        CHECK(msg.find(c.pointer + ": ") != std::string::npos);
+        CHECK(msg.find(c.fragment) != std::string::npos);
+        CHECK(msg.find('\n') == std::string::npos);
+    }
+}
+
+TEST_CASE("loader: the exact message format", "[scene][load][errors]") {
+    const std::string shapes =
+        R"([{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "white"},
+            {"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "white"},
+            {"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "white"},
+            {"type": "sphere", "center": [0, 0, 0], "radius": -1, "material": "white"}])";
+    CHECK(error_of(with_shapes(shapes), "hexroom.json") ==
+          "hexroom.json: /shapes/3/radius: must be positive, got -1");
+}
+
+TEST_CASE("loader: syntax errors give the byte position, line and column", "[scene][load]") {
+    SECTION("stray comma") {
+        const std::string text = "{\n  \"camera\": {\n    \"eye\": [1, 2,, 3]\n  }\n}\n";
+        const std::string msg = error_of(text);
+        INFO(msg);
+        CHECK(msg.rfind("test.json:3:", 0) == 0);
+        CHECK(msg.find("(byte ") != std::string::npos);
+        CHECK(msg.find("/camera/eye/2") != std::string::npos);
+        CHECK(msg.find("invalid JSON") != std::string::npos);
+    }
+    SECTION("truncated") {
+        const std::string msg = error_of(R"({"camera": {"eye": [1, 2)");
+        INFO(msg);
+        CHECK(msg.rfind("test.json:1:", 0) == 0);
+        CHECK(msg.find("(byte ") != std::string::npos);
+    }
+    SECTION("empty text") {
+        const std::string msg = error_of("");
+        INFO(msg);
+        CHECK(msg.find("(byte ") != std::string::npos);
+    }
+    SECTION("trailing garbage") {
+        const std::string msg = error_of(scene() + " x");
+        INFO(msg);
+        CHECK(msg.find("(byte ") != std::string::npos);
+    }
+    SECTION("comments are not JSON") {
+        const std::string msg = error_of("// hexroom\n" + scene());
+        INFO(msg);
+        CHECK(msg.rfind("test.json:1:", 0) == 0);
+    }
+}
+
+TEST_CASE("loader: missing file", "[scene][load]") {
+    const std::string path = std::string(WAVEPATH_SOURCE_DIR) + "/scenes/no-such-scene.json";
+    try {
+        (void)wp::load_scene(path);
+        FAIL("no error");
+    } catch (const wp::SceneError& e) {
+        const std::string msg = e.what();
+        INFO(msg);
+        CHECK(msg.rfind("cannot open scene '" + path + "': ", 0) == 0);
+        CHECK(msg.find("No such file or directory") != std::string::npos);
+    }
+}
+
+TEST_CASE("loader: a directory is not a scene", "[scene][load]") {
+    const std::string path = std::string(WAVEPATH_SOURCE_DIR) + "/scenes";
+    CHECK_THROWS_AS(wp::load_scene(path), wp::SceneError);
+}
+
+TEST_CASE("validate_scene: rejects bad hand-built scenes", "[scene][validate]") {
+    wp::Scene s = wp::parse_scene(scene(), "built");
+    REQUIRE_NOTHROW(wp::validate_scene(s));
+    const auto message = [](const wp::Scene& bad) {
+        try {
+            wp::validate_scene(bad);
+        } catch (const wp::SceneError& e) {
+            return std::string(e.what());
+        }
+        return std::string("<no error>");
+    };
+    {
+        wp::Scene bad = s;
+        bad.triangles[0].v[1].y = std::nan("");
+        CHECK(message(bad).find("built: triangles[0].v[1][1]: must be finite") == 0);
+    }
+    {
+        wp::Scene bad = s;
+        bad.triangles[0].material = 7;
+        CHECK(message(bad).find("triangles[0].material") != std::string::npos);
+    }
+    {
+        wp::Scene bad = s;
+        bad.spheres.push_back(wp::Sphere{glm::dvec3(0.0), 1.0, 2}); // "light"
+        CHECK(message(bad).find("spheres[0].material: spheres cannot be emitters") !=
+              std::string::npos);
+    }
+    {
+        wp::Scene bad = s;
+        bad.camera.width = 0;
+        CHECK(message(bad).find("camera.width") != std::string::npos);
+    }
+    {
+        wp::Scene bad = s;
+        bad.camera.up = glm::dvec3(1, 0, 0);
+        CHECK(message(bad).find("camera.up") != std::string::npos);
+    }
+    {
+        wp::Scene bad = s;
+        bad.triangles[0].v[2] = bad.triangles[0].v[1];
+        CHECK(message(bad).find("triangles[0]: zero-area") != std::string::npos);
+    }
+    {
+        wp::Scene bad = s;
+        bad.materials[0].reflectance.x = 2.0;
+        CHECK(message(bad).find("materials[0] ('white').reflectance[0]") != std::string::npos);
+    }
+}
