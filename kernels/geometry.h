@@ -18,12 +18,17 @@
 
 #pragma OPENCL FP_CONTRACT OFF
 
-/* Spawned rays start this far (relative to the largest coordinate of the
- * point) off the surface, along the normal on the side they leave by. A
- * relative offset keeps the scene scale-invariant: a fixed epsilon is too big
- * for a millimetre scene and too small for a kilometre one. 2e-6 is about 17
- * float ulps of the coordinate, well above the error of a reprojected hit point
- * (a few ulps) and small enough that contact shadows stay closed. */
+/* Spawned rays start off their surface, along the normal on the side they
+ * leave by, so that rounding cannot make them hit the surface they left.
+ *
+ * The offset is relative: WP_RAY_OFFSET_RELATIVE times the magnitude of the
+ * coordinates involved, which is the hit point and the primitive's own
+ * vertices (or centre plus radius): the intersection test subtracts the ray
+ * origin from the vertices, so its rounding error scales with both. A fixed
+ * epsilon would be too big for a millimetre scene and too small for a
+ * kilometre one; a relative one keeps the renderer scale-invariant. 2e-6 is
+ * about 17 float ulps of that magnitude, above the few ulps of error of a
+ * reprojected hit point and small enough that contact shadows stay closed. */
 #define WP_RAY_OFFSET_RELATIVE 2.0e-6f
 /* Keeps the offset non-zero at the exact origin. */
 #define WP_RAY_OFFSET_FLOOR 1.0e-30f
@@ -32,13 +37,24 @@ static inline float wp_max_abs_component(float3 p) {
     return fmax(fmax(fabs(p.x), fabs(p.y)), fabs(p.z));
 }
 
-static inline float wp_offset_distance(float3 p) {
-    return WP_RAY_OFFSET_RELATIVE * wp_max_abs_component(p) + WP_RAY_OFFSET_FLOOR;
+/* How far to offset a point on a primitive whose coordinates reach `scale`
+ * in magnitude (see wp_triangle_scale, wp_sphere_scale). */
+static inline float wp_offset_distance(float3 p, float scale) {
+    return WP_RAY_OFFSET_RELATIVE * fmax(wp_max_abs_component(p), scale) + WP_RAY_OFFSET_FLOOR;
 }
 
 /* Moves p off its surface to the side of `side_normal` (unit length). */
-static inline float3 wp_offset_ray_origin(float3 p, float3 side_normal) {
-    return p + side_normal * wp_offset_distance(p);
+static inline float3 wp_offset_ray_origin(float3 p, float3 side_normal, float scale) {
+    return p + side_normal * wp_offset_distance(p, scale);
+}
+
+static inline float wp_triangle_scale(const WpTriangle* t) {
+    return fmax(wp_max_abs_component(t->v0.xyz),
+                fmax(wp_max_abs_component(t->v1.xyz), wp_max_abs_component(t->v2.xyz)));
+}
+
+static inline float wp_sphere_scale(float4 center_radius) {
+    return wp_max_abs_component(center_radius.xyz) + center_radius.w;
 }
 
 static inline float wp_axis(float3 v, int axis) {

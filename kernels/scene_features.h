@@ -23,4 +23,11 @@
 #define WP_HAS_LIGHTS 1
 #endif
 
+/* Estimator switch, not a scene feature: with next-event estimation off,
+ * light is found only by paths that hit an emitter, and emitters count after
+ * every bounce. Slower to converge, but with bounded variance (no 1/r^2). */
+#ifndef WP_USE_NEE
+#define WP_USE_NEE 1
+#endif
+
 #endif /* WP_SCENE_FEATURES_H */

@@ -4,6 +4,8 @@
  *     for camera rays and rays after a mirror bounce. After a diffuse bounce
  *     the light was already counted by next-event estimation, and counting it
  *     again would count it twice.
+ *     (With WP_USE_NEE=0 there is no step 2 and emitters count after every
+ *     bounce.)
  *  2. Next-event estimation (diffuse surfaces): pick a point uniformly by area
  *     on the emissive triangles and queue one shadow ray carrying the
  *     contribution it would make if nothing blocks it.
@@ -64,12 +66,14 @@ __kernel void shade(WpFrame frame, wp_uint ray_count, __global const wp_uint* ra
     /* Geometric normal, and the hit point reprojected onto the surface: its
      * error then scales with the surface's coordinates, not with t. */
     float3 normal;
+    float scale; /* magnitude of the primitive's coordinates, for ray offsets */
     wp_uint material_index;
 #if WP_HAS_SPHERES
     if (primitive >= frame.triangle_count) {
         WpSphere sphere = spheres[primitive - frame.triangle_count];
         normal = normalize(position - sphere.center_radius.xyz);
         position = sphere.center_radius.xyz + sphere.center_radius.w * normal;
+        scale = wp_sphere_scale(sphere.center_radius);
         material_index = sphere.material;
     } else
 #endif
@@ -77,6 +81,7 @@ __kernel void shade(WpFrame frame, wp_uint ray_count, __global const wp_uint* ra
         WpTriangle triangle = triangles[primitive];
         normal = normalize(wp_triangle_normal(&triangle));
         position -= dot(position - triangle.v0.xyz, normal) * normal;
+        scale = wp_triangle_scale(&triangle);
         material_index = triangle.material;
     }
     WpMaterial material = materials[material_index];
@@ -89,14 +94,14 @@ __kernel void shade(WpFrame frame, wp_uint ray_count, __global const wp_uint* ra
     wp_uint flags = path_flags[slot];
     wp_uint pixel = path_pixel[slot];
 
-    if ((flags & WP_PATH_SPECULAR) && front_face)
+    if ((!WP_USE_NEE || (flags & WP_PATH_SPECULAR)) && front_face)
         sum += beta * material.emission.xyz;
     if (material.kind == WP_MATERIAL_EMITTER) {
         radiance[slot] = (float4)(sum, 0.0f);
         return;
     }
 
-    float3 origin = wp_offset_ray_origin(position, facing_normal);
+    float3 origin = wp_offset_ray_origin(position, facing_normal, scale);
     float3 reflectance = material.reflectance.xyz;
     float3 next_direction;
 #if WP_HAS_MIRROR
@@ -106,7 +111,7 @@ __kernel void shade(WpFrame frame, wp_uint ray_count, __global const wp_uint* ra
     } else
 #endif
     {
-#if WP_HAS_LIGHTS
+#if WP_HAS_LIGHTS && WP_USE_NEE
         float u_pick = wp_random(frame.seed, pixel, frame.sample_index, depth, WP_DIM_LIGHT_PICK);
         float u_light = wp_random(frame.seed, pixel, frame.sample_index, depth, WP_DIM_LIGHT_U);
         float v_light = wp_random(frame.seed, pixel, frame.sample_index, depth, WP_DIM_LIGHT_V);
@@ -119,8 +124,10 @@ __kernel void shade(WpFrame frame, wp_uint ray_count, __global const wp_uint* ra
         float3 wi = to_light / distance;
         float cos_surface = dot(facing_normal, wi);
         float cos_light = -dot(light_normal, wi);
-        float length_to_test = distance - WP_SHADOW_END_MARGIN * wp_offset_distance(light_point);
-        if (cos_surface > 0.0f && cos_light > 0.0f && length_to_test > 0.0f) {
+        float length_to_test =
+            distance - WP_SHADOW_END_MARGIN * wp_offset_distance(light_point, wp_triangle_scale(&light));
+        if (frame.light_count > 0 && cos_surface > 0.0f && cos_light > 0.0f &&
+            length_to_test > 0.0f) {
             float3 emitted = materials[light.material].emission.xyz;
             float geometry = cos_surface * cos_light / (distance * distance);
             float3 contribution =

@@ -36,7 +36,10 @@ WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const Scene& sce
       options_(options) {
     const cl::Context& ctx = device_.context;
     SceneFeatures compiled = options_.general_kernels ? SceneFeatures::all() : features_;
-    program_ = build_wavefront_program(ctx, device_.info.device, compiled.build_options());
+    std::string build_options = compiled.build_options();
+    if (!options_.next_event_estimation)
+        build_options += " -D WP_USE_NEE=0";
+    program_ = build_wavefront_program(ctx, device_.info.device, build_options);
 
     generate_ = cl::Kernel(program_.program, "generate");
     intersect_ = cl::Kernel(program_.program, "intersect");

@@ -28,6 +28,9 @@ struct IntegratorOptions {
     // number of paths it cuts is counted in RenderStats::capped_paths.
     std::uint32_t max_depth = 1024;
     bool general_kernels = false; // compile every feature, not just the scene's
+    // Next-event estimation: one shadow ray to a light per diffuse hit. Off,
+    // light is found only by paths that hit emitters.
+    bool next_event_estimation = true;
 };
 
 struct RenderStats {

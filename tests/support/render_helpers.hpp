@@ -1,0 +1,47 @@
+// Rendering a scene in a test, and the statistics its checks need.
+#pragma once
+
+#include <cmath>
+
+#include "render/film.hpp"
+#include "render/wavefront.hpp"
+#include "support/test_device.hpp"
+
+namespace wp::test {
+
+struct Rendered {
+    Film film;
+    RenderStats stats;
+};
+
+inline Rendered render(const Scene& scene, std::uint32_t spp, std::uint32_t seed = 1,
+                       std::uint32_t first_sample = 0, IntegratorOptions options = {}) {
+    options.seed = seed;
+    WavefrontIntegrator integrator(device(), scene, options);
+    Rendered out{Film(scene.camera.width, scene.camera.height), {}};
+    integrator.render(first_sample, spp, out.film);
+    out.stats = integrator.stats();
+    return out;
+}
+
+// Mean over all pixels of channel c, with its standard error (from the
+// per-pixel sample variances; pixels are independent).
+struct MeanWithError {
+    double mean = 0.0;
+    double standard_error = 0.0;
+};
+
+inline MeanWithError image_mean(const Film& film, int channel) {
+    Image mean = film.mean();
+    Image variance = film.variance_of_mean();
+    double sum = 0.0, var = 0.0;
+    std::size_t pixels = static_cast<std::size_t>(film.width()) * film.height();
+    for (std::size_t p = 0; p < pixels; ++p) {
+        sum += mean.rgb[p * 3 + channel];
+        var += variance.rgb[p * 3 + channel];
+    }
+    double n = static_cast<double>(pixels);
+    return {sum / n, std::sqrt(var) / n};
+}
+
+} // namespace wp::test
