@@ -22,9 +22,7 @@ int main(int argc, char** argv) {
     wp::RenderCommand render;
     std::string tonemap = "srgb";
     CLI::App* r = app.add_subcommand("render", "Render a scene to an image");
-    r->add_option("scene", render.scene, "Scene file (JSON, see docs/scene-format.md)")
-        ->required()
-        ->check(CLI::ExistingFile);
+    r->add_option("scene", render.scene, "Scene file (JSON, see docs/scene-format.md)")->required();
     r->add_option("--out,-o", render.out,
                   "Output image; its extension picks the format: .exr or .pfm (linear HDR), "
                   ".png (view)")
@@ -57,7 +55,14 @@ int main(int argc, char** argv) {
     r->add_flag("--general", render.general,
                 "Build the all-features kernels instead of the scene's specialised ones");
 
-    CLI11_PARSE(app, argc, argv);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::Success& e) { // --help
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::cerr << "wavepath: error: " << e.what() << " (see wavepath --help)\n";
+        return 2;
+    }
     render.view.tonemap = tonemap == "seed" ? wp::ToneMap::Seed : wp::ToneMap::Srgb;
 
     try {

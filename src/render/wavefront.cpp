@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cstdio>
+#include <stdexcept>
 
 namespace wp {
 namespace {
@@ -28,12 +30,41 @@ cl::Buffer device_array(const cl::Context& context, std::size_t element_size, st
     return cl::Buffer(context, CL_MEM_READ_WRITE, element_size * std::max<std::size_t>(count, 1));
 }
 
+// Device memory per pixel: ten float4 arrays (ray origin and direction,
+// throughput, radiance, the shadow ray's origin, direction and contribution,
+// three film sums) and eight 4-byte arrays (pixel, depth, flags, hit distance
+// and primitive, two ray queues, the shadow queue).
+constexpr std::uint64_t kBytesPerPixel = 10 * sizeof(cl_float4) + 8 * sizeof(cl_uint);
+
+std::string gibibytes(std::uint64_t bytes) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.2f GiB", static_cast<double>(bytes) / (1ull << 30));
+    return text;
+}
+
+// Fails with a clear message before allocating what the device cannot hold
+// (drivers report this late and vaguely, if at all).
+void check_device_memory(const DeviceInfo& device, int width, int height) {
+    const std::uint64_t pixels =
+        static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
+    const std::uint64_t total = pixels * kBytesPerPixel;
+    const std::uint64_t largest = pixels * sizeof(cl_float4);
+    const std::uint64_t max_alloc = device.device.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
+    if (total > device.global_memory_bytes || largest > max_alloc)
+        throw std::runtime_error(
+            "out of device memory: a " + std::to_string(width) + "x" + std::to_string(height) +
+            " image needs " + gibibytes(total) + " (largest buffer " + gibibytes(largest) +
+            ") on " + device.name + ", which has " + gibibytes(device.global_memory_bytes) +
+            " (largest buffer " + gibibytes(max_alloc) + "); use a smaller --width/--height");
+}
+
 } // namespace
 
 WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const Scene& scene,
                                          IntegratorOptions options)
     : device_(device), scene_(flatten_scene(scene)), features_(analyse_features(scene)),
       options_(options) {
+    check_device_memory(device_.info, scene_.width, scene_.height);
     const cl::Context& ctx = device_.context;
     SceneFeatures compiled = options_.general_kernels ? SceneFeatures::all() : features_;
     std::string build_options = compiled.build_options();

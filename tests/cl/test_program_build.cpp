@@ -1,0 +1,44 @@
+// Building kernels: embedded includes, and a failed build's diagnostics.
+#include <catch2/catch.hpp>
+
+#include "cl/program.hpp"
+#include "support/test_device.hpp"
+
+using namespace wp;
+
+TEST_CASE("program: includes resolve to embedded files, each once, with #line markers") {
+    std::string text =
+        expand_includes("#include \"rng.h\"\n#include \"wp_shared.h\"\nint x;\n", "t.cl");
+    CHECK(text.find("wp_mix32") != std::string::npos);
+    // wp_shared.h is included by rng.h and again by t.cl: its text appears once.
+    std::size_t first = text.find("WP_SHARED_H");
+    REQUIRE(first != std::string::npos);
+    CHECK(text.find("#define WP_SHARED_H") == text.rfind("#define WP_SHARED_H"));
+    // After the includes, line numbers resume in t.cl at its line 3.
+    CHECK(text.find("#line 3 \"t.cl\"\nint x;") != std::string::npos);
+    CHECK_THROWS_AS(expand_includes("#include \"missing.h\"\n", "t.cl"), std::out_of_range);
+}
+
+TEST_CASE("program: a failed build reports the compiler log with file and line") {
+    DeviceContext& device = test::device();
+    const char* source = "#include \"wp_shared.h\"\n"
+                         "__kernel void broken(__global float* out) {\n"
+                         "    out[0] = no_such_variable;\n"
+                         "}\n";
+    try {
+        build_program(device.context, device.info.device, source, "broken.cl", "");
+        FAIL("the build should have failed");
+    } catch (const BuildError& e) {
+        INFO(e.log());
+        CHECK(std::string(e.what()).find("broken.cl") != std::string::npos);
+        CHECK(e.log().find("broken.cl:3") != std::string::npos);
+        CHECK(e.log().find("no_such_variable") != std::string::npos);
+    }
+}
+
+TEST_CASE("program: every stage of the wavefront program builds") {
+    DeviceContext& device = test::device();
+    BuiltProgram built = build_wavefront_program(device.context, device.info.device, "");
+    for (const char* name : {"generate", "intersect", "shade", "shadow", "accumulate"})
+        CHECK_NOTHROW(cl::Kernel(built.program, name));
+}
