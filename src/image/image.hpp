@@ -3,6 +3,7 @@
 
 #include <cstddef>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace wp {
@@ -27,6 +28,29 @@ struct Image {
     const float* pixel(int x, int y) const {
         return &rgb[(static_cast<std::size_t>(y) * width + x) * 3];
     }
+
+    // True when the dimensions are non-negative and rgb holds exactly width * height * 3
+    // floats, i.e. when indexing through pixel() stays inside the buffer.
+    bool has_valid_shape() const noexcept {
+        return width >= 0 && height >= 0 &&
+               rgb.size() == static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3;
+    }
 };
+
+// Throws ImageError("<context>: ...") unless the image has a valid shape and, when
+// require_pixels is set, at least one pixel. Every function that walks rgb calls this
+// first, so a mis-sized buffer is a clear error instead of an out-of-bounds read.
+inline void check_image_shape(const Image& img, const std::string& context,
+                              bool require_pixels = true) {
+    if (!img.has_valid_shape()) {
+        throw ImageError(context + ": image is " + std::to_string(img.width) + "x" +
+                         std::to_string(img.height) + " but holds " +
+                         std::to_string(img.rgb.size()) + " floats");
+    }
+    if (require_pixels && (img.width == 0 || img.height == 0)) {
+        throw ImageError(context + ": image is empty (" + std::to_string(img.width) + "x" +
+                         std::to_string(img.height) + ")");
+    }
+}
 
 } // namespace wp

@@ -1,0 +1,253 @@
+#include "image/exr.hpp"
+
+#include "image/atomic_file.hpp"
+#include "image/read_file.hpp"
+
+#include <tinyexr.h>
+
+#include <array>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace wp {
+namespace {
+
+// tinyexr reports errors as malloc'd C strings; turn one into a message and free it.
+std::string take_error(const char* err, const char* fallback) {
+    if (err == nullptr) {
+        return fallback;
+    }
+    std::string msg(err);
+    FreeEXRErrorMessage(err);
+    // tinyexr messages often end with a newline; keep ours to one line.
+    while (!msg.empty() && (msg.back() == '\n' || msg.back() == '\r')) {
+        msg.pop_back();
+    }
+    for (char& c : msg) {
+        if (c == '\n') {
+            c = ' ';
+        }
+    }
+    return msg.empty() ? std::string(fallback) : msg;
+}
+
+// ParseEXRHeaderFromMemory fills the header even when it fails, so it is always freed.
+struct HeaderGuard {
+    EXRHeader header;
+    HeaderGuard() { InitEXRHeader(&header); }
+    ~HeaderGuard() { FreeEXRHeader(&header); }
+    HeaderGuard(const HeaderGuard&) = delete;
+    HeaderGuard& operator=(const HeaderGuard&) = delete;
+};
+
+// Only armed after a successful load: tinyexr already frees the image when decoding
+// fails, and FreeEXRImage does not reset its pointers, so freeing again would double free.
+struct ImageGuard {
+    EXRImage image;
+    bool loaded = false;
+    ImageGuard() { InitEXRImage(&image); }
+    ~ImageGuard() {
+        if (loaded) {
+            FreeEXRImage(&image);
+        }
+    }
+    ImageGuard(const ImageGuard&) = delete;
+    ImageGuard& operator=(const ImageGuard&) = delete;
+};
+
+std::uint64_t load_le(const unsigned char* p, int bytes) {
+    std::uint64_t v = 0;
+    for (int i = bytes - 1; i >= 0; --i) {
+        v = (v << 8) | p[i];
+    }
+    return v;
+}
+
+// Checks that every chunk listed in the offset table lies inside the file. tinyexr
+// 1.0.1 detects a cut-off chunk too, but only after allocating the channel buffers,
+// which it then leaks; checking first avoids that for the common damage (a truncated
+// file) and gives a clearer message. Mirrors tinyexr's block count for scanline files.
+void check_chunks_complete(const std::vector<unsigned char>& bytes, const EXRHeader& header,
+                           const std::string& context) {
+    const std::uint64_t size = bytes.size();
+    const std::uint64_t table = 8 + static_cast<std::uint64_t>(header.header_len);
+    std::uint64_t blocks = 0;
+    if (header.chunk_count > 0) {
+        blocks = static_cast<std::uint64_t>(header.chunk_count);
+    } else {
+        const int lines = header.compression_type == TINYEXR_COMPRESSIONTYPE_ZIP   ? 16
+                          : header.compression_type == TINYEXR_COMPRESSIONTYPE_PIZ ? 32
+                          : header.compression_type == TINYEXR_COMPRESSIONTYPE_ZFP ? 16
+                                                                                   : 1;
+        const std::int64_t height =
+            static_cast<std::int64_t>(header.data_window.max_y) - header.data_window.min_y + 1;
+        if (height <= 0) {
+            throw ImageError(context + ": invalid EXR data window");
+        }
+        blocks = (static_cast<std::uint64_t>(height) + lines - 1) / lines;
+    }
+    if (table > size || blocks > (size - table) / 8) {
+        throw ImageError(context + ": truncated EXR file (offset table incomplete)");
+    }
+    for (std::uint64_t i = 0; i < blocks; ++i) {
+        const std::uint64_t offset = load_le(bytes.data() + table + i * 8, 8);
+        if (offset == 0) {
+            return; // incomplete table that tinyexr rebuilds by scanning; let it decide
+        }
+        const bool header_fits = offset <= size && size - offset >= 8;
+        const std::uint64_t data_len = header_fits ? load_le(bytes.data() + offset + 4, 4) : 0;
+        if (!header_fits || data_len > size - offset - 8) {
+            throw ImageError(context + ": truncated EXR file (chunk " + std::to_string(i + 1) +
+                             " of " + std::to_string(blocks) + " ends past the end of the file)");
+        }
+    }
+}
+
+struct MallocFree {
+    void operator()(unsigned char* p) const noexcept { std::free(p); }
+};
+
+} // namespace
+
+void write_exr(const std::filesystem::path& path, const Image& img) {
+    const std::string context = "cannot write '" + path.string() + "'";
+    check_image_shape(img, context);
+
+    // EXR stores channels planar and sorted by name, so split RGB into B, G, R planes.
+    const std::size_t n =
+        static_cast<std::size_t>(img.width) * static_cast<std::size_t>(img.height);
+    std::array<std::vector<float>, 3> planes; // B, G, R
+    for (auto& plane : planes) {
+        plane.resize(n);
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+        planes[0][i] = img.rgb[i * 3 + 2];
+        planes[1][i] = img.rgb[i * 3 + 1];
+        planes[2][i] = img.rgb[i * 3 + 0];
+    }
+    std::array<unsigned char*, 3> plane_ptrs{};
+    for (std::size_t c = 0; c < 3; ++c) {
+        plane_ptrs[c] = reinterpret_cast<unsigned char*>(planes[c].data());
+    }
+
+    EXRImage image;
+    InitEXRImage(&image);
+    image.num_channels = 3;
+    image.width = img.width;
+    image.height = img.height;
+    image.images = plane_ptrs.data();
+
+    // The header's arrays are ours (not malloc'd), so FreeEXRHeader must not see them.
+    std::array<EXRChannelInfo, 3> channels{};
+    const char* names[3] = {"B", "G", "R"};
+    for (std::size_t c = 0; c < 3; ++c) {
+        std::strncpy(channels[c].name, names[c], sizeof channels[c].name - 1);
+    }
+    std::array<int, 3> pixel_types{TINYEXR_PIXELTYPE_FLOAT, TINYEXR_PIXELTYPE_FLOAT,
+                                   TINYEXR_PIXELTYPE_FLOAT};
+    std::array<int, 3> requested_types = pixel_types; // store float32: no precision loss
+    EXRHeader header;
+    InitEXRHeader(&header);
+    header.num_channels = 3;
+    header.channels = channels.data();
+    header.pixel_types = pixel_types.data();
+    header.requested_pixel_types = requested_types.data();
+    header.compression_type = TINYEXR_COMPRESSIONTYPE_ZIP;
+
+    // Encode in memory, then write atomically: tinyexr's own file writer would truncate
+    // the previous image before the new one is complete.
+    unsigned char* memory = nullptr;
+    const char* err = nullptr;
+    const std::size_t size = SaveEXRImageToMemory(&image, &header, &memory, &err);
+    std::unique_ptr<unsigned char, MallocFree> owned(memory);
+    if (size == 0 || memory == nullptr) {
+        throw ImageError(context +
+                         ": EXR encoding failed: " + take_error(err, "unknown tinyexr error"));
+    }
+    write_bytes_atomically(path, memory, size);
+}
+
+Image read_exr(const std::filesystem::path& path) {
+    const std::string context = "cannot read '" + path.string() + "'";
+    const std::vector<unsigned char> bytes = read_file_bytes(path);
+
+    EXRVersion version;
+    if (ParseEXRVersionFromMemory(&version, bytes.data(), bytes.size()) != TINYEXR_SUCCESS) {
+        throw ImageError(context + ": not an OpenEXR file");
+    }
+    if (version.multipart || version.non_image) {
+        throw ImageError(context + ": multi-part and deep EXR files are not supported");
+    }
+    if (version.tiled) {
+        throw ImageError(context + ": tiled EXR files are not supported");
+    }
+
+    HeaderGuard header;
+    const char* err = nullptr;
+    if (ParseEXRHeaderFromMemory(&header.header, &version, bytes.data(), bytes.size(), &err) !=
+        TINYEXR_SUCCESS) {
+        throw ImageError(context + ": invalid EXR header: " + take_error(err, "unknown error"));
+    }
+    if (header.header.tiled) {
+        throw ImageError(context + ": tiled EXR files are not supported");
+    }
+
+    // Find R, G and B; ask tinyexr to convert half channels to float while decoding.
+    int channel_index[3] = {-1, -1, -1};
+    std::string found;
+    for (int c = 0; c < header.header.num_channels; ++c) {
+        const EXRChannelInfo& info = header.header.channels[c];
+        const std::string name = info.name;
+        found += (found.empty() ? "" : ",") + name;
+        const int slot = name == "R" ? 0 : name == "G" ? 1 : name == "B" ? 2 : -1;
+        if (slot < 0) {
+            continue;
+        }
+        const int type = header.header.pixel_types[c];
+        if (type != TINYEXR_PIXELTYPE_HALF && type != TINYEXR_PIXELTYPE_FLOAT) {
+            throw ImageError(context + ": channel '" + name +
+                             "' holds integers; only half or float channels are supported");
+        }
+        if (info.x_sampling != 1 || info.y_sampling != 1) {
+            throw ImageError(context + ": channel '" + name + "' is subsampled");
+        }
+        header.header.requested_pixel_types[c] = TINYEXR_PIXELTYPE_FLOAT;
+        channel_index[slot] = c;
+    }
+    if (channel_index[0] < 0 || channel_index[1] < 0 || channel_index[2] < 0) {
+        throw ImageError(context + ": not an RGB EXR (channels: " +
+                         (found.empty() ? std::string("none") : found) + ")");
+    }
+
+    check_chunks_complete(bytes, header.header, context);
+
+    ImageGuard image;
+    err = nullptr;
+    if (LoadEXRImageFromMemory(&image.image, &header.header, bytes.data(), bytes.size(), &err) !=
+        TINYEXR_SUCCESS) {
+        throw ImageError(context +
+                         ": corrupt or truncated EXR data: " + take_error(err, "unknown error"));
+    }
+    image.loaded = true;
+    if (image.image.images == nullptr || image.image.width <= 0 || image.image.height <= 0) {
+        throw ImageError(context + ": EXR file holds no scanline pixels");
+    }
+
+    Image img(image.image.width, image.image.height);
+    const std::size_t n =
+        static_cast<std::size_t>(img.width) * static_cast<std::size_t>(img.height);
+    for (int slot = 0; slot < 3; ++slot) {
+        const float* plane =
+            reinterpret_cast<const float*>(image.image.images[channel_index[slot]]);
+        for (std::size_t i = 0; i < n; ++i) {
+            img.rgb[i * 3 + static_cast<std::size_t>(slot)] = plane[i];
+        }
+    }
+    return img;
+}
+
+} // namespace wp

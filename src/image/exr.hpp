@@ -1,0 +1,20 @@
+// OpenEXR files: the renderer's lossless float output, readable by every image tool.
+#pragma once
+
+#include "image/image.hpp"
+
+#include <filesystem>
+
+namespace wp {
+
+// Writes a single-part scanline EXR with float32 channels B, G, R (the alphabetical
+// order the format requires), ZIP-compressed (lossless). Atomic.
+void write_exr(const std::filesystem::path& path, const Image& img);
+
+// Reads a single-part scanline EXR with R, G and B channels (an A channel is ignored)
+// stored as half or float. The data window becomes the image. Anything else (missing
+// channels, tiled, multi-part or deep files, integer channels, corrupt or truncated
+// data) is an ImageError naming the file.
+Image read_exr(const std::filesystem::path& path);
+
+} // namespace wp
