@@ -1,0 +1,155 @@
+// Helpers for the kernel-level tests: buffers to and from the shared test
+// device, launches with a fixed work-group size, and the programs under test.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "cl/cl.hpp"
+#include "cl/program.hpp"
+#include "support/test_device.hpp"
+#include "wp_shared.h"
+
+#include <catch2/catch.hpp>
+
+namespace wp::test {
+
+// Every launch uses this work-group size (PoCL compiles a kernel anew for each
+// distinct local size) and rounds the item count up to a multiple of it, so the
+// kernels' guards against excess work-items are exercised too.
+constexpr std::size_t kLocalSize = 64;
+
+inline std::size_t round_up(std::size_t items) {
+    return std::max<std::size_t>(1, (items + kLocalSize - 1) / kLocalSize) * kLocalSize;
+}
+
+// A read-write buffer holding a copy of `data` (at least one element).
+template <typename T> cl::Buffer upload(const std::vector<T>& data) {
+    std::vector<T> padded = data.empty() ? std::vector<T>(1) : data;
+    return cl::Buffer(device().context, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR,
+                      sizeof(T) * padded.size(), padded.data());
+}
+
+// The first `count` elements of `buffer`.
+template <typename T> std::vector<T> download(const cl::Buffer& buffer, std::size_t count) {
+    std::vector<T> out(count);
+    if (count > 0)
+        device().queue.enqueueReadBuffer(buffer, CL_TRUE, 0, sizeof(T) * count, out.data());
+    return out;
+}
+
+// Runs `kernel` over `items` work-items (global size rounded up to a multiple
+// of kLocalSize) and waits for it.
+inline void launch(cl::Kernel& kernel, std::size_t items) {
+    device().queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(round_up(items)),
+                                        cl::NDRange(kLocalSize));
+    device().queue.finish();
+}
+
+// Sets kernel arguments 0, 1, 2, ... in order.
+template <typename... Args> void set_args(cl::Kernel& kernel, const Args&... args) {
+    cl_uint index = 0;
+    (kernel.setArg(index++, args), ...);
+}
+
+// Builds test-kernel source (which may include the embedded kernel headers)
+// once per executable; a failed build reports the compiler log.
+inline const cl::Program& program(const std::string& source, const std::string& name,
+                                  const std::string& options = "") {
+    static std::map<std::string, cl::Program> cache;
+    std::string key = name + '\n' + options + '\n' + source;
+    auto found = cache.find(key);
+    if (found != cache.end())
+        return found->second;
+    try {
+        BuiltProgram built =
+            build_program(device().context, device().info.device, source, name, options);
+        return cache.emplace(key, built.program).first->second;
+    } catch (const BuildError& error) {
+        FAIL(error.what() << '\n' << error.log());
+        throw;
+    }
+}
+
+// The five wavefront stages with every feature compiled in, built once.
+inline const cl::Program& wavefront_program() {
+    static const cl::Program built =
+        build_wavefront_program(device().context, device().info.device, "").program;
+    return built;
+}
+
+inline cl::Kernel wavefront_kernel(const char* name) {
+    return cl::Kernel(wavefront_program(), name);
+}
+
+inline cl_float4 float4(float x, float y, float z, float w = 0.0f) {
+    cl_float4 v;
+    v.s[0] = x;
+    v.s[1] = y;
+    v.s[2] = z;
+    v.s[3] = w;
+    return v;
+}
+
+inline std::uint32_t float_bits(float f) {
+    std::uint32_t bits;
+    std::memcpy(&bits, &f, sizeof bits);
+    return bits;
+}
+
+// A small double-precision 3-vector for the host reference models.
+struct D3 {
+    double x = 0.0, y = 0.0, z = 0.0;
+
+    D3() = default;
+    D3(double x_, double y_, double z_) : x(x_), y(y_), z(z_) {}
+    explicit D3(const cl_float4& v) : x(v.s[0]), y(v.s[1]), z(v.s[2]) {}
+
+    D3 operator+(const D3& o) const { return {x + o.x, y + o.y, z + o.z}; }
+    D3 operator-(const D3& o) const { return {x - o.x, y - o.y, z - o.z}; }
+    D3 operator-() const { return {-x, -y, -z}; }
+    D3 operator*(double s) const { return {x * s, y * s, z * s}; }
+    D3 operator*(const D3& o) const { return {x * o.x, y * o.y, z * o.z}; }
+    D3 operator/(double s) const { return {x / s, y / s, z / s}; }
+    double operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
+};
+
+inline D3 operator*(double s, const D3& v) {
+    return v * s;
+}
+inline double dot(const D3& a, const D3& b) {
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+inline D3 cross(const D3& a, const D3& b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+inline double length(const D3& v) {
+    return std::sqrt(dot(v, v));
+}
+inline D3 normalize(const D3& v) {
+    return v / length(v);
+}
+inline double max_abs(const D3& v) {
+    return std::max(std::fabs(v.x), std::max(std::fabs(v.y), std::fabs(v.z)));
+}
+inline double distance(const D3& a, const D3& b) {
+    return length(a - b);
+}
+
+inline cl_float4 to_float4(const D3& v, double w = 0.0) {
+    return float4(static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z),
+                  static_cast<float>(w));
+}
+
+// The value a double takes once rounded to float, back in double.
+inline D3 rounded(const D3& v) {
+    return D3(to_float4(v));
+}
+
+} // namespace wp::test

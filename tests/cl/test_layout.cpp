@@ -1,0 +1,283 @@
+// The structs of wp_shared.h have the same layout on the device as on the host,
+// a WpFrame passed by value arrives field for field, and the RNG of rng.h gives
+// the same bits on both sides.
+#include "cl_test_util.hpp"
+#include "rng.h"
+
+#include <cstddef>
+#include <random>
+#include <string>
+#include <vector>
+
+using namespace wp::test;
+
+namespace {
+
+// Every struct of wp_shared.h, and every field of each.
+#define WP_LAYOUT_STRUCTS(X)                                                                       \
+    X(WpTriangle) X(WpSphere) X(WpMaterial) X(WpLight) X(WpCamera) X(WpFrame)
+
+#define WP_LAYOUT_FIELDS(X)                                                                        \
+    X(WpTriangle, v0)                                                                              \
+    X(WpTriangle, v1)                                                                              \
+    X(WpTriangle, v2)                                                                              \
+    X(WpTriangle, material)                                                                        \
+    X(WpTriangle, pad0)                                                                            \
+    X(WpTriangle, pad1)                                                                            \
+    X(WpTriangle, pad2)                                                                            \
+    X(WpSphere, center_radius)                                                                     \
+    X(WpSphere, material)                                                                          \
+    X(WpSphere, pad0)                                                                              \
+    X(WpSphere, pad1)                                                                              \
+    X(WpSphere, pad2)                                                                              \
+    X(WpMaterial, reflectance)                                                                     \
+    X(WpMaterial, emission)                                                                        \
+    X(WpMaterial, kind)                                                                            \
+    X(WpMaterial, pad0)                                                                            \
+    X(WpMaterial, pad1)                                                                            \
+    X(WpMaterial, pad2)                                                                            \
+    X(WpLight, triangle)                                                                           \
+    X(WpLight, cdf)                                                                                \
+    X(WpLight, pad0)                                                                               \
+    X(WpLight, pad1)                                                                               \
+    X(WpCamera, eye)                                                                               \
+    X(WpCamera, forward)                                                                           \
+    X(WpCamera, right)                                                                             \
+    X(WpCamera, up)                                                                                \
+    X(WpFrame, camera)                                                                             \
+    X(WpFrame, width)                                                                              \
+    X(WpFrame, height)                                                                             \
+    X(WpFrame, seed)                                                                               \
+    X(WpFrame, sample_index)                                                                       \
+    X(WpFrame, triangle_count)                                                                     \
+    X(WpFrame, sphere_count)                                                                       \
+    X(WpFrame, light_count)                                                                        \
+    X(WpFrame, light_area)                                                                         \
+    X(WpFrame, max_depth)                                                                          \
+    X(WpFrame, pad0)                                                                               \
+    X(WpFrame, pad1)                                                                               \
+    X(WpFrame, pad2)
+
+struct Entry {
+    std::string what;
+    std::size_t host;
+};
+
+std::vector<Entry> host_layout() {
+    std::vector<Entry> out;
+#define WP_HOST_STRUCT(T)                                                                          \
+    out.push_back({"sizeof(" #T ")", sizeof(T)});                                                  \
+    out.push_back({"alignof(" #T ")", alignof(T)});
+#define WP_HOST_FIELD(T, f) out.push_back({"offsetof(" #T ", " #f ")", offsetof(T, f)});
+    WP_LAYOUT_STRUCTS(WP_HOST_STRUCT)
+    WP_LAYOUT_FIELDS(WP_HOST_FIELD)
+    out.push_back({"sizeof(wp_uint)", sizeof(wp_uint)});
+    out.push_back({"sizeof(wp_float)", sizeof(wp_float)});
+    out.push_back({"sizeof(wp_float4)", sizeof(wp_float4)});
+    out.push_back({"alignof(wp_float4)", alignof(wp_float4)});
+#undef WP_HOST_STRUCT
+#undef WP_HOST_FIELD
+    return out;
+}
+
+// The same list, in the same order, written by a kernel.
+std::string layout_source() {
+    std::string s = "#include \"wp_shared.h\"\n"
+                    "__kernel void layout(__global uint* out) {\n"
+                    "    if (get_global_id(0) != 0) return;\n"
+                    "    uint i = 0;\n";
+#define WP_DEVICE_STRUCT(T)                                                                        \
+    s += "    out[i++] = (uint)sizeof(" #T ");\n";                                                 \
+    s += "    out[i++] = (uint)__alignof__(" #T ");\n";
+#define WP_DEVICE_FIELD(T, f) s += "    out[i++] = (uint)__builtin_offsetof(" #T ", " #f ");\n";
+    WP_LAYOUT_STRUCTS(WP_DEVICE_STRUCT)
+    WP_LAYOUT_FIELDS(WP_DEVICE_FIELD)
+#undef WP_DEVICE_STRUCT
+#undef WP_DEVICE_FIELD
+    s += "    out[i++] = (uint)sizeof(wp_uint);\n"
+         "    out[i++] = (uint)sizeof(wp_float);\n"
+         "    out[i++] = (uint)sizeof(wp_float4);\n"
+         "    out[i++] = (uint)__alignof__(wp_float4);\n"
+         "}\n";
+    return s;
+}
+
+// Writes every field of a by-value WpFrame as raw 32-bit words, in declaration order.
+const char* const kFrameEchoSource = R"CL(
+#include "wp_shared.h"
+__kernel void echo_frame(WpFrame frame, __global uint* out) {
+    if (get_global_id(0) != 0) return;
+    uint i = 0;
+    float4 v[4] = {frame.camera.eye, frame.camera.forward, frame.camera.right, frame.camera.up};
+    for (int k = 0; k < 4; ++k) {
+        out[i++] = as_uint(v[k].x);
+        out[i++] = as_uint(v[k].y);
+        out[i++] = as_uint(v[k].z);
+        out[i++] = as_uint(v[k].w);
+    }
+    out[i++] = frame.width;
+    out[i++] = frame.height;
+    out[i++] = frame.seed;
+    out[i++] = frame.sample_index;
+    out[i++] = frame.triangle_count;
+    out[i++] = frame.sphere_count;
+    out[i++] = frame.light_count;
+    out[i++] = as_uint(frame.light_area);
+    out[i++] = frame.max_depth;
+    out[i++] = frame.pad0;
+    out[i++] = frame.pad1;
+    out[i++] = frame.pad2;
+}
+)CL";
+
+const char* const kRngSource = R"CL(
+#include "rng.h"
+__kernel void rng(uint count, __global const uint4* keys, __global const uint* dimensions,
+                  __global uint* mixed, __global uint* hashed, __global float* randoms,
+                  __global float* units) {
+    uint i = get_global_id(0);
+    if (i >= count) return;
+    uint4 k = keys[i];
+    mixed[i] = wp_mix32(k.x);
+    hashed[i] = wp_hash(k.x, k.y, k.z, k.w);
+    randoms[i] = wp_random(k.x, k.y, k.z, k.w, dimensions[i]);
+    units[i] = wp_to_unit_float(k.y);
+}
+)CL";
+
+} // namespace
+
+TEST_CASE("wp_shared.h structs have the host's size, alignment and field offsets on the device",
+          "[cl][layout]") {
+    std::vector<Entry> host = host_layout();
+    cl::Kernel kernel(program(layout_source(), "layout_test.cl"), "layout");
+    cl::Buffer out = upload(std::vector<cl_uint>(host.size() + 16, 0xdeadbeefu));
+    set_args(kernel, out);
+    launch(kernel, 1);
+    std::vector<cl_uint> device_values = download<cl_uint>(out, host.size() + 16);
+    for (std::size_t i = 0; i < host.size(); ++i) {
+        INFO(host[i].what);
+        CHECK(device_values[i] == host[i].host);
+    }
+    // The kernel wrote exactly as many values as the host expects.
+    CHECK(device_values[host.size()] == 0xdeadbeefu);
+
+    // The padding rule of wp_shared.h: arrays of these structs keep 16-byte vectors aligned.
+    CHECK(sizeof(WpTriangle) % 16 == 0);
+    CHECK(sizeof(WpSphere) % 16 == 0);
+    CHECK(sizeof(WpMaterial) % 16 == 0);
+    CHECK(sizeof(WpLight) % 16 == 0);
+    CHECK(sizeof(WpCamera) % 16 == 0);
+    CHECK(sizeof(WpFrame) % 16 == 0);
+}
+
+TEST_CASE("A WpFrame passed by value reaches the kernel field for field", "[cl][layout]") {
+    WpFrame frame{};
+    frame.camera.eye = float4(1.5f, -2.25f, 3.125f, 0.5f);
+    frame.camera.forward = float4(0.1f, 0.2f, -0.97f, -1.0f);
+    frame.camera.right = float4(1.25f, 0.0f, 0.5f, 7.0f);
+    frame.camera.up = float4(-0.03f, 0.75f, 0.01f, 1e-20f);
+    frame.width = 640;
+    frame.height = 480;
+    frame.seed = 0x9abcdef0u;
+    frame.sample_index = 12345;
+    frame.triangle_count = 17;
+    frame.sphere_count = 3;
+    frame.light_count = 2;
+    frame.light_area = 0.3125f;
+    frame.max_depth = 1024;
+    frame.pad0 = 0x11111111u;
+    frame.pad1 = 0x22222222u;
+    frame.pad2 = 0x33333333u;
+
+    std::vector<cl_uint> expected;
+    for (const cl_float4* v :
+         {&frame.camera.eye, &frame.camera.forward, &frame.camera.right, &frame.camera.up})
+        for (int k = 0; k < 4; ++k)
+            expected.push_back(float_bits(v->s[k]));
+    for (cl_uint u : {frame.width, frame.height, frame.seed, frame.sample_index,
+                      frame.triangle_count, frame.sphere_count, frame.light_count})
+        expected.push_back(u);
+    expected.push_back(float_bits(frame.light_area));
+    for (cl_uint u : {frame.max_depth, frame.pad0, frame.pad1, frame.pad2})
+        expected.push_back(u);
+
+    cl::Kernel kernel(program(kFrameEchoSource, "frame_echo_test.cl"), "echo_frame");
+    cl::Buffer out = upload(std::vector<cl_uint>(expected.size(), 0));
+    set_args(kernel, frame, out);
+    launch(kernel, 1);
+    std::vector<cl_uint> got = download<cl_uint>(out, expected.size());
+    for (std::size_t i = 0; i < expected.size(); ++i) {
+        INFO("word " << i);
+        CHECK(got[i] == expected[i]);
+    }
+}
+
+TEST_CASE("rng.h gives bit-identical numbers on the device and the host", "[cl][rng]") {
+    // Edge keys, then random ones from a fixed seed.
+    std::vector<cl_uint4> keys;
+    std::vector<cl_uint> dimensions;
+    auto add = [&](cl_uint a, cl_uint b, cl_uint c, cl_uint d, cl_uint dim) {
+        cl_uint4 k;
+        k.s[0] = a;
+        k.s[1] = b;
+        k.s[2] = c;
+        k.s[3] = d;
+        keys.push_back(k);
+        dimensions.push_back(dim);
+    };
+    const cl_uint edges[] = {0u, 1u, 2u, 0x7fffffffu, 0x80000000u, 0xfffffffeu, 0xffffffffu};
+    for (cl_uint a : edges)
+        for (cl_uint b : edges)
+            add(a, b, a ^ b, b, (a + b) % WP_DIMS_PER_BOUNCE);
+    std::mt19937 generator(20240611u);
+    auto next = [&] { return static_cast<cl_uint>(generator()); };
+    for (int i = 0; i < 4000; ++i)
+        add(next(), next(), next(), next() % 64u, next() % WP_DIMS_PER_BOUNCE);
+
+    const std::size_t n = keys.size();
+    cl::Kernel kernel(program(kRngSource, "rng_test.cl"), "rng");
+    cl::Buffer key_buffer = upload(keys);
+    cl::Buffer dimension_buffer = upload(dimensions);
+    cl::Buffer mixed = upload(std::vector<cl_uint>(n));
+    cl::Buffer hashed = upload(std::vector<cl_uint>(n));
+    cl::Buffer randoms = upload(std::vector<cl_float>(n));
+    cl::Buffer units = upload(std::vector<cl_float>(n));
+    set_args(kernel, static_cast<cl_uint>(n), key_buffer, dimension_buffer, mixed, hashed, randoms,
+             units);
+    launch(kernel, n);
+    std::vector<cl_uint> got_mixed = download<cl_uint>(mixed, n);
+    std::vector<cl_uint> got_hashed = download<cl_uint>(hashed, n);
+    std::vector<cl_float> got_randoms = download<cl_float>(randoms, n);
+    std::vector<cl_float> got_units = download<cl_float>(units, n);
+
+    std::size_t mismatches = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const cl_uint* k = keys[i].s;
+        float random = wp_random(k[0], k[1], k[2], k[3], dimensions[i]);
+        float unit = wp_to_unit_float(k[1]);
+        bool same = got_mixed[i] == wp_mix32(k[0]) &&
+                    got_hashed[i] == wp_hash(k[0], k[1], k[2], k[3]) &&
+                    float_bits(got_randoms[i]) == float_bits(random) &&
+                    float_bits(got_units[i]) == float_bits(unit);
+        if (!same && mismatches++ < 5) {
+            INFO("key " << k[0] << ", " << k[1] << ", " << k[2] << ", " << k[3] << " dimension "
+                        << dimensions[i]);
+            CHECK(got_mixed[i] == wp_mix32(k[0]));
+            CHECK(got_hashed[i] == wp_hash(k[0], k[1], k[2], k[3]));
+            CHECK(got_randoms[i] == random);
+            CHECK(got_units[i] == unit);
+        }
+        // Every number lies in [0, 1).
+        if (!(random >= 0.0f && random < 1.0f))
+            ++mismatches;
+    }
+    CHECK(mismatches == 0);
+    // The largest 24-bit value stays below 1, and the hash is not the identity.
+    CHECK(wp_to_unit_float(0xffffffffu) < 1.0f);
+    CHECK(wp_to_unit_float(0xffffffffu) == 1.0f - 1.0f / 16777216.0f);
+    CHECK(wp_mix32(1u) != 1u);
+    // wp_random uses counter bounce * WP_DIMS_PER_BOUNCE + dimension.
+    CHECK(wp_random(7u, 8u, 9u, 3u, WP_DIM_ROULETTE) ==
+          wp_to_unit_float(wp_hash(7u, 8u, 9u, 3u * WP_DIMS_PER_BOUNCE + WP_DIM_ROULETTE)));
+}

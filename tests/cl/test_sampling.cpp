@@ -1,0 +1,237 @@
+// sampling.h on the device: cosine-weighted hemisphere directions and uniform
+// triangle points, checked against analytic moments (within 5 standard errors
+// taken from the sample variance) and chi-square uniformity tests.
+#include "cl_test_util.hpp"
+#include "rng.h"
+
+#include <array>
+#include <cmath>
+#include <vector>
+
+using namespace wp::test;
+
+namespace {
+
+const char* const kSamplingSource = R"CL(
+#include "rng.h"
+#include "sampling.h"
+
+__kernel void cosine_samples(float4 n, uint seed, uint count, __global float4* out) {
+    uint i = get_global_id(0);
+    if (i >= count) return;
+    float u1 = wp_random(seed, i, 0u, 0u, WP_DIM_BSDF_U);
+    float u2 = wp_random(seed, i, 0u, 0u, WP_DIM_BSDF_V);
+    out[i] = (float4)(wp_sample_cosine_hemisphere(n.xyz, u1, u2), 0.0f);
+}
+
+__kernel void triangle_samples(float4 p0, float4 p1, float4 p2, uint seed, uint count,
+                               __global float4* out) {
+    uint i = get_global_id(0);
+    if (i >= count) return;
+    float u1 = wp_random(seed, i, 0u, 0u, WP_DIM_LIGHT_U);
+    float u2 = wp_random(seed, i, 0u, 0u, WP_DIM_LIGHT_V);
+    out[i] = (float4)(wp_sample_triangle(p0.xyz, p1.xyz, p2.xyz, u1, u2), 0.0f);
+}
+)CL";
+
+constexpr cl_uint kSamples = 1u << 20;
+
+// Mean and standard error of a sample.
+struct Moment {
+    double sum = 0.0, sum_squares = 0.0;
+    std::size_t n = 0;
+
+    void add(double x) {
+        sum += x;
+        sum_squares += x * x;
+        ++n;
+    }
+    double mean() const { return sum / double(n); }
+    double variance() const {
+        double m = mean();
+        return (sum_squares - double(n) * m * m) / double(n - 1);
+    }
+    double standard_error() const { return std::sqrt(variance() / double(n)); }
+};
+
+void check_mean(const char* what, const Moment& m, double expected) {
+    INFO(what << ": mean " << m.mean() << ", expected " << expected << ", standard error "
+              << m.standard_error());
+    CHECK(std::fabs(m.mean() - expected) <= 5.0 * m.standard_error() + 1e-12);
+}
+
+// Pearson's chi-square statistic of counts against a uniform expectation.
+double chi_square(const std::vector<std::size_t>& counts, std::size_t total) {
+    double expected = double(total) / double(counts.size()), statistic = 0.0;
+    for (std::size_t c : counts)
+        statistic += (double(c) - expected) * (double(c) - expected) / expected;
+    return statistic;
+}
+
+// A statistic for `dof` degrees of freedom this far above its mean is a
+// more-than-5-sigma event (the chi-square's variance is 2 dof).
+double chi_square_limit(std::size_t dof) {
+    return double(dof) + 5.0 * std::sqrt(2.0 * double(dof));
+}
+
+std::vector<cl_float4> run_samples(cl::Kernel& kernel) {
+    cl::Buffer out = upload(std::vector<cl_float4>(kSamples));
+    kernel.setArg(kernel.getInfo<CL_KERNEL_NUM_ARGS>() - 1, out);
+    launch(kernel, kSamples);
+    return download<cl_float4>(out, kSamples);
+}
+
+} // namespace
+
+TEST_CASE("wp_sample_cosine_hemisphere has the moments of the cosine distribution",
+          "[cl][sampling]") {
+    const D3 normals[] = {
+        {0, 0, 1},
+        {0, 0, -1},
+        {1, 0, 0},
+        {0, -1, 0},
+        normalize({1, 2, -3}),
+        normalize({-0.3, 0.2, 0.93}),
+        normalize({1e-3, 0, -1}),
+    };
+    cl::Kernel kernel(program(kSamplingSource, "sampling_test.cl"), "cosine_samples");
+    cl_uint seed = 5;
+    for (const D3& requested : normals) {
+        cl_float4 n_float = to_float4(requested);
+        D3 n(n_float); // the normal exactly as the kernel gets it
+        INFO("normal " << n.x << ", " << n.y << ", " << n.z);
+        set_args(kernel, n_float, seed++, kSamples);
+        std::vector<cl_float4> samples = run_samples(kernel);
+
+        // Any orthonormal basis around n, to measure the azimuth.
+        D3 helper = std::fabs(n.x) < 0.5 ? D3(1, 0, 0) : D3(0, 1, 0);
+        D3 t = normalize(cross(helper, n)), b = cross(n, t);
+
+        Moment cosine, cosine_squared;
+        std::array<Moment, 3> component;
+        const std::size_t bins = 16;
+        std::vector<std::size_t> histogram(bins * bins);
+        std::size_t bad_length = 0, below = 0;
+        for (const cl_float4& s : samples) {
+            D3 d(s);
+            double c = dot(d, n);
+            cosine.add(c);
+            cosine_squared.add(c * c);
+            for (int k = 0; k < 3; ++k)
+                component[k].add(d[k]);
+            bad_length += std::fabs(length(d) - 1.0) > 1e-6;
+            below += !(c > 0.0);
+            // Under pdf cos/pi, cos^2 and the azimuth are independent and uniform.
+            double phi = std::atan2(dot(d, b), dot(d, t)) + M_PI;
+            auto cos_bin = std::min<std::size_t>(bins - 1, std::size_t(c * c * bins));
+            auto phi_bin = std::min<std::size_t>(bins - 1, std::size_t(phi / (2 * M_PI) * bins));
+            ++histogram[cos_bin * bins + phi_bin];
+        }
+        CHECK(bad_length == 0);
+        CHECK(below == 0);
+        check_mean("E[cos]", cosine, 2.0 / 3.0);
+        check_mean("E[cos^2]", cosine_squared, 0.5);
+        check_mean("E[d.x]", component[0], 2.0 / 3.0 * n.x);
+        check_mean("E[d.y]", component[1], 2.0 / 3.0 * n.y);
+        check_mean("E[d.z]", component[2], 2.0 / 3.0 * n.z);
+        // Var[cos] = E[cos^2] - E[cos]^2 = 1/2 - 4/9 = 1/18.
+        CHECK(std::fabs(cosine.variance() - 1.0 / 18.0) < 0.01 / 18.0);
+        double statistic = chi_square(histogram, samples.size());
+        INFO("chi-square " << statistic << " over " << histogram.size() << " bins");
+        CHECK(statistic < chi_square_limit(histogram.size() - 1));
+    }
+}
+
+TEST_CASE("wp_sample_triangle gives uniform points inside the triangle", "[cl][sampling]") {
+    const std::array<D3, 3> triangles[] = {
+        {D3(0, 0, 0), D3(1, 0, 0), D3(0, 1, 0)},
+        {D3(1, 2, 3), D3(-1, 0.5, 2), D3(0.3, -1, -0.5)},
+        {D3(-2, 1, 0.5), D3(2.5, 1.2, -0.25), D3(0.1, -0.7, 1.9)},
+    };
+    cl::Kernel kernel(program(kSamplingSource, "sampling_test.cl"), "triangle_samples");
+    cl_uint seed = 77;
+    for (const std::array<D3, 3>& requested : triangles) {
+        std::array<cl_float4, 3> p_float{to_float4(requested[0]), to_float4(requested[1]),
+                                         to_float4(requested[2])};
+        D3 p0(p_float[0]), p1(p_float[1]), p2(p_float[2]);
+        INFO("triangle " << p0.x << ", " << p0.y << ", " << p0.z << " ...");
+        set_args(kernel, p_float[0], p_float[1], p_float[2], seed++, kSamples);
+        std::vector<cl_float4> samples = run_samples(kernel);
+
+        // Barycentrics (of p0, p1, p2) from the normal equations of p - p0 = b1 e1 + b2 e2.
+        D3 e1 = p1 - p0, e2 = p2 - p0, normal = normalize(cross(e1, e2));
+        double g11 = dot(e1, e1), g12 = dot(e1, e2), g22 = dot(e2, e2);
+        double det = g11 * g22 - g12 * g12;
+        const double scale = std::max({max_abs(p0), max_abs(p1), max_abs(p2)});
+
+        std::array<Moment, 3> position, barycentric, barycentric_squared;
+        const std::size_t k = 8; // 8 x 8 congruent sub-triangles: k^2 equally likely cells
+        std::vector<std::size_t> cells(k * k);
+        std::size_t outside = 0, off_plane = 0;
+        for (const cl_float4& s : samples) {
+            D3 p(s);
+            D3 r = p - p0;
+            double r1 = dot(r, e1), r2 = dot(r, e2);
+            double b1 = (g22 * r1 - g12 * r2) / det, b2 = (g11 * r2 - g12 * r1) / det;
+            double b0 = 1.0 - b1 - b2;
+            outside += b0 < -1e-6 || b1 < -1e-6 || b2 < -1e-6;
+            off_plane += std::fabs(dot(r, normal)) > 1e-6 * scale;
+            const double bs[3] = {b0, b1, b2};
+            for (int i = 0; i < 3; ++i) {
+                position[i].add(p[i]);
+                barycentric[i].add(bs[i]);
+                barycentric_squared[i].add(bs[i] * bs[i]);
+            }
+            double x = std::clamp(b1, 0.0, 1.0) * double(k),
+                   y = std::clamp(b2, 0.0, 1.0) * double(k);
+            std::size_t i = std::min<std::size_t>(k - 1, std::size_t(x));
+            std::size_t j = std::min<std::size_t>(k - 1 - i, std::size_t(y));
+            bool upper = (x - double(i)) + (y - double(j)) > 1.0 && i + j + 1 < k;
+            // Cells numbered row by row: the "lower" triangle of (i, j), then its "upper" one.
+            std::size_t index = 0;
+            for (std::size_t row = 0; row < i; ++row)
+                index += 2 * (k - row) - 1;
+            index += 2 * j + (upper ? 1 : 0);
+            ++cells[index];
+        }
+        CHECK(outside == 0);
+        CHECK(off_plane == 0);
+        D3 centroid = (p0 + p1 + p2) / 3.0;
+        check_mean("mean x", position[0], centroid.x);
+        check_mean("mean y", position[1], centroid.y);
+        check_mean("mean z", position[2], centroid.z);
+        for (int i = 0; i < 3; ++i) {
+            check_mean("E[b]", barycentric[i], 1.0 / 3.0);
+            check_mean("E[b^2]", barycentric_squared[i], 1.0 / 6.0);
+        }
+        double statistic = chi_square(cells, samples.size());
+        INFO("chi-square " << statistic << " over " << cells.size() << " cells");
+        CHECK(statistic < chi_square_limit(cells.size() - 1));
+    }
+}
+
+// Known defect, kept as a failing check: the dimensions of one bounce differ
+// only in the low bits of the last wp_mix32 input (h ^ counter), and one round
+// of lowbias32 does not decorrelate them. The pair (BSDF_U, BSDF_V) that picks
+// each diffuse bounce direction has a systematically non-uniform joint
+// histogram: over 16 seeds x 2^20 pixels the chi-square on 16 x 16 bins is
+// about 900 against 255 +- 23 for independent uniforms (an extra wp_mix32 of
+// the result brings it back to the expected range). rng.h is evaluated on the host, which
+// test_layout.cpp shows gives the device's bits exactly. When rng.h is fixed this case starts
+// failing: then drop the [!shouldfail] tag.
+TEST_CASE("wp_random: the two BSDF dimensions of a bounce are independent",
+          "[cl][rng][!shouldfail]") {
+    const std::size_t bins = 16;
+    std::vector<std::size_t> histogram(bins * bins);
+    const cl_uint seeds = 16;
+    for (cl_uint seed = 0; seed < seeds; ++seed) {
+        for (cl_uint pixel = 0; pixel < kSamples; ++pixel) {
+            float u1 = wp_random(seed, pixel, 0u, 0u, WP_DIM_BSDF_U);
+            float u2 = wp_random(seed, pixel, 0u, 0u, WP_DIM_BSDF_V);
+            ++histogram[std::size_t(u1 * float(bins)) * bins + std::size_t(u2 * float(bins))];
+        }
+    }
+    double statistic = chi_square(histogram, std::size_t(seeds) * kSamples);
+    INFO("chi-square " << statistic << " over " << histogram.size() << " bins");
+    CHECK(statistic < chi_square_limit(histogram.size() - 1));
+}
