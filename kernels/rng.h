@@ -39,7 +39,10 @@ static inline wp_uint wp_hash(wp_uint seed, wp_uint pixel, wp_uint sample, wp_ui
     wp_uint h = wp_mix32(seed + 0x9e3779b9u);
     h = wp_mix32(h ^ pixel);
     h = wp_mix32(h ^ sample);
-    return wp_mix32(h ^ counter);
+    /* Counters of one bounce differ in their low bits only; a second round
+     * decorrelates them (one round left a measurable chi-square excess in
+     * the joint histogram of two dimensions, tests/cl/test_sampling.cpp). */
+    return wp_mix32(wp_mix32(h ^ counter));
 }
 
 /* A float uniform in [0, 1): the top 24 bits, so every value is exact. */

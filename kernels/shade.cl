@@ -112,32 +112,36 @@ __kernel void shade(WpFrame frame, wp_uint ray_count, __global const wp_uint* ra
 #endif
     {
 #if WP_HAS_LIGHTS && WP_USE_NEE
-        float u_pick = wp_random(frame.seed, pixel, frame.sample_index, depth, WP_DIM_LIGHT_PICK);
-        float u_light = wp_random(frame.seed, pixel, frame.sample_index, depth, WP_DIM_LIGHT_U);
-        float v_light = wp_random(frame.seed, pixel, frame.sample_index, depth, WP_DIM_LIGHT_V);
-        WpTriangle light = triangles[lights[wp_pick_light(lights, frame.light_count, u_pick)].triangle];
-        float3 light_point =
-            wp_sample_triangle(light.v0.xyz, light.v1.xyz, light.v2.xyz, u_light, v_light);
-        float3 light_normal = normalize(wp_triangle_normal(&light));
-        float3 to_light = light_point - origin;
-        float distance = length(to_light);
-        float3 wi = to_light / distance;
-        float cos_surface = dot(facing_normal, wi);
-        float cos_light = -dot(light_normal, wi);
-        float length_to_test =
-            distance - WP_SHADOW_END_MARGIN * wp_offset_distance(light_point, wp_triangle_scale(&light));
-        if (frame.light_count > 0 && cos_surface > 0.0f && cos_light > 0.0f &&
-            length_to_test > 0.0f) {
-            float3 emitted = materials[light.material].emission.xyz;
-            float geometry = cos_surface * cos_light / (distance * distance);
-            float3 contribution =
-                beta * reflectance * emitted * (geometry * frame.light_area / WP_PI);
-            if (!wp_is_black(contribution)) {
-                wp_uint entry = atomic_inc(&counters[WP_COUNTER_SHADOW_RAYS]);
-                shadow_queue[entry] = slot;
-                shadow_origin[slot] = (float4)(origin, 0.0f);
-                shadow_direction[slot] = (float4)(wi, length_to_test);
-                shadow_contribution[slot] = (float4)(contribution, 0.0f);
+        if (frame.light_count > 0) { /* general kernels may meet a scene without lights */
+            float u_pick =
+                wp_random(frame.seed, pixel, frame.sample_index, depth, WP_DIM_LIGHT_PICK);
+            float u_light = wp_random(frame.seed, pixel, frame.sample_index, depth, WP_DIM_LIGHT_U);
+            float v_light = wp_random(frame.seed, pixel, frame.sample_index, depth, WP_DIM_LIGHT_V);
+            WpTriangle light =
+                triangles[lights[wp_pick_light(lights, frame.light_count, u_pick)].triangle];
+            float3 light_point =
+                wp_sample_triangle(light.v0.xyz, light.v1.xyz, light.v2.xyz, u_light, v_light);
+            float3 light_normal = normalize(wp_triangle_normal(&light));
+            float3 to_light = light_point - origin;
+            float distance = length(to_light);
+            float3 wi = to_light / distance;
+            float cos_surface = dot(facing_normal, wi);
+            float cos_light = -dot(light_normal, wi);
+            float length_to_test =
+                distance -
+                WP_SHADOW_END_MARGIN * wp_offset_distance(light_point, wp_triangle_scale(&light));
+            if (cos_surface > 0.0f && cos_light > 0.0f && length_to_test > 0.0f) {
+                float3 emitted = materials[light.material].emission.xyz;
+                float geometry = cos_surface * cos_light / (distance * distance);
+                float3 contribution =
+                    beta * reflectance * emitted * (geometry * frame.light_area / WP_PI);
+                if (!wp_is_black(contribution)) {
+                    wp_uint entry = atomic_inc(&counters[WP_COUNTER_SHADOW_RAYS]);
+                    shadow_queue[entry] = slot;
+                    shadow_origin[slot] = (float4)(origin, 0.0f);
+                    shadow_direction[slot] = (float4)(wi, length_to_test);
+                    shadow_contribution[slot] = (float4)(contribution, 0.0f);
+                }
             }
         }
 #endif

@@ -10,6 +10,10 @@
 #define WP_SHARED_H
 
 #ifdef __OPENCL_VERSION__
+/* No a*b+c contraction into FMA anywhere: the watertight triangle test relies
+ * on exactly antisymmetric edge functions, and host references expect the
+ * same rounding on every device. This header comes first in every stage. */
+#pragma OPENCL FP_CONTRACT OFF
 typedef uint wp_uint;
 typedef float wp_float;
 typedef float4 wp_float4;

@@ -210,17 +210,13 @@ TEST_CASE("wp_sample_triangle gives uniform points inside the triangle", "[cl][s
     }
 }
 
-// Known defect, kept as a failing check: the dimensions of one bounce differ
-// only in the low bits of the last wp_mix32 input (h ^ counter), and one round
-// of lowbias32 does not decorrelate them. The pair (BSDF_U, BSDF_V) that picks
-// each diffuse bounce direction has a systematically non-uniform joint
-// histogram: over 16 seeds x 2^20 pixels the chi-square on 16 x 16 bins is
-// about 900 against 255 +- 23 for independent uniforms (an extra wp_mix32 of
-// the result brings it back to the expected range). rng.h is evaluated on the host, which
-// test_layout.cpp shows gives the device's bits exactly. When rng.h is fixed this case starts
-// failing: then drop the [!shouldfail] tag.
+// The dimensions of one bounce differ only in the low bits of the counter. With
+// a single final round of lowbias32 the pair (BSDF_U, BSDF_V) that picks each
+// diffuse bounce direction had a systematically non-uniform joint histogram:
+// over 16 seeds x 2^20 pixels the chi-square on 16 x 16 bins was about 900
+// against 255 +- 23 for independent uniforms. rng.h now mixes twice.
 TEST_CASE("wp_random: the two BSDF dimensions of a bounce are independent",
-          "[cl][rng][!shouldfail]") {
+          "[cl][rng]") {
     const std::size_t bins = 16;
     std::vector<std::size_t> histogram(bins * bins);
     const cl_uint seeds = 16;

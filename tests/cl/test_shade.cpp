@@ -375,15 +375,12 @@ TEST_CASE("shade: mirrors, emitters, next-event estimation and roulette on hand-
     CHECK(random(in[kDiffuseToLightB].pixel, 0, WP_DIM_LIGHT_PICK) > cdf_a);
 }
 
-// Known defect, hidden (tag [.]) because it crashes the test process: kernels
-// compiled with WP_HAS_LIGHTS=1 (the general kernels, `render --general`) for a
-// scene without emissive triangles call wp_pick_light with count 0, whose
-// `high = count - 1` wraps to 0xffffffff, so a diffuse hit reads
-// lights[0x7fffffff] (32 GiB past the buffer): SIGSEGV on PoCL. The later
-// `frame.light_count > 0` test in shade.cl comes after the read. Run it with
-// `wavepath_cl_tests "[known-bug]"` once shade.cl skips the pick for count 0.
+// Kernels compiled with WP_HAS_LIGHTS=1 (the general kernels, `render
+// --general`) may meet a scene without emissive triangles: light sampling must
+// then be skipped, not read lights[count - 1] with count = 0 (which wrapped to
+// 0xffffffff and crashed PoCL before the guard moved in front of it).
 TEST_CASE("shade: a diffuse hit in a scene without lights queues no shadow ray",
-          "[cl][shade][.][known-bug]") {
+          "[cl][shade]") {
     std::vector<WpTriangle> triangles(1);
     triangles[0].v0 = float4(-5, 0, -5);
     triangles[0].v1 = float4(-5, 0, 5);
