@@ -1,25 +1,45 @@
-/* Stage 1, generate: one camera ray per pixel for the wave's sample index.
+/* Stage 1, generate: a camera ray for each slot given to it.
  *
- * Slot i holds pixel i. Each ray goes through a uniformly jittered point of its
- * pixel (a one-pixel box filter) and starts with throughput 1, radiance 0,
- * depth 0, and the specular flag set so that an emitter seen directly counts.
+ * A slot works through its own list of tasks (see WpFrame): task t of slot i
+ * is pixel i + (t mod m) * pool_size, sample first_sample + t / m, where m is
+ * the number of pixels the slot owns. Sample-major order means every pixel
+ * gets its first sample before any pixel gets its second. A slot whose tasks
+ * are done is not queued again.
+ *
+ * The host hands in every slot at the start of a wave, and, with
+ * regeneration, the slots whose paths just finished, so the ray queue stays
+ * full while long paths drain.
+ *
+ * Each ray goes through a uniformly jittered point of its pixel (a one-pixel
+ * box filter) and starts with throughput 1, radiance 0, depth 0, and the
+ * specular flag set so that an emitter seen directly counts.
  */
 #include "rng.h"
 
-__kernel void generate(WpFrame frame,
-                       __global float4* ray_origin, __global float4* ray_direction,
-                       __global float4* throughput, __global float4* radiance,
-                       __global wp_uint* path_pixel, __global wp_uint* path_depth,
-                       __global wp_uint* path_flags, __global wp_uint* ray_queue) {
-    wp_uint slot = get_global_id(0);
-    wp_uint pixel_count = frame.width * frame.height;
-    if (slot >= pixel_count)
+__kernel void generate(WpFrame frame, __global const wp_uint* slots, wp_uint slot_count,
+                       __global wp_uint* path_task, __global float4* ray_origin,
+                       __global float4* ray_direction, __global float4* throughput,
+                       __global float4* radiance, __global wp_uint* path_pixel,
+                       __global wp_uint* path_sample, __global wp_uint* path_depth,
+                       __global wp_uint* path_flags, __global wp_uint* ray_queue,
+                       __global wp_uint* counters, wp_uint ray_counter) {
+    wp_uint index = get_global_id(0);
+    if (index >= slot_count)
         return;
-    wp_uint pixel = slot;
+    wp_uint slot = slots[index];
+    wp_uint pixel_count = frame.width * frame.height;
+    wp_uint owned = (pixel_count - slot + frame.pool_size - 1u) / frame.pool_size;
+    wp_uint task = path_task[slot];
+    if (task >= owned * frame.sample_count)
+        return;
+    path_task[slot] = task + 1u;
+    wp_uint pixel = slot + (task % owned) * frame.pool_size;
+    wp_uint sample = frame.first_sample + task / owned;
+
     wp_uint x = pixel % frame.width;
     wp_uint y = pixel / frame.width;
-    float jx = wp_random(frame.seed, pixel, frame.sample_index, 0u, WP_DIM_JITTER_X);
-    float jy = wp_random(frame.seed, pixel, frame.sample_index, 0u, WP_DIM_JITTER_Y);
+    float jx = wp_random(frame.seed, pixel, sample, 0u, WP_DIM_JITTER_X);
+    float jy = wp_random(frame.seed, pixel, sample, 0u, WP_DIM_JITTER_Y);
     /* Film coordinates in [-1, 1]: x to the right, y up (row 0 is the top). */
     float sx = 2.0f * ((float)x + jx) / (float)frame.width - 1.0f;
     float sy = 1.0f - 2.0f * ((float)y + jy) / (float)frame.height;
@@ -31,7 +51,8 @@ __kernel void generate(WpFrame frame,
     throughput[slot] = (float4)(1.0f, 1.0f, 1.0f, 0.0f);
     radiance[slot] = (float4)(0.0f);
     path_pixel[slot] = pixel;
+    path_sample[slot] = sample;
     path_depth[slot] = 0u;
     path_flags[slot] = WP_PATH_SPECULAR;
-    ray_queue[slot] = slot;
+    ray_queue[atomic_inc(&counters[ray_counter])] = slot;
 }

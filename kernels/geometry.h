@@ -10,6 +10,13 @@
  * Spheres solve the quadratic in the form that avoids catastrophic
  * cancellation: the discriminant from the ray's perpendicular distance to the
  * centre, and the two roots as c/q and q/a (Press et al., pbrt-v4).
+ *
+ * Naive variants, for the stability tests only (docs/stability.md): they
+ * compile in when a test kernel defines the switch, never in the renderer.
+ *   WP_NAIVE_INTERSECTION=1  Moller-Trumbore triangles and the textbook
+ *                            quadratic (b^2 - 4ac) for spheres;
+ *   WP_NAIVE_OFFSET=1        a fixed offset of WP_NAIVE_OFFSET_EPSILON
+ *                            instead of the relative one.
  */
 #ifndef WP_GEOMETRY_H
 #define WP_GEOMETRY_H
@@ -33,6 +40,15 @@
 /* Keeps the offset non-zero at the exact origin. */
 #define WP_RAY_OFFSET_FLOOR 1.0e-30f
 
+#ifndef WP_NAIVE_INTERSECTION
+#define WP_NAIVE_INTERSECTION 0
+#endif
+#ifndef WP_NAIVE_OFFSET
+#define WP_NAIVE_OFFSET 0
+#endif
+/* The naive variant's fixed offset: a typical "shadow epsilon". */
+#define WP_NAIVE_OFFSET_EPSILON 1.0e-4f
+
 static inline float wp_max_abs_component(float3 p) {
     return fmax(fmax(fabs(p.x), fabs(p.y)), fabs(p.z));
 }
@@ -40,7 +56,13 @@ static inline float wp_max_abs_component(float3 p) {
 /* How far to offset a point on a primitive whose coordinates reach `scale`
  * in magnitude (see wp_triangle_scale, wp_sphere_scale). */
 static inline float wp_offset_distance(float3 p, float scale) {
+#if WP_NAIVE_OFFSET
+    (void)p;
+    (void)scale;
+    return WP_NAIVE_OFFSET_EPSILON;
+#else
     return WP_RAY_OFFSET_RELATIVE * fmax(wp_max_abs_component(p), scale) + WP_RAY_OFFSET_FLOOR;
+#endif
 }
 
 /* Moves p off its surface to the side of `side_normal` (unit length). */
@@ -66,6 +88,9 @@ typedef struct {
     float3 origin;
     int kx, ky, kz; /* kz: the direction's dominant axis */
     float sx, sy, sz;
+#if WP_NAIVE_INTERSECTION
+    float3 direction;
+#endif
 } WpShearedRay;
 
 static inline WpShearedRay wp_shear_ray(float3 origin, float3 direction) {
@@ -84,6 +109,9 @@ static inline WpShearedRay wp_shear_ray(float3 origin, float3 direction) {
     r.sy = wp_axis(direction, r.ky) / dz;
     r.sz = 1.0f / dz;
     r.origin = origin;
+#if WP_NAIVE_INTERSECTION
+    r.direction = direction;
+#endif
     return r;
 }
 
@@ -91,6 +119,31 @@ static inline WpShearedRay wp_shear_ray(float3 origin, float3 direction) {
  * Both faces are hit; points on an edge or vertex count as inside. */
 static inline int wp_intersect_triangle(const WpShearedRay* ray, float3 p0, float3 p1, float3 p2,
                                         float t_max, float* t) {
+#if WP_NAIVE_INTERSECTION
+    /* Moller-Trumbore (1997), both faces, rejecting only det == 0: each
+     * triangle computes its barycentrics from its own edge vectors, so two
+     * triangles sharing an edge round differently and a ray through the
+     * edge can miss both. */
+    float3 e1 = p1 - p0, e2 = p2 - p0;
+    float3 pv = cross(ray->direction, e2);
+    float det = dot(e1, pv);
+    if (det == 0.0f)
+        return 0;
+    float inv_det = 1.0f / det;
+    float3 s = ray->origin - p0;
+    float bu = dot(s, pv) * inv_det;
+    if (bu < 0.0f || bu > 1.0f)
+        return 0;
+    float3 qv = cross(s, e1);
+    float bv = dot(ray->direction, qv) * inv_det;
+    if (bv < 0.0f || bu + bv > 1.0f)
+        return 0;
+    float naive_t = dot(e2, qv) * inv_det;
+    if (!(naive_t > 0.0f && naive_t < t_max))
+        return 0;
+    *t = naive_t;
+    return 1;
+#endif
     float3 a = p0 - ray->origin;
     float3 b = p1 - ray->origin;
     float3 c = p2 - ray->origin;
@@ -122,6 +175,28 @@ static inline int wp_intersect_triangle(const WpShearedRay* ray, float3 p0, floa
 /* Returns 1 and sets *t if the ray hits the sphere at 0 < t < t_max. */
 static inline int wp_intersect_sphere(float3 origin, float3 direction, float4 center_radius,
                                       float t_max, float* t) {
+#if WP_NAIVE_INTERSECTION
+    {
+        /* The textbook quadratic: b^2 - 4ac cancels catastrophically when the
+         * sphere is small and far (b^2 and 4ac agree in every float digit),
+         * and -b + sqrt(...) cancels for the near root. */
+        float3 f = origin - center_radius.xyz;
+        float a = dot(direction, direction);
+        float b = 2.0f * dot(f, direction);
+        float c = dot(f, f) - center_radius.w * center_radius.w;
+        float discriminant = b * b - 4.0f * a * c;
+        if (discriminant < 0.0f)
+            return 0;
+        float root = sqrt(discriminant);
+        float t_near = (-b - root) / (2.0f * a);
+        float t_far = (-b + root) / (2.0f * a);
+        float naive_hit = (t_near > 0.0f) ? t_near : t_far;
+        if (!(naive_hit > 0.0f && naive_hit < t_max))
+            return 0;
+        *t = naive_hit;
+        return 1;
+    }
+#endif
     float3 f = origin - center_radius.xyz;
     float radius = center_radius.w;
     float a = dot(direction, direction);

@@ -3,12 +3,11 @@
  *  1. Emission: an emitter's front face adds throughput x radiance, but only
  *     for camera rays and rays after a mirror bounce. After a diffuse bounce
  *     the light was already counted by next-event estimation, and counting it
- *     again would count it twice.
- *     (With WP_USE_NEE=0 there is no step 2 and emitters count after every
- *     bounce.)
- *  2. Next-event estimation (diffuse surfaces): pick a point uniformly by area
- *     on the emissive triangles and queue one shadow ray carrying the
- *     contribution it would make if nothing blocks it.
+ *     again would count it twice. (With WP_USE_NEE=0 there is no step 2 and
+ *     emitters count after every bounce.)
+ *  2. Next-event estimation (diffuse surfaces): sample a point on the lights
+ *     (lights.h) and queue one shadow ray carrying the contribution it would
+ *     make if nothing blocks it.
  *  3. Scattering: a cosine-weighted direction for Lambertian surfaces
  *     (throughput x reflectance, as cos/pdf cancels against 1/pi), the exact
  *     reflection for mirrors (throughput x reflectance).
@@ -17,48 +16,36 @@
  *     Past frame.max_depth bounces a path is cut and counted; the cap is a
  *     guard against endless mirror corridors, not part of the estimator.
  *
- * Survivors are pushed to the next ray queue with one atomic per item.
+ * Survivors go to the next ray queue, finished paths (missed, absorbed, cut)
+ * to the finished queue, each with one atomic per item.
  */
+#include "lights.h"
 #include "material.h"
 #include "rng.h"
 #include "sampling.h"
 #include "traverse.h"
 
-/* Shadow rays stop this many offsets short of the light point, so the light
- * itself is never taken for an occluder. */
-#define WP_SHADOW_END_MARGIN 4.0f
-
-/* The first light whose cumulative area fraction exceeds u. */
-static inline wp_uint wp_pick_light(__global const WpLight* lights, wp_uint count, float u) {
-    wp_uint low = 0, high = count - 1;
-    while (low < high) {
-        wp_uint mid = (low + high) / 2;
-        if (lights[mid].cdf > u)
-            high = mid;
-        else
-            low = mid + 1;
-    }
-    return low;
-}
-
-__kernel void shade(WpFrame frame, wp_uint ray_count, __global const wp_uint* ray_queue,
-                    __global float4* ray_origin, __global float4* ray_direction,
-                    __global const float* hit_t, __global const wp_uint* hit_primitive,
-                    __global float4* throughput, __global float4* radiance,
-                    __global wp_uint* path_depth, __global wp_uint* path_flags,
-                    __global const wp_uint* path_pixel, __global const WpTriangle* triangles,
+__kernel void shade(WpFrame frame, __global const wp_uint* ray_queue, __global wp_uint* counters,
+                    wp_uint ray_counter, __global wp_uint* next_queue, wp_uint next_counter,
+                    __global wp_uint* finished_queue, __global float4* ray_origin,
+                    __global float4* ray_direction, __global const float* hit_t,
+                    __global const wp_uint* hit_primitive, __global float4* throughput,
+                    __global float4* radiance, __global wp_uint* path_depth,
+                    __global wp_uint* path_flags, __global const wp_uint* path_pixel,
+                    __global const wp_uint* path_sample, __global const WpTriangle* triangles,
                     __global const WpSphere* spheres, __global const WpMaterial* materials,
-                    __global const WpLight* lights, __global wp_uint* next_queue,
-                    __global wp_uint* shadow_queue, __global float4* shadow_origin,
-                    __global float4* shadow_direction, __global float4* shadow_contribution,
-                    __global wp_uint* counters) {
+                    __global const WpLight* lights, __global wp_uint* shadow_queue,
+                    __global float4* shadow_origin, __global float4* shadow_direction,
+                    __global float4* shadow_contribution) {
     wp_uint index = get_global_id(0);
-    if (index >= ray_count)
+    if (index >= counters[ray_counter])
         return;
     wp_uint slot = ray_queue[index];
     wp_uint primitive = hit_primitive[slot];
-    if (primitive == WP_NO_HIT)
-        return; /* the ray left the scene: the path ends with what it has */
+    if (primitive == WP_NO_HIT) { /* the ray left the scene: the path ends with what it has */
+        finished_queue[atomic_inc(&counters[WP_COUNTER_FINISHED])] = slot;
+        return;
+    }
 
     float3 direction = ray_direction[slot].xyz;
     float3 position = ray_origin[slot].xyz + hit_t[slot] * direction;
@@ -93,11 +80,13 @@ __kernel void shade(WpFrame frame, wp_uint ray_count, __global const wp_uint* ra
     wp_uint depth = path_depth[slot];
     wp_uint flags = path_flags[slot];
     wp_uint pixel = path_pixel[slot];
+    wp_uint sample = path_sample[slot];
 
     if ((!WP_USE_NEE || (flags & WP_PATH_SPECULAR)) && front_face)
         sum += beta * material.emission.xyz;
+    radiance[slot] = (float4)(sum, 0.0f);
     if (material.kind == WP_MATERIAL_EMITTER) {
-        radiance[slot] = (float4)(sum, 0.0f);
+        finished_queue[atomic_inc(&counters[WP_COUNTER_FINISHED])] = slot;
         return;
     }
 
@@ -112,53 +101,36 @@ __kernel void shade(WpFrame frame, wp_uint ray_count, __global const wp_uint* ra
 #endif
     {
 #if WP_HAS_LIGHTS && WP_USE_NEE
-        if (frame.light_count > 0) { /* general kernels may meet a scene without lights */
-            float u_pick =
-                wp_random(frame.seed, pixel, frame.sample_index, depth, WP_DIM_LIGHT_PICK);
-            float u_light = wp_random(frame.seed, pixel, frame.sample_index, depth, WP_DIM_LIGHT_U);
-            float v_light = wp_random(frame.seed, pixel, frame.sample_index, depth, WP_DIM_LIGHT_V);
-            WpTriangle light =
-                triangles[lights[wp_pick_light(lights, frame.light_count, u_pick)].triangle];
-            float3 light_point =
-                wp_sample_triangle(light.v0.xyz, light.v1.xyz, light.v2.xyz, u_light, v_light);
-            float3 light_normal = normalize(wp_triangle_normal(&light));
-            float3 to_light = light_point - origin;
-            float distance = length(to_light);
-            float3 wi = to_light / distance;
-            float cos_surface = dot(facing_normal, wi);
-            float cos_light = -dot(light_normal, wi);
-            float length_to_test =
-                distance -
-                WP_SHADOW_END_MARGIN * wp_offset_distance(light_point, wp_triangle_scale(&light));
-            if (cos_surface > 0.0f && cos_light > 0.0f && length_to_test > 0.0f) {
-                float3 emitted = materials[light.material].emission.xyz;
-                float geometry = cos_surface * cos_light / (distance * distance);
-                float3 contribution =
-                    beta * reflectance * emitted * (geometry * frame.light_area / WP_PI);
-                if (!wp_is_black(contribution)) {
-                    wp_uint entry = atomic_inc(&counters[WP_COUNTER_SHADOW_RAYS]);
-                    shadow_queue[entry] = slot;
-                    shadow_origin[slot] = (float4)(origin, 0.0f);
-                    shadow_direction[slot] = (float4)(wi, length_to_test);
-                    shadow_contribution[slot] = (float4)(contribution, 0.0f);
-                }
+        WpLightSample light;
+        if (wp_sample_light(frame, triangles, materials, lights, origin, facing_normal,
+                            wp_random(frame.seed, pixel, sample, depth, WP_DIM_LIGHT_PICK),
+                            wp_random(frame.seed, pixel, sample, depth, WP_DIM_LIGHT_U),
+                            wp_random(frame.seed, pixel, sample, depth, WP_DIM_LIGHT_V), &light)) {
+            float3 contribution = beta * reflectance * light.irradiance * (1.0f / WP_PI);
+            if (!wp_is_black(contribution)) {
+                shadow_queue[atomic_inc(&counters[WP_COUNTER_SHADOW_RAYS])] = slot;
+                shadow_origin[slot] = (float4)(origin, 0.0f);
+                shadow_direction[slot] = (float4)(light.direction, light.length);
+                shadow_contribution[slot] = (float4)(contribution, 0.0f);
             }
         }
 #endif
-        float u1 = wp_random(frame.seed, pixel, frame.sample_index, depth, WP_DIM_BSDF_U);
-        float u2 = wp_random(frame.seed, pixel, frame.sample_index, depth, WP_DIM_BSDF_V);
+        float u1 = wp_random(frame.seed, pixel, sample, depth, WP_DIM_BSDF_U);
+        float u2 = wp_random(frame.seed, pixel, sample, depth, WP_DIM_BSDF_V);
         next_direction = wp_sample_cosine_hemisphere(facing_normal, u1, u2);
         flags &= ~WP_PATH_SPECULAR;
     }
     beta *= reflectance;
 
     float survival = fmin(1.0f, wp_max_component(beta));
-    float u_roulette = wp_random(frame.seed, pixel, frame.sample_index, depth, WP_DIM_ROULETTE);
-    radiance[slot] = (float4)(sum, 0.0f);
-    if (u_roulette >= survival)
-        return;
-    if (depth + 1u > frame.max_depth) {
+    float u_roulette = wp_random(frame.seed, pixel, sample, depth, WP_DIM_ROULETTE);
+    int survives = u_roulette < survival;
+    if (survives && depth + 1u > frame.max_depth) {
         atomic_inc(&counters[WP_COUNTER_CAPPED]);
+        survives = 0;
+    }
+    if (!survives) {
+        finished_queue[atomic_inc(&counters[WP_COUNTER_FINISHED])] = slot;
         return;
     }
     throughput[slot] = (float4)(beta / survival, 0.0f);
@@ -166,5 +138,5 @@ __kernel void shade(WpFrame frame, wp_uint ray_count, __global const wp_uint* ra
     ray_direction[slot] = (float4)(next_direction, 0.0f);
     path_depth[slot] = depth + 1u;
     path_flags[slot] = flags;
-    next_queue[atomic_inc(&counters[WP_COUNTER_NEXT_RAYS])] = slot;
+    next_queue[atomic_inc(&counters[next_counter])] = slot;
 }

@@ -35,12 +35,16 @@ typedef cl_float4 wp_float4;
 /* Path flags (path_flags[]). */
 #define WP_PATH_SPECULAR 1u /* the last bounce was specular (or none yet): emitters count */
 
-/* Counters the kernels bump with atomics (one buffer of WP_COUNTER_COUNT uints). */
-#define WP_COUNTER_NEXT_RAYS 0   /* length of the next bounce's ray queue */
-#define WP_COUNTER_SHADOW_RAYS 1 /* length of the shadow-ray queue */
-#define WP_COUNTER_CAPPED 2      /* paths cut by the safety depth cap */
-#define WP_COUNTER_NONFINITE 3   /* samples dropped at the film for NaN or Inf */
-#define WP_COUNTER_COUNT 4
+/* Counters the kernels bump with atomics (one buffer of WP_COUNTER_COUNT
+ * uints). The two ray queues swap roles every iteration, so each keeps its
+ * length in its own entry and kernels are told which entry is theirs. */
+#define WP_COUNTER_QUEUE_A 0u    /* length of ray queue A */
+#define WP_COUNTER_QUEUE_B 1u    /* length of ray queue B */
+#define WP_COUNTER_SHADOW_RAYS 2u /* length of the shadow-ray queue */
+#define WP_COUNTER_FINISHED 3u   /* length of the finished-path queue */
+#define WP_COUNTER_CAPPED 4u     /* paths cut by the safety depth cap */
+#define WP_COUNTER_NONFINITE 5u  /* samples dropped at the film for NaN or Inf */
+#define WP_COUNTER_COUNT 8u
 
 /* A triangle: vertices in xyz (w unused). Its front face is the side of
  * cross(v1 - v0, v2 - v0); only emitters care which side is the front. */
@@ -85,19 +89,27 @@ typedef struct {
     wp_float4 up;
 } WpCamera;
 
-/* Everything a wave needs besides buffers, passed by value to the kernels. */
+/* Everything the kernels need besides buffers, passed by value.
+ *
+ * A render call computes samples [first_sample, first_sample + sample_count)
+ * of every pixel with a pool of pool_size path slots. Slot i owns pixels i,
+ * i + pool_size, i + 2 pool_size, ... and works through its own list of
+ * (pixel, sample) tasks; no two slots ever write the same pixel, so the film
+ * needs no atomics and the image does not depend on scheduling. */
 typedef struct {
     WpCamera camera;
-    wp_uint width;          /* pixels */
+    wp_uint width; /* pixels */
     wp_uint height;
-    wp_uint seed;           /* user seed: the image is a function of it */
-    wp_uint sample_index;   /* the sample this wave computes for every pixel */
+    wp_uint seed; /* user seed: the image is a function of it */
+    wp_uint first_sample;
+    wp_uint sample_count;
+    wp_uint pool_size; /* path slots, at most width * height */
     wp_uint triangle_count;
     wp_uint sphere_count;
     wp_uint light_count;
-    wp_float light_area;    /* total emissive area: 1 / pdf of uniform area sampling */
-    wp_uint max_depth;      /* safety cap on bounces; paths cut are counted */
-    wp_uint pad0, pad1, pad2;
+    wp_float light_area; /* total emissive area: 1 / pdf of uniform area sampling */
+    wp_uint max_depth;   /* safety cap on bounces; paths cut are counted */
+    wp_uint pad0;
 } WpFrame;
 
 #endif /* WP_SHARED_H */

@@ -9,6 +9,7 @@
 #include "cl/context.hpp"
 #include "cl/device.hpp"
 #include "image/image_io.hpp"
+#include "render/profile_report.hpp"
 #include "render/wavefront.hpp"
 #include "scene/load.hpp"
 
@@ -16,20 +17,22 @@ namespace wp {
 namespace {
 
 // Fails before rendering, not after, if an output cannot be written.
-void check_output_path(const std::string& path) {
+void check_output_path(const std::string& path, bool image = true) {
     if (path.empty())
         return;
     std::filesystem::path p(path);
+    std::filesystem::path dir = p.has_parent_path() ? p.parent_path() : ".";
+    if (!std::filesystem::is_directory(dir))
+        throw ImageError("cannot write '" + path + "': directory '" + dir.string() +
+                         "' does not exist");
+    if (!image)
+        return;
     std::string extension = p.extension().string();
     for (char& c : extension)
         c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     if (extension != ".exr" && extension != ".pfm" && extension != ".png")
         throw ImageError("cannot write '" + path + "': unsupported image extension '" +
                          p.extension().string() + "' (use .exr, .pfm or .png)");
-    std::filesystem::path dir = p.has_parent_path() ? p.parent_path() : ".";
-    if (!std::filesystem::is_directory(dir))
-        throw ImageError("cannot write '" + path + "': directory '" + dir.string() +
-                         "' does not exist");
 }
 
 } // namespace
@@ -48,6 +51,8 @@ int run_devices() {
 int run_render(const RenderCommand& command) {
     check_output_path(command.out);
     check_output_path(command.png);
+    check_output_path(command.profile_json, false);
+    check_output_path(command.trace, false);
 
     Scene scene = load_scene(command.scene);
     for (const std::string& warning : scene.warnings)
@@ -57,12 +62,19 @@ int run_render(const RenderCommand& command) {
     if (command.height > 0)
         scene.camera.height = command.height;
 
-    DeviceContext device(select_device(command.device));
+    const bool profiling =
+        command.profile || !command.profile_json.empty() || !command.trace.empty();
+    DeviceContext device(select_device(command.device), profiling);
     IntegratorOptions options;
     options.seed = command.seed;
     options.max_depth = command.max_depth;
     options.general_kernels = command.general;
+    options.regeneration = command.regeneration;
+    options.pool_size = command.pool;
     WavefrontIntegrator integrator(device, scene, options);
+    Profiler profiler;
+    if (profiling)
+        integrator.set_profiler(&profiler);
 
     std::cerr << "wavepath: " << scene.camera.width << "x" << scene.camera.height << " at "
               << command.spp << " spp on " << device.info.name << " (kernels built in "
@@ -74,7 +86,7 @@ int run_render(const RenderCommand& command) {
                                  static_cast<std::uint64_t>(scene.camera.height);
     {
         ProgressBar progress(command.spp, pixels);
-        integrator.render(0, command.spp, film, [&](std::uint32_t done) { progress.update(done); });
+        integrator.render(0, command.spp, film, [&](double done) { progress.update(done); });
     }
 
     Image image = film.mean();
@@ -94,6 +106,24 @@ int run_render(const RenderCommand& command) {
     std::printf("paths cut by the depth cap (%u): %llu; NaN/Inf samples dropped: %llu\n",
                 command.max_depth, static_cast<unsigned long long>(stats.capped_paths),
                 static_cast<unsigned long long>(stats.nonfinite_samples));
+    if (profiling) {
+        ProfileContext context;
+        context.device = device.info.name;
+        context.scene = command.scene;
+        context.width = scene.camera.width;
+        context.height = scene.camera.height;
+        context.spp = command.spp;
+        context.build_options = integrator.program().options;
+        context.build_seconds = integrator.program().build_seconds;
+        context.regeneration = options.regeneration;
+        context.pool_size = integrator.pool_size();
+        if (command.profile)
+            std::printf("\n%s", profile_table(profiler, stats, context).c_str());
+        if (!command.profile_json.empty())
+            write_profile_json(command.profile_json, profiler, stats, context);
+        if (!command.trace.empty())
+            profiler.write_trace(command.trace, device.info.name);
+    }
     return 0;
 }
 

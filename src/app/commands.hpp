@@ -19,10 +19,24 @@ struct RenderCommand {
     int height = 0;
     std::uint32_t max_depth = 1024;
     bool general = false;
+    bool regeneration = true;
+    std::uint32_t pool = 0; // path slots; 0: one per pixel
+    bool profile = false;   // print the per-stage table
+    std::string profile_json;
+    std::string trace;
     ViewOptions view;
 };
 
+struct BenchCommand {
+    std::string scene = "scenes/hexroom.json";
+    std::string device;
+    int size = 512; // the rendered workload is size x size
+    std::uint32_t spp = 8;
+    int repetitions = 5; // launches of each stage-alone workload
+};
+
 int run_devices();
+int run_bench(const BenchCommand& command);
 int run_render(const RenderCommand& command);
 
 } // namespace wp

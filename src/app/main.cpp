@@ -54,6 +54,36 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     r->add_flag("--general", render.general,
                 "Build the all-features kernels instead of the scene's specialised ones");
+    r->add_flag("!--no-regeneration", render.regeneration,
+                "Generate new camera rays only when the whole path pool has finished (one wave "
+                "at a time) instead of refilling finished slots at once");
+    r->add_option("--pool", render.pool,
+                  "Path slots on the device (default: one per pixel); fewer use less memory");
+    r->add_flag(
+        "--profile", render.profile,
+        "Print per-stage device times, items and rates at the end (OpenCL event profiling)");
+    r->add_option(
+        "--profile-json", render.profile_json,
+        "Write the profile as JSON, with device, scene, resolution, spp and build options");
+    r->add_option("--trace", render.trace,
+                  "Write every kernel launch and transfer as a Chrome trace (Perfetto, "
+                  "chrome://tracing)");
+
+    wp::BenchCommand bench;
+    CLI::App* b = app.add_subcommand(
+        "bench", "Print throughput figures for fixed workloads: a render of the scene with and "
+                 "without path regeneration, and each tracing stage alone on 2^20 random rays");
+    b->add_option("scene", bench.scene, "Scene file")->capture_default_str();
+    b->add_option("--device,-d", bench.device, "OpenCL device (as for render)");
+    b->add_option("--size", bench.size, "Rendered workload: size x size pixels")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 4096));
+    b->add_option("--spp", bench.spp, "Rendered workload: samples per pixel")
+        ->capture_default_str()
+        ->check(CLI::Range(1u, 4096u));
+    b->add_option("--repetitions", bench.repetitions, "Launches per stage-alone workload")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 1000));
 
     try {
         app.parse(argc, argv);
@@ -68,6 +98,8 @@ int main(int argc, char** argv) {
     try {
         if (app.got_subcommand("devices"))
             return wp::run_devices();
+        if (app.got_subcommand("bench"))
+            return wp::run_bench(bench);
         return wp::run_render(render);
     } catch (const wp::BuildError& e) {
         std::cerr << e.log() << "\nwavepath: error: " << e.what() << "\n";

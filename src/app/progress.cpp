@@ -1,5 +1,6 @@
 #include "app/progress.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
 #include <unistd.h>
@@ -27,24 +28,25 @@ ProgressBar::~ProgressBar() {
     finish();
 }
 
-void ProgressBar::update(std::uint64_t done) {
+void ProgressBar::update(double samples_per_pixel_done) {
+    const double done = samples_per_pixel_done;
     if (!enabled_ || total_ == 0)
         return;
     auto now = std::chrono::steady_clock::now();
-    if (done < total_ && now - last_draw_ < std::chrono::milliseconds(100))
+    if (done < static_cast<double>(total_) && now - last_draw_ < std::chrono::milliseconds(100))
         return; // redraw at most ten times a second
     last_draw_ = now;
     double elapsed = std::chrono::duration<double>(now - start_).count();
-    double rate = elapsed > 0.0 ? static_cast<double>(done * pixels_) / elapsed : 0.0;
-    double left =
-        done > 0 ? elapsed * static_cast<double>(total_ - done) / static_cast<double>(done) : 0.0;
+    const double total = static_cast<double>(total_);
+    double rate = elapsed > 0.0 ? done * static_cast<double>(pixels_) / elapsed : 0.0;
+    double left = done > 0.0 ? elapsed * (total - done) / done : 0.0;
     constexpr int width = 30;
-    int filled = static_cast<int>(width * done / total_);
+    int filled = std::clamp(static_cast<int>(width * done / total), 0, width);
     std::string bar(static_cast<std::size_t>(filled), '#');
     bar.resize(width, '.');
-    std::fprintf(stderr, "\r[%s] %llu/%llu spp  %s  %.3g samples/s  ETA %s   ", bar.c_str(),
-                 static_cast<unsigned long long>(done), static_cast<unsigned long long>(total_),
-                 format_duration(elapsed).c_str(), rate, format_duration(left).c_str());
+    std::fprintf(stderr, "\r[%s] %.1f/%llu spp  %s  %.3g samples/s  ETA %s   ", bar.c_str(), done,
+                 static_cast<unsigned long long>(total_), format_duration(elapsed).c_str(), rate,
+                 format_duration(left).c_str());
     std::fflush(stderr);
 }
 

@@ -12,7 +12,7 @@ class ProgressBar {
   public:
     ProgressBar(std::uint64_t total, std::uint64_t pixels_per_sample);
     ~ProgressBar();
-    void update(std::uint64_t done);
+    void update(double samples_per_pixel_done);
     void finish();
 
   private:

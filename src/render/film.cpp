@@ -1,28 +1,40 @@
 #include "render/film.hpp"
 
 #include <algorithm>
+#include <numeric>
 #include <stdexcept>
 
 namespace wp {
 
 Film::Film(int width, int height)
     : width_(width), height_(height), sum_(static_cast<std::size_t>(width) * height * 3, 0.0),
-      sum_squares_(sum_.size(), 0.0), odd_sum_(sum_.size(), 0.0) {}
+      sum_squares_(sum_.size(), 0.0), odd_sum_(sum_.size(), 0.0), count_(sum_.size() / 3, 0),
+      odd_count_(count_.size(), 0) {}
+
+std::uint64_t Film::min_samples() const {
+    return count_.empty() ? 0 : *std::min_element(count_.begin(), count_.end());
+}
+
+std::uint64_t Film::total_samples() const {
+    return std::accumulate(count_.begin(), count_.end(), std::uint64_t{0});
+}
 
 void Film::add_batch(const std::vector<float>& sum, const std::vector<float>& sum_squares,
-                     const std::vector<float>& odd_sum, std::uint64_t samples, std::uint64_t odd) {
-    std::size_t pixels = sum_.size() / 3;
+                     const std::vector<float>& odd_sum) {
+    const std::size_t pixels = count_.size();
     if (sum.size() != pixels * 4 || sum_squares.size() != pixels * 4 ||
         odd_sum.size() != pixels * 4)
         throw std::logic_error("Film::add_batch: buffer size does not match the film");
-    for (std::size_t p = 0; p < pixels; ++p)
+    for (std::size_t p = 0; p < pixels; ++p) {
         for (std::size_t c = 0; c < 3; ++c) {
             sum_[p * 3 + c] += sum[p * 4 + c];
             sum_squares_[p * 3 + c] += sum_squares[p * 4 + c];
             odd_sum_[p * 3 + c] += odd_sum[p * 4 + c];
         }
-    samples_ += samples;
-    odd_samples_ += odd;
+        // Counts travel as floats: exact, as a batch holds far fewer than 2^24.
+        count_[p] += static_cast<std::uint64_t>(sum[p * 4 + 3]);
+        odd_count_[p] += static_cast<std::uint64_t>(odd_sum[p * 4 + 3]);
+    }
 }
 
 void Film::merge(const Film& other) {
@@ -33,24 +45,27 @@ void Film::merge(const Film& other) {
         sum_squares_[i] += other.sum_squares_[i];
         odd_sum_[i] += other.odd_sum_[i];
     }
-    samples_ += other.samples_;
-    odd_samples_ += other.odd_samples_;
+    for (std::size_t p = 0; p < count_.size(); ++p) {
+        count_[p] += other.count_[p];
+        odd_count_[p] += other.odd_count_[p];
+    }
 }
 
 Image Film::mean() const {
     Image image(width_, height_);
-    double scale = samples_ ? 1.0 / static_cast<double>(samples_) : 0.0;
-    for (std::size_t i = 0; i < sum_.size(); ++i)
-        image.rgb[i] = static_cast<float>(sum_[i] * scale);
+    for (std::size_t i = 0; i < sum_.size(); ++i) {
+        std::uint64_t n = count_[i / 3];
+        image.rgb[i] = n ? static_cast<float>(sum_[i] / static_cast<double>(n)) : 0.0f;
+    }
     return image;
 }
 
 Image Film::variance_of_mean() const {
     Image image(width_, height_);
-    if (samples_ < 2)
-        return image;
-    double n = static_cast<double>(samples_);
     for (std::size_t i = 0; i < sum_.size(); ++i) {
+        double n = static_cast<double>(count_[i / 3]);
+        if (n < 2.0)
+            continue;
         double mean = sum_[i] / n;
         double variance = (sum_squares_[i] / n - mean * mean) * n / (n - 1.0);
         image.rgb[i] = static_cast<float>(std::max(0.0, variance) / n);
@@ -60,12 +75,11 @@ Image Film::variance_of_mean() const {
 
 Image Film::half_mean(int parity) const {
     Image image(width_, height_);
-    std::uint64_t count = parity ? odd_samples_ : samples_ - odd_samples_;
-    if (count == 0)
-        return image;
     for (std::size_t i = 0; i < sum_.size(); ++i) {
+        std::size_t p = i / 3;
+        std::uint64_t n = parity ? odd_count_[p] : count_[p] - odd_count_[p];
         double s = parity ? odd_sum_[i] : sum_[i] - odd_sum_[i];
-        image.rgb[i] = static_cast<float>(s / static_cast<double>(count));
+        image.rgb[i] = n ? static_cast<float>(s / static_cast<double>(n)) : 0.0f;
     }
     return image;
 }

@@ -1,8 +1,10 @@
 // The accumulated image: per-pixel sums in double precision on the host.
 //
-// The device adds samples into float32 buffers for a few waves at a time and
-// the host folds them in here, so that a reference render of 65536 samples
-// per pixel does not lose the small late samples to float32 rounding.
+// The device adds samples into float32 buffers for a few dozen iterations at
+// a time and the host folds them in here, so that a reference render of
+// 65536 samples per pixel does not lose its late samples to float32 rounding.
+// Pixels keep their own sample counts: with path regeneration they finish
+// samples at different times, and a progressive render may stop in between.
 #pragma once
 
 #include <cstdint>
@@ -19,30 +21,34 @@ class Film {
 
     int width() const { return width_; }
     int height() const { return height_; }
-    // Samples per pixel so far (every pixel gets the same number).
-    std::uint64_t samples() const { return samples_; }
-    std::uint64_t odd_samples() const { return odd_samples_; }
+    std::size_t pixel_count() const { return count_.size(); }
+    // Samples of one pixel so far, and the fewest of any pixel (the spp of a
+    // finished render).
+    std::uint64_t samples(std::size_t pixel) const { return count_[pixel]; }
+    std::uint64_t min_samples() const;
+    std::uint64_t total_samples() const;
 
-    // Adds a batch: per-pixel float4 sums (rgb + unused w) over `samples`
-    // samples, `odd` of which had odd sample indices.
+    // Adds a batch read from the device: per pixel a float4 whose rgb is a sum
+    // and whose w is the number of samples in it (sum of squares: w unused;
+    // odd: sums and count over odd sample indices only).
     void add_batch(const std::vector<float>& sum, const std::vector<float>& sum_squares,
-                   const std::vector<float>& odd_sum, std::uint64_t samples, std::uint64_t odd);
+                   const std::vector<float>& odd_sum);
 
     // Combines another film of disjoint samples (e.g. from another device).
     void merge(const Film& other);
 
-    Image mean() const;                // the estimate: sum / samples
+    Image mean() const;                // the estimate: sum / samples, per pixel
     Image variance_of_mean() const;    // per pixel and channel: sample variance / samples
     Image half_mean(int parity) const; // mean over even (0) or odd (1) sample indices
 
   private:
     int width_ = 0;
     int height_ = 0;
-    std::uint64_t samples_ = 0;
-    std::uint64_t odd_samples_ = 0;
     std::vector<double> sum_;         // rgb per pixel
     std::vector<double> sum_squares_; // rgb per pixel
     std::vector<double> odd_sum_;     // rgb per pixel, odd sample indices only
+    std::vector<std::uint64_t> count_;
+    std::vector<std::uint64_t> odd_count_;
 };
 
 } // namespace wp

@@ -1,11 +1,13 @@
 // The wavefront path tracer on one OpenCL device.
 //
-// A wave computes one sample for every pixel: `generate` fills one path slot
-// per pixel and queues its camera ray; then, bounce after bounce, `intersect`
-// finds the closest hits of the queued rays, `shade` adds emission, queues one
-// shadow ray per diffuse hit and pushes surviving paths to the next queue, and
-// `shadow` adds the unblocked light. When the queue is empty, `accumulate`
-// adds the wave's radiance to the film. See docs/architecture.md.
+// A pool of path slots (one per pixel by default) is driven through the five
+// stages: `generate` gives slots camera rays; then, iteration after iteration,
+// `intersect` finds the closest hits of the queued rays, `shade` adds
+// emission, queues one shadow ray per diffuse hit and sorts paths into the
+// next ray queue or the finished queue, `shadow` adds the unblocked light,
+// `accumulate` adds finished paths to the film, and (with regeneration)
+// `generate` refills the finished slots with their next samples, so the queue
+// stays full while long paths drain. See docs/architecture.md.
 #pragma once
 
 #include <cstdint>
@@ -17,6 +19,7 @@
 #include "cl/program.hpp"
 #include "render/device_scene.hpp"
 #include "render/film.hpp"
+#include "render/profiler.hpp"
 #include "scene/scene.hpp"
 
 namespace wp {
@@ -31,16 +34,24 @@ struct IntegratorOptions {
     // Next-event estimation: one shadow ray to a light per diffuse hit. Off,
     // light is found only by paths that hit emitters.
     bool next_event_estimation = true;
+    // Refill finished slots with new samples at once, instead of waiting for
+    // the whole pool to finish (a "wave") before generating again.
+    bool regeneration = true;
+    // Path slots; 0 means one per pixel. Fewer save device memory (about 180
+    // bytes each) at some cost in parallelism.
+    std::uint32_t pool_size = 0;
 };
 
 struct RenderStats {
     std::uint64_t camera_rays = 0;
     std::uint64_t bounce_rays = 0; // rays after the first hit
     std::uint64_t shadow_rays = 0;
+    std::uint64_t iterations = 0; // intersect/shade launches
     std::uint64_t capped_paths = 0;
     std::uint64_t nonfinite_samples = 0;
-    std::vector<std::uint64_t> rays_per_depth; // queue length at each bounce, summed over waves
-    double render_seconds = 0.0;               // wall time of render() calls
+    std::vector<std::uint32_t> queue_lengths; // rays traced in each iteration
+    double render_seconds = 0.0;              // wall time of render() calls
+    double host_seconds = 0.0;                // host work inside it (folding the film)
 };
 
 class WavefrontIntegrator {
@@ -48,20 +59,37 @@ class WavefrontIntegrator {
     WavefrontIntegrator(DeviceContext& device, const Scene& scene, IntegratorOptions options);
 
     // Renders samples [first_sample, first_sample + count) of every pixel into
-    // the film; `on_wave(done)` is called after each wave.
+    // the film; `on_progress(samples_per_pixel_done)` is called as they finish.
     void render(std::uint32_t first_sample, std::uint32_t count, Film& film,
-                const std::function<void(std::uint32_t)>& on_wave = {});
+                const std::function<void(double)>& on_progress = {});
+
+    // Records every launch in `profiler` (nullptr: off). The device's queue
+    // must have been created with profiling enabled.
+    void set_profiler(Profiler* profiler) { profiler_ = profiler; }
 
     const RenderStats& stats() const { return stats_; }
     const BuiltProgram& program() const { return program_; }
     const SceneFeatures& features() const { return features_; }
+    const IntegratorOptions& options() const { return options_; }
+    std::uint32_t pool_size() const { return pool_size_; }
     int width() const { return scene_.width; }
     int height() const { return scene_.height; }
 
+    // For stage benchmarks: traces `rays` (origin xyz, direction xyz, packed
+    // as float4 pairs) through intersect alone, `repetitions` times; returns
+    // the device seconds of the intersect launches (profiling must be on).
+    double time_intersect(const std::vector<cl_float4>& origins,
+                          const std::vector<cl_float4>& directions, int repetitions);
+    // Same for shadow rays: direction w is the segment length.
+    double time_shadow(const std::vector<cl_float4>& origins,
+                       const std::vector<cl_float4>& directions, int repetitions);
+
   private:
-    void run_wave(std::uint32_t sample_index);
-    void flush_film(Film& film, std::uint64_t samples, std::uint64_t odd);
-    void launch(cl::Kernel& kernel, std::uint32_t items);
+    void launch(cl::Kernel& kernel, std::uint32_t items, Stage stage);
+    void read(const cl::Buffer& buffer, std::size_t bytes, void* out, bool blocking);
+    void flush_film(Film& film);
+    void set_queue_arguments(cl::Buffer& in, cl_uint in_counter, cl::Buffer& out,
+                             cl_uint out_counter);
 
     DeviceContext& device_;
     DeviceScene scene_;
@@ -70,18 +98,20 @@ class WavefrontIntegrator {
     BuiltProgram program_;
     WpFrame frame_{};
     std::uint32_t pixel_count_ = 0;
+    std::uint32_t pool_size_ = 0;
+    Profiler* profiler_ = nullptr;
 
     cl::Kernel generate_, intersect_, shade_, shadow_, accumulate_;
 
     // Scene.
     cl::Buffer triangles_, spheres_, materials_, lights_;
     // Path state, one entry per slot (structure of arrays).
-    cl::Buffer ray_origin_, ray_direction_, throughput_, radiance_;
-    cl::Buffer path_pixel_, path_depth_, path_flags_, hit_t_, hit_primitive_;
+    cl::Buffer path_task_, ray_origin_, ray_direction_, throughput_, radiance_;
+    cl::Buffer path_pixel_, path_sample_, path_depth_, path_flags_, hit_t_, hit_primitive_;
     cl::Buffer shadow_origin_, shadow_direction_, shadow_contribution_;
     // Queues of slot indices, and the counters the kernels push with.
-    cl::Buffer queue_a_, queue_b_, shadow_queue_, counters_;
-    // Film for the current batch of waves (float4 per pixel).
+    cl::Buffer all_slots_, queue_a_, queue_b_, finished_queue_, shadow_queue_, counters_;
+    // Film for the current batch of iterations (float4 per pixel).
     cl::Buffer film_sum_, film_sum_squares_, film_odd_sum_;
 
     RenderStats stats_;

@@ -1,0 +1,64 @@
+/* Next-event estimation: sampling a point on the area lights.
+ *
+ * Lights are the emissive triangles. One is picked with probability
+ * proportional to its area, then a point uniformly on it, so the point's
+ * density is 1 / (total light area) over all lights. */
+#ifndef WP_LIGHTS_H
+#define WP_LIGHTS_H
+
+#include "geometry.h"
+#include "sampling.h"
+
+/* Shadow rays stop this many offsets short of the light point, so the light
+ * itself is never taken for an occluder. */
+#define WP_SHADOW_END_MARGIN 4.0f
+
+/* The first light whose cumulative area fraction exceeds u (count > 0). */
+static inline wp_uint wp_pick_light(__global const WpLight* lights, wp_uint count, float u) {
+    wp_uint low = 0, high = count - 1u;
+    while (low < high) {
+        wp_uint mid = (low + high) / 2u;
+        if (lights[mid].cdf > u)
+            high = mid;
+        else
+            low = mid + 1u;
+    }
+    return low;
+}
+
+/* A light sample as seen from a surface point. */
+typedef struct {
+    float3 direction;   /* unit, from the shadow-ray origin towards the light */
+    float length;       /* how far the shadow ray must stay unblocked */
+    float3 irradiance;  /* Le * cos_surface * cos_light / d^2 / pdf: multiply by the BRDF */
+} WpLightSample;
+
+/* Samples the lights from `origin` (already offset off its surface, whose
+ * normal on the origin's side is `normal`). Returns 0 when the point faces
+ * away, the light faces away (lights are one-sided), or nothing can arrive. */
+static inline int wp_sample_light(WpFrame frame, __global const WpTriangle* triangles,
+                                  __global const WpMaterial* materials,
+                                  __global const WpLight* lights, float3 origin, float3 normal,
+                                  float u_pick, float u, float v, WpLightSample* out) {
+    if (frame.light_count == 0u) /* general kernels may meet a scene without lights */
+        return 0;
+    WpTriangle light = triangles[lights[wp_pick_light(lights, frame.light_count, u_pick)].triangle];
+    float3 point = wp_sample_triangle(light.v0.xyz, light.v1.xyz, light.v2.xyz, u, v);
+    float3 light_normal = normalize(wp_triangle_normal(&light));
+    float3 to_light = point - origin;
+    float distance = length(to_light);
+    float3 wi = to_light / distance;
+    float cos_surface = dot(normal, wi);
+    float cos_light = -dot(light_normal, wi);
+    float length_to_test =
+        distance - WP_SHADOW_END_MARGIN * wp_offset_distance(point, wp_triangle_scale(&light));
+    if (!(cos_surface > 0.0f && cos_light > 0.0f && length_to_test > 0.0f))
+        return 0;
+    float geometry = cos_surface * cos_light / (distance * distance);
+    out->direction = wi;
+    out->length = length_to_test;
+    out->irradiance = materials[light.material].emission.xyz * (geometry * frame.light_area);
+    return 1;
+}
+
+#endif /* WP_LIGHTS_H */

@@ -1,0 +1,133 @@
+#include "render/profile_report.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+#include <nlohmann/json.hpp>
+
+#include "image/atomic_file.hpp"
+
+namespace wp {
+namespace {
+
+// Rays for the stages that trace them, items otherwise.
+bool traces_rays(Stage stage) {
+    return stage == Stage::Intersect || stage == Stage::Shadow;
+}
+
+std::string line(const char* format, auto... values) {
+    char text[256];
+    std::snprintf(text, sizeof text, format, values...);
+    return text;
+}
+
+// Queue lengths per iteration, shortened to the first and last few.
+std::string queue_summary(const std::vector<std::uint32_t>& lengths) {
+    std::string out;
+    const std::size_t shown = 8;
+    for (std::size_t i = 0; i < lengths.size(); ++i) {
+        if (lengths.size() > 2 * shown && i == shown) {
+            out += " ...";
+            i = lengths.size() - shown;
+        }
+        if (!out.empty())
+            out += ' ';
+        out += std::to_string(lengths[i]);
+    }
+    return out;
+}
+
+} // namespace
+
+std::string profile_table(const Profiler& profiler, const RenderStats& stats,
+                          const ProfileContext& context) {
+    std::vector<StageTotals> totals = profiler.totals();
+    const double busy = profiler.device_busy_seconds();
+    const double wall = stats.render_seconds;
+    std::string out;
+    out += line("profile: %s, %dx%d, %u spp on %s (%s, pool %u)\n", context.scene.c_str(),
+                context.width, context.height, context.spp, context.device.c_str(),
+                context.regeneration ? "regeneration" : "one wave at a time", context.pool_size);
+    out += line("%-12s %9s %14s %11s %7s %16s %13s\n", "stage", "launches", "items", "device ms",
+                "share", "rate", "items/launch");
+    for (int s = 0; s < kStageCount; ++s) {
+        const StageTotals& t = totals[s];
+        Stage stage = static_cast<Stage>(s);
+        double rate = t.device_seconds > 0 ? static_cast<double>(t.items) / t.device_seconds : 0.0;
+        std::string rate_text = stage == Stage::Transfer ? line("%.3g MB/s", rate / 1e6)
+                                : traces_rays(stage)     ? line("%.3f Mrays/s", rate / 1e6)
+                                                         : line("%.3f M/s", rate / 1e6);
+        double per_launch =
+            t.launches ? static_cast<double>(t.items) / static_cast<double>(t.launches) : 0.0;
+        out +=
+            line("%-12s %9llu %14llu %11.1f %6.1f%% %16s %13.0f\n", stage_name(stage),
+                 static_cast<unsigned long long>(t.launches),
+                 static_cast<unsigned long long>(t.items), t.device_seconds * 1e3,
+                 busy > 0 ? 100.0 * t.device_seconds / busy : 0.0, rate_text.c_str(), per_launch);
+    }
+    out += line("%-12s %9s %14s %11.1f %7s %16s\n", "host (film)", "", "", stats.host_seconds * 1e3,
+                "", "");
+    const double samples = static_cast<double>(stats.camera_rays);
+    out += line(
+        "rays: %llu camera + %llu bounce + %llu shadow = %llu\n",
+        static_cast<unsigned long long>(stats.camera_rays),
+        static_cast<unsigned long long>(stats.bounce_rays),
+        static_cast<unsigned long long>(stats.shadow_rays),
+        static_cast<unsigned long long>(stats.camera_rays + stats.bounce_rays + stats.shadow_rays));
+    out += line("samples/s: %.4g; wall %.3f s, device busy %.3f s (%.1f%%), launch and sync "
+                "overhead %.3f s\n",
+                wall > 0 ? samples / wall : 0.0, wall, busy, wall > 0 ? 100.0 * busy / wall : 0.0,
+                wall - busy - stats.host_seconds);
+    out += line("kernel build: %.3f s%s; options: %s\n", context.build_seconds,
+                context.build_cached ? " (from cache)" : "", context.build_options.c_str());
+    out += line("iterations: %llu; rays per iteration: ",
+                static_cast<unsigned long long>(stats.iterations)) +
+           queue_summary(stats.queue_lengths) + "\n";
+    return out;
+}
+
+nlohmann::json profile_json(const Profiler& profiler, const RenderStats& stats,
+                            const ProfileContext& context) {
+    nlohmann::json stages = nlohmann::json::array();
+    std::vector<StageTotals> totals = profiler.totals();
+    for (int s = 0; s < kStageCount; ++s)
+        stages.push_back({{"stage", stage_name(static_cast<Stage>(s))},
+                          {"launches", totals[s].launches},
+                          {"items", totals[s].items},
+                          {"device_seconds", totals[s].device_seconds}});
+    return {
+        {"device", context.device},
+        {"scene", context.scene},
+        {"width", context.width},
+        {"height", context.height},
+        {"spp", context.spp},
+        {"build_options", context.build_options},
+        {"build_seconds", context.build_seconds},
+        {"build_cached", context.build_cached},
+        {"regeneration", context.regeneration},
+        {"pool_size", context.pool_size},
+        {"stages", stages},
+        {"host_seconds", stats.host_seconds},
+        {"wall_seconds", stats.render_seconds},
+        {"device_busy_seconds", profiler.device_busy_seconds()},
+        {"rays",
+         {{"camera", stats.camera_rays},
+          {"bounce", stats.bounce_rays},
+          {"shadow", stats.shadow_rays}}},
+        {"samples_per_second", stats.render_seconds > 0
+                                   ? static_cast<double>(stats.camera_rays) / stats.render_seconds
+                                   : 0.0},
+        {"iterations", stats.iterations},
+        {"queue_lengths", stats.queue_lengths},
+        {"capped_paths", stats.capped_paths},
+        {"nonfinite_samples", stats.nonfinite_samples},
+    };
+}
+
+void write_profile_json(const std::filesystem::path& path, const Profiler& profiler,
+                        const RenderStats& stats, const ProfileContext& context) {
+    std::string text = profile_json(profiler, stats, context).dump(2) + "\n";
+    write_bytes_atomically(path, text.data(), text.size());
+}
+
+} // namespace wp

@@ -1,0 +1,61 @@
+// Where the time of a render goes, stage by stage.
+//
+// With a profiler attached, the integrator asks for an OpenCL event for every
+// launch and transfer (the queue must have CL_QUEUE_PROFILING_ENABLE) and
+// tells the profiler how many items each one processed. Without one, no
+// events are created and nothing waits on them: profiling off costs nothing.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "cl/cl.hpp"
+
+namespace wp {
+
+enum class Stage { Generate, Intersect, Shade, Shadow, Accumulate, Transfer };
+constexpr int kStageCount = 6;
+const char* stage_name(Stage stage);
+
+struct LaunchRecord {
+    Stage stage;
+    std::uint64_t items = 0;     // work items that did work (bytes for transfers)
+    std::uint64_t queued_ns = 0; // device timestamps (CL_PROFILING_COMMAND_*)
+    std::uint64_t start_ns = 0;
+    std::uint64_t end_ns = 0;
+};
+
+struct StageTotals {
+    std::uint64_t launches = 0;
+    std::uint64_t items = 0;
+    double device_seconds = 0.0;
+};
+
+class Profiler {
+  public:
+    // Starts a record; pass the returned event to the enqueue call.
+    cl::Event* begin(Stage stage, std::uint64_t items);
+    // Corrects the item count of a record once the device has reported it.
+    void set_items(std::size_t record, std::uint64_t items) { records_[record].items = items; }
+    std::size_t last_record() const { return records_.size() - 1; }
+    // Reads the timestamps of every record whose command has completed
+    // (call after a synchronisation point; cheap when nothing is pending).
+    void resolve_completed();
+
+    const std::vector<LaunchRecord>& records() const { return records_; }
+    std::vector<StageTotals> totals() const; // indexed by Stage
+    double device_busy_seconds() const;
+
+    // Chrome trace format (one complete event per launch), for Perfetto or
+    // chrome://tracing.
+    void write_trace(const std::filesystem::path& path, const std::string& device_name) const;
+
+  private:
+    std::vector<LaunchRecord> records_;
+    std::vector<cl::Event> pending_; // parallel to records_[resolved_ ...]
+    std::size_t resolved_ = 0;
+};
+
+} // namespace wp
