@@ -19,7 +19,7 @@ struct RenderCommand {
     int height = 0;
     std::uint32_t max_depth = 1024;
     bool general = false;
-    bool regeneration = true;
+    bool regeneration = false;
     std::uint32_t pool = 0; // path slots; 0: one per pixel
     bool profile = false;   // print the per-stage table
     std::string profile_json;

@@ -54,9 +54,9 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     r->add_flag("--general", render.general,
                 "Build the all-features kernels instead of the scene's specialised ones");
-    r->add_flag("!--no-regeneration", render.regeneration,
-                "Generate new camera rays only when the whole path pool has finished (one wave "
-                "at a time) instead of refilling finished slots at once");
+    r->add_flag("--regeneration,!--no-regeneration", render.regeneration,
+                "Refill the slots of finished paths with new samples at once, keeping queues full "
+                "(default: off, one wave of samples at a time; see docs/profiling.md)");
     r->add_option("--pool", render.pool,
                   "Path slots on the device (default: one per pixel); fewer use less memory");
     r->add_flag(

@@ -35,8 +35,11 @@ struct IntegratorOptions {
     // light is found only by paths that hit emitters.
     bool next_event_estimation = true;
     // Refill finished slots with new samples at once, instead of waiting for
-    // the whole pool to finish (a "wave") before generating again.
-    bool regeneration = true;
+    // the whole pool to finish (a "wave") before generating again. Off by
+    // default: on PoCL's CPU device it was measured 30-40 % slower (camera
+    // rays of scattered pixels lose the coherence SIMD lanes rely on; see
+    // docs/profiling.md). It keeps launches full, which is what a GPU needs.
+    bool regeneration = false;
     // Path slots; 0 means one per pixel. Fewer save device memory (about 180
     // bytes each) at some cost in parallelism.
     std::uint32_t pool_size = 0;
