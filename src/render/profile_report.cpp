@@ -83,6 +83,13 @@ std::string profile_table(const Profiler& profiler, const RenderStats& stats,
     out += line("iterations: %llu; rays per iteration: ",
                 static_cast<unsigned long long>(stats.iterations)) +
            queue_summary(stats.queue_lengths) + "\n";
+    if (!stats.rays_per_bounce.empty()) {
+        std::vector<std::uint32_t> per_wave;
+        const double waves = std::max(1.0, static_cast<double>(context.spp));
+        for (std::uint64_t rays : stats.rays_per_bounce)
+            per_wave.push_back(static_cast<std::uint32_t>(static_cast<double>(rays) / waves + 0.5));
+        out += "live paths per bounce (mean over waves): " + queue_summary(per_wave) + "\n";
+    }
     return out;
 }
 
@@ -119,6 +126,7 @@ nlohmann::json profile_json(const Profiler& profiler, const RenderStats& stats,
                                    : 0.0},
         {"iterations", stats.iterations},
         {"queue_lengths", stats.queue_lengths},
+        {"rays_per_bounce", stats.rays_per_bounce},
         {"capped_paths", stats.capped_paths},
         {"nonfinite_samples", stats.nonfinite_samples},
     };

@@ -275,6 +275,7 @@ void WavefrontIntegrator::render(std::uint32_t first_sample, std::uint32_t count
     std::uint64_t upper_bound = pool_size_; // the most rays the input queue can hold
     std::uint64_t survivors = 0;            // of those, rays that shade pushed (the rest are new)
     std::uint64_t finished_total = 0;
+    std::size_t bounce = 0; // iterations since the last wave started (without regeneration)
     const double pixels = static_cast<double>(pixel_count_);
     static const std::array<cl_uint, 2> zeros{0, 0};
     for (std::uint64_t iteration = 0;; ++iteration) {
@@ -297,6 +298,11 @@ void WavefrontIntegrator::render(std::uint32_t first_sample, std::uint32_t count
         const std::uint32_t finished = counts[WP_COUNTER_FINISHED];
         stats_.iterations += 1;
         stats_.queue_lengths.push_back(traced);
+        if (!options_.regeneration && traced > 0) {
+            if (stats_.rays_per_bounce.size() <= bounce)
+                stats_.rays_per_bounce.resize(bounce + 1, 0);
+            stats_.rays_per_bounce[bounce++] += traced;
+        }
         stats_.camera_rays += traced - survivors;
         stats_.bounce_rays += survivors;
         stats_.shadow_rays += shadows;
@@ -335,6 +341,8 @@ void WavefrontIntegrator::render(std::uint32_t first_sample, std::uint32_t count
             generate_.setArg(2, slots);
             launch(generate_, slots, Stage::Generate);
             upper_bound += slots;
+            if (refill_all)
+                bounce = 0;
             if (profiler_)
                 generate_record = profiler_->last_record();
         }

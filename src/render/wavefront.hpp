@@ -53,8 +53,12 @@ struct RenderStats {
     std::uint64_t capped_paths = 0;
     std::uint64_t nonfinite_samples = 0;
     std::vector<std::uint32_t> queue_lengths; // rays traced in each iteration
-    double render_seconds = 0.0;              // wall time of render() calls
-    double host_seconds = 0.0;                // host work inside it (folding the film)
+    // Without regeneration: rays traced at each bounce of a wave, summed over
+    // waves (how the queue drains). Empty with regeneration, where an
+    // iteration mixes bounces.
+    std::vector<std::uint64_t> rays_per_bounce;
+    double render_seconds = 0.0; // wall time of render() calls
+    double host_seconds = 0.0;   // host work inside it (folding the film)
 };
 
 class WavefrontIntegrator {

@@ -71,6 +71,15 @@ TEST_CASE("profile: stage item counts are exact and consistent") {
             CHECK(totals(r.profiler, Stage::Intersect).items == queued);
             CHECK(totals(r.profiler, Stage::Shade).items == queued);
             CHECK(queued == r.stats.camera_rays + r.stats.bounce_rays);
+            if (!regeneration && pool == 0) {
+                // One wave per sample: bounce 0 traces every camera ray.
+                std::uint64_t per_bounce = 0;
+                for (std::uint64_t rays : r.stats.rays_per_bounce)
+                    per_bounce += rays;
+                CHECK(per_bounce == queued);
+                REQUIRE_FALSE(r.stats.rays_per_bounce.empty());
+                CHECK(r.stats.rays_per_bounce[0] == samples);
+            }
             CHECK(totals(r.profiler, Stage::Shadow).items == r.stats.shadow_rays);
             CHECK(r.film.min_samples() == spp);
             CHECK(r.film.total_samples() == samples);
