@@ -152,4 +152,28 @@ inline D3 rounded(const D3& v) {
     return D3(to_float4(v));
 }
 
+// One (pixel, sample) pair a path slot computes.
+struct Task {
+    cl_uint pixel = 0, sample = 0;
+
+    bool operator==(const Task& o) const { return pixel == o.pixel && sample == o.sample; }
+    bool operator<(const Task& o) const {
+        return pixel != o.pixel ? pixel < o.pixel : sample < o.sample;
+    }
+};
+
+// The tasks of path slot `slot`, in the order generate must hand them out,
+// built from the description in wp_shared.h rather than from generate's
+// arithmetic: the slot owns pixels slot, slot + pool_size, ... below
+// width x height, and works through samples first_sample, first_sample + 1,
+// ... one at a time, each for all its pixels in turn (sample-major).
+inline std::vector<Task> slot_tasks(const WpFrame& frame, cl_uint slot) {
+    const std::uint64_t pixels = std::uint64_t(frame.width) * frame.height;
+    std::vector<Task> out;
+    for (cl_uint s = 0; s < frame.sample_count; ++s)
+        for (std::uint64_t pixel = slot; pixel < pixels; pixel += frame.pool_size)
+            out.push_back({cl_uint(pixel), frame.first_sample + s});
+    return out;
+}
+
 } // namespace wp::test

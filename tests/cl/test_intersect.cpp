@@ -116,16 +116,24 @@ struct IntersectResult {
 constexpr cl_float kSentinelT = -3.0f;
 constexpr cl_uint kSentinelPrimitive = 0x5a5a5a5au;
 
-// Intersects the rays listed in queue[0, ray_count); every slot's outputs
-// start out as sentinels.
+// Intersects the rays listed in queue[0, ray_count), with the queue's length
+// in counters[ray_counter] as the wavefront loop keeps it; every other counter
+// holds more than the queue, so reading the wrong one would trace the entries
+// past ray_count. The launch covers every entry of the queue buffer, as the
+// host launches for the most the queue can hold. Every slot's outputs start
+// out as sentinels.
 IntersectResult run_intersect(const DeviceGeometry& geometry, const std::vector<cl_float4>& origins,
                               const std::vector<cl_float4>& directions,
-                              const std::vector<cl_uint>& queue, cl_uint ray_count) {
+                              const std::vector<cl_uint>& queue, cl_uint ray_count,
+                              cl_uint ray_counter) {
     WpFrame frame{};
     frame.triangle_count = cl_uint(geometry.triangles.size());
     frame.sphere_count = cl_uint(geometry.spheres.size());
     const std::size_t slots = origins.size();
+    std::vector<cl_uint> counters(WP_COUNTER_COUNT, cl_uint(queue.size()));
+    counters[ray_counter] = ray_count;
     cl::Buffer queue_buffer = upload(queue);
+    cl::Buffer counter_buffer = upload(counters);
     cl::Buffer origin_buffer = upload(origins);
     cl::Buffer direction_buffer = upload(directions);
     cl::Buffer triangle_buffer = upload(geometry.triangles);
@@ -133,9 +141,11 @@ IntersectResult run_intersect(const DeviceGeometry& geometry, const std::vector<
     cl::Buffer t_buffer = upload(std::vector<cl_float>(slots, kSentinelT));
     cl::Buffer primitive_buffer = upload(std::vector<cl_uint>(slots, kSentinelPrimitive));
     cl::Kernel kernel = wavefront_kernel("intersect");
-    set_args(kernel, frame, ray_count, queue_buffer, origin_buffer, direction_buffer,
-             triangle_buffer, sphere_buffer, t_buffer, primitive_buffer);
-    launch(kernel, ray_count);
+    set_args(kernel, frame, queue_buffer, counter_buffer, ray_counter, origin_buffer,
+             direction_buffer, triangle_buffer, sphere_buffer, t_buffer, primitive_buffer);
+    launch(kernel, queue.size());
+    // The counters are read, never written.
+    CHECK(download<cl_uint>(counter_buffer, WP_COUNTER_COUNT) == counters);
     return {download<cl_float>(t_buffer, slots), download<cl_uint>(primitive_buffer, slots)};
 }
 
@@ -173,7 +183,7 @@ TEST_CASE("intersect: hand-made rays find the closest primitive and its distance
     };
     const std::size_t n = std::size(cases);
 
-    // One extra slot that is in the queue buffer but past ray_count.
+    // One extra slot that is in the queue buffer but past the queue's length.
     std::vector<cl_float4> origins, directions;
     for (const Case& c : cases) {
         origins.push_back(to_float4(c.origin));
@@ -185,7 +195,8 @@ TEST_CASE("intersect: hand-made rays find the closest primitive and its distance
     for (std::size_t i = n; i-- > 0;)
         queue.push_back(cl_uint(i)); // reversed: results go by slot, not by queue position
     queue.push_back(cl_uint(n));
-    IntersectResult r = run_intersect(g, origins, directions, queue, cl_uint(n));
+    IntersectResult r =
+        run_intersect(g, origins, directions, queue, cl_uint(n), WP_COUNTER_QUEUE_B);
 
     for (std::size_t i = 0; i < n; ++i) {
         const Case& c = cases[i];
@@ -207,9 +218,17 @@ TEST_CASE("intersect: hand-made rays find the closest primitive and its distance
     CHECK(std::fabs(r.t[6] - std::sqrt(1.5 * 1.5 - 0.3 * 0.3)) < 1e-5);
     CHECK(std::fabs(r.t[9] - 1.25) < 1e-6);
     CHECK(std::fabs(r.t[11] - 5.0) < 1e-5);
-    // The slot past ray_count is untouched.
+    // The slot past the queue's length is untouched.
     CHECK(r.t[n] == kSentinelT);
     CHECK(r.primitive[n] == kSentinelPrimitive);
+
+    // An empty queue traces nothing, however many work-items run.
+    IntersectResult none = run_intersect(g, origins, directions, queue, 0, WP_COUNTER_QUEUE_A);
+    for (std::size_t i = 0; i <= n; ++i) {
+        INFO("slot " << i);
+        CHECK(none.t[i] == kSentinelT);
+        CHECK(none.primitive[i] == kSentinelPrimitive);
+    }
 }
 
 TEST_CASE("intersect: random rays agree with the double-precision reference", "[cl][intersect]") {
@@ -238,7 +257,8 @@ TEST_CASE("intersect: random rays agree with the double-precision reference", "[
             to_float4(normalize(D3(normal(generator), normal(generator), normal(generator)))));
         queue.push_back(cl_uint(i));
     }
-    IntersectResult r = run_intersect(g, origins, directions, queue, cl_uint(n));
+    IntersectResult r =
+        run_intersect(g, origins, directions, queue, cl_uint(n), WP_COUNTER_QUEUE_A);
 
     std::size_t hits = 0, near_ties = 0, mismatches = 0, t_errors = 0;
     double worst_t = 0.0;
@@ -316,7 +336,8 @@ TEST_CASE("intersect: rays through the shared edges and vertex of a fan never sl
         origins.push_back(to_float4(origin));
         directions.push_back(to_float4(normalize(target - origin)));
     }
-    IntersectResult r = run_intersect(g, origins, directions, queue, cl_uint(queue.size()));
+    IntersectResult r =
+        run_intersect(g, origins, directions, queue, cl_uint(queue.size()), WP_COUNTER_QUEUE_B);
     std::size_t misses = 0, bad_t = 0;
     for (std::size_t i = 0; i < origins.size(); ++i) {
         if (r.primitive[i] == WP_NO_HIT) {

@@ -5,7 +5,9 @@
 #include "rng.h"
 
 #include <cstddef>
+#include <iterator>
 #include <random>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -48,15 +50,15 @@ namespace {
     X(WpFrame, width)                                                                              \
     X(WpFrame, height)                                                                             \
     X(WpFrame, seed)                                                                               \
-    X(WpFrame, sample_index)                                                                       \
+    X(WpFrame, first_sample)                                                                       \
+    X(WpFrame, sample_count)                                                                       \
+    X(WpFrame, pool_size)                                                                          \
     X(WpFrame, triangle_count)                                                                     \
     X(WpFrame, sphere_count)                                                                       \
     X(WpFrame, light_count)                                                                        \
     X(WpFrame, light_area)                                                                         \
     X(WpFrame, max_depth)                                                                          \
-    X(WpFrame, pad0)                                                                               \
-    X(WpFrame, pad1)                                                                               \
-    X(WpFrame, pad2)
+    X(WpFrame, pad0)
 
 struct Entry {
     std::string what;
@@ -118,15 +120,15 @@ __kernel void echo_frame(WpFrame frame, __global uint* out) {
     out[i++] = frame.width;
     out[i++] = frame.height;
     out[i++] = frame.seed;
-    out[i++] = frame.sample_index;
+    out[i++] = frame.first_sample;
+    out[i++] = frame.sample_count;
+    out[i++] = frame.pool_size;
     out[i++] = frame.triangle_count;
     out[i++] = frame.sphere_count;
     out[i++] = frame.light_count;
     out[i++] = as_uint(frame.light_area);
     out[i++] = frame.max_depth;
     out[i++] = frame.pad0;
-    out[i++] = frame.pad1;
-    out[i++] = frame.pad2;
 }
 )CL";
 
@@ -180,26 +182,26 @@ TEST_CASE("A WpFrame passed by value reaches the kernel field for field", "[cl][
     frame.width = 640;
     frame.height = 480;
     frame.seed = 0x9abcdef0u;
-    frame.sample_index = 12345;
+    frame.first_sample = 12345;
+    frame.sample_count = 0x80000001u;
+    frame.pool_size = 777;
     frame.triangle_count = 17;
     frame.sphere_count = 3;
     frame.light_count = 2;
     frame.light_area = 0.3125f;
     frame.max_depth = 1024;
     frame.pad0 = 0x11111111u;
-    frame.pad1 = 0x22222222u;
-    frame.pad2 = 0x33333333u;
 
     std::vector<cl_uint> expected;
     for (const cl_float4* v :
          {&frame.camera.eye, &frame.camera.forward, &frame.camera.right, &frame.camera.up})
         for (int k = 0; k < 4; ++k)
             expected.push_back(float_bits(v->s[k]));
-    for (cl_uint u : {frame.width, frame.height, frame.seed, frame.sample_index,
-                      frame.triangle_count, frame.sphere_count, frame.light_count})
+    for (cl_uint u : {frame.width, frame.height, frame.seed, frame.first_sample, frame.sample_count,
+                      frame.pool_size, frame.triangle_count, frame.sphere_count, frame.light_count})
         expected.push_back(u);
     expected.push_back(float_bits(frame.light_area));
-    for (cl_uint u : {frame.max_depth, frame.pad0, frame.pad1, frame.pad2})
+    for (cl_uint u : {frame.max_depth, frame.pad0})
         expected.push_back(u);
 
     cl::Kernel kernel(program(kFrameEchoSource, "frame_echo_test.cl"), "echo_frame");
@@ -280,4 +282,19 @@ TEST_CASE("rng.h gives bit-identical numbers on the device and the host", "[cl][
     // wp_random uses counter bounce * WP_DIMS_PER_BOUNCE + dimension.
     CHECK(wp_random(7u, 8u, 9u, 3u, WP_DIM_ROULETTE) ==
           wp_to_unit_float(wp_hash(7u, 8u, 9u, 3u * WP_DIMS_PER_BOUNCE + WP_DIM_ROULETTE)));
+}
+
+TEST_CASE("The counter indices of wp_shared.h are distinct entries of the counter buffer",
+          "[cl][layout]") {
+    // Kernels bump these with atomics in one buffer of WP_COUNTER_COUNT words:
+    // two roles sharing an entry would corrupt both queues' lengths.
+    const cl_uint counters[] = {WP_COUNTER_QUEUE_A,  WP_COUNTER_QUEUE_B, WP_COUNTER_SHADOW_RAYS,
+                                WP_COUNTER_FINISHED, WP_COUNTER_CAPPED,  WP_COUNTER_NONFINITE};
+    std::set<cl_uint> distinct;
+    for (cl_uint c : counters) {
+        INFO("counter " << c);
+        CHECK(c < WP_COUNTER_COUNT);
+        distinct.insert(c);
+    }
+    CHECK(distinct.size() == std::size(counters));
 }

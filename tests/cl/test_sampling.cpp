@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cmath>
+#include <iterator>
 #include <vector>
 
 using namespace wp::test;
@@ -215,8 +216,7 @@ TEST_CASE("wp_sample_triangle gives uniform points inside the triangle", "[cl][s
 // diffuse bounce direction had a systematically non-uniform joint histogram:
 // over 16 seeds x 2^20 pixels the chi-square on 16 x 16 bins was about 900
 // against 255 +- 23 for independent uniforms. rng.h now mixes twice.
-TEST_CASE("wp_random: the two BSDF dimensions of a bounce are independent",
-          "[cl][rng]") {
+TEST_CASE("wp_random: the two BSDF dimensions of a bounce are independent", "[cl][rng]") {
     const std::size_t bins = 16;
     std::vector<std::size_t> histogram(bins * bins);
     const cl_uint seeds = 16;
@@ -230,4 +230,69 @@ TEST_CASE("wp_random: the two BSDF dimensions of a bounce are independent",
     double statistic = chi_square(histogram, std::size_t(seeds) * kSamples);
     INFO("chi-square " << statistic << " over " << histogram.size() << " bins");
     CHECK(statistic < chi_square_limit(histogram.size() - 1));
+}
+
+// lights.h picks the light for next-event estimation by searching the light
+// table's cumulative area fractions: the first light whose cdf exceeds u, so
+// each light is picked for an interval of u as long as its share of the area.
+TEST_CASE("wp_pick_light returns the first light whose cdf exceeds u", "[cl][sampling]") {
+    const char* const source = R"CL(
+#include "lights.h"
+__kernel void pick_lights(__global const WpLight* lights, uint light_count, uint count,
+                          __global const float* u, __global uint* out) {
+    uint i = get_global_id(0);
+    if (i >= count) return;
+    out[i] = wp_pick_light(lights, light_count, u[i]);
+}
+)CL";
+    // Areas 1, 0 (a degenerate light, never to be picked), 2.5, 0.5 and 4.
+    const double areas[] = {1.0, 0.0, 2.5, 0.5, 4.0};
+    const double total = 8.0;
+    std::vector<WpLight> lights;
+    double running = 0.0;
+    for (std::size_t i = 0; i < std::size(areas); ++i) {
+        running += areas[i];
+        WpLight light{};
+        light.triangle = cl_uint(10 + i);
+        light.cdf = float(running / total);
+        lights.push_back(light);
+    }
+    REQUIRE(lights.back().cdf == 1.0f);
+
+    // Every boundary, the floats on either side of it, and random u in [0, 1).
+    std::vector<cl_float> us = {0.0f, std::nextafter(1.0f, 0.0f)};
+    for (const WpLight& light : lights)
+        for (float u :
+             {std::nextafter(light.cdf, 0.0f), light.cdf, std::nextafter(light.cdf, 2.0f)})
+            if (u < 1.0f)
+                us.push_back(u);
+    for (cl_uint i = 0; i < 4000; ++i)
+        us.push_back(wp_random(31u, i, 0u, 0u, WP_DIM_LIGHT_PICK));
+
+    cl::Kernel kernel(program(source, "pick_light_test.cl"), "pick_lights");
+    for (cl_uint light_count : {5u, 1u}) {
+        INFO(light_count << " lights");
+        cl::Buffer light_buffer = upload(lights), u_buffer = upload(us);
+        cl::Buffer out = upload(std::vector<cl_uint>(us.size(), 0xffffffffu));
+        set_args(kernel, light_buffer, light_count, cl_uint(us.size()), u_buffer, out);
+        launch(kernel, us.size());
+        std::vector<cl_uint> got = download<cl_uint>(out, us.size());
+        std::vector<std::size_t> picked(std::size(areas));
+        for (std::size_t i = 0; i < us.size(); ++i) {
+            cl_uint expected = light_count - 1;
+            for (cl_uint l = 0; l + 1 < light_count; ++l) {
+                if (double(lights[l].cdf) > double(us[i])) {
+                    expected = l;
+                    break;
+                }
+            }
+            INFO("u = " << us[i]);
+            CHECK(got[i] == expected);
+            if (got[i] < picked.size())
+                ++picked[got[i]];
+        }
+        CHECK(picked[1] == 0); // the zero-area light
+        if (light_count == 1)
+            CHECK(picked[0] == us.size());
+    }
 }

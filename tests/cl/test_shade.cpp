@@ -69,13 +69,19 @@ struct PathIn {
     D3 origin, hit_point; // the ray runs from origin to hit_point
     cl_uint primitive = WP_NO_HIT;
     D3 throughput{1, 1, 1}, radiance{0, 0, 0};
-    cl_uint depth = 0, flags = WP_PATH_SPECULAR, pixel = 0;
+    cl_uint depth = 0, flags = WP_PATH_SPECULAR, pixel = 0, sample = 0;
 };
 
-constexpr cl_uint kSeed = 1234, kSampleIndex = 3, kMaxDepth = 5;
+constexpr cl_uint kSeed = 1234, kMaxDepth = 5;
 
-double random(cl_uint pixel, cl_uint depth, cl_uint dimension) {
-    return wp_random(kSeed, pixel, kSampleIndex, depth, dimension);
+// Every slot works on its own sample (path_sample), as slots do once the
+// pool regenerates paths; the kernel must key its random numbers with it.
+constexpr cl_uint sample_of(cl_uint slot) {
+    return 3u + 5u * slot;
+}
+
+double random(cl_uint pixel, cl_uint sample, cl_uint depth, cl_uint dimension) {
+    return wp_random(kSeed, pixel, sample, depth, dimension);
 }
 
 // The first pixel from `start` on whose random numbers satisfy `ok`.
@@ -99,7 +105,6 @@ TEST_CASE("shade: mirrors, emitters, next-event estimation and roulette on hand-
 
     WpFrame frame{};
     frame.seed = kSeed;
-    frame.sample_index = kSampleIndex;
     frame.triangle_count = cl_uint(flat.triangles.size());
     frame.sphere_count = cl_uint(flat.spheres.size());
     frame.light_count = cl_uint(flat.lights.size());
@@ -122,71 +127,94 @@ TEST_CASE("shade: mirrors, emitters, next-event estimation and roulette on hand-
         kDiffuseBackFace,
         kRouletteKill,
         kDepthCap,
+        kDepthCapKilled,
         kMiss,
         kNotQueued,
         kPastRayCount,
         kSlotCount
     };
     std::vector<PathIn> in(kSlotCount);
-    auto survives = [](double survival, cl_uint depth) {
-        return [=](cl_uint p) { return random(p, depth, WP_DIM_ROULETTE) < survival; };
+    for (cl_uint slot = 0; slot < kSlotCount; ++slot)
+        in[slot].sample = sample_of(slot);
+    // Predicates on a pixel's random numbers for `slot` (whose sample they use).
+    auto survives = [&](cl_uint slot, double survival, cl_uint depth) {
+        const cl_uint sample = sample_of(slot);
+        return [=](cl_uint p) { return random(p, sample, depth, WP_DIM_ROULETTE) < survival; };
     };
-    auto picks = [&](bool light_b, double survival, cl_uint depth) {
+    auto picks = [&](cl_uint slot, bool light_b, double survival, cl_uint depth) {
+        const cl_uint sample = sample_of(slot);
         return [=](cl_uint p) {
-            double u = random(p, depth, WP_DIM_LIGHT_PICK);
+            double u = random(p, sample, depth, WP_DIM_LIGHT_PICK);
             return std::fabs(u - cdf_a) > 1e-3 && (u >= cdf_a) == light_b &&
-                   random(p, depth, WP_DIM_ROULETTE) < survival;
+                   random(p, sample, depth, WP_DIM_ROULETTE) < survival;
         };
     };
+    // Whole-slot copies keep the slot's own sample.
+    auto copy_path = [&](cl_uint to, cl_uint from) {
+        in[to] = in[from];
+        in[to].sample = sample_of(to);
+    };
 
-    in[kMirrorTriangle] = {{0, 0.5, 0}, mirror_wall_point, kMirrorWall};
-    in[kMirrorTriangle].pixel = find_pixel(100, survives(0.9, 0));
+    auto place = [&](cl_uint slot, PathIn path) {
+        path.sample = sample_of(slot);
+        in[slot] = path;
+    };
+    place(kMirrorTriangle, {{0, 0.5, 0}, mirror_wall_point, kMirrorWall});
+    in[kMirrorTriangle].pixel = find_pixel(100, survives(kMirrorTriangle, 0.9, 0));
 
-    in[kMirrorSphere] = {{0, 2, 0}, ball_point({0.3, 0.2, 1}), kMirrorBall};
+    place(kMirrorSphere, {{0, 2, 0}, ball_point({0.3, 0.2, 1}), kMirrorBall});
     in[kMirrorSphere].throughput = {0.5, 0.25, 1.0}; // x reflectance: max 0.7
     in[kMirrorSphere].depth = 2;
     in[kMirrorSphere].flags = 0;
-    in[kMirrorSphere].pixel = find_pixel(200, survives(0.7, 2));
+    in[kMirrorSphere].pixel = find_pixel(200, survives(kMirrorSphere, 0.7, 2));
 
-    in[kEmitterSpecular] = {{-0.5, 1, -0.5}, {-0.5, 4, -0.5}, kLightA};
+    place(kEmitterSpecular, {{-0.5, 1, -0.5}, {-0.5, 4, -0.5}, kLightA});
     in[kEmitterSpecular].throughput = {0.5, 2, 1};
     in[kEmitterSpecular].radiance = {0.1, 0.2, 0.3};
-    in[kEmitterAfterDiffuse] = in[kEmitterSpecular];
+    copy_path(kEmitterAfterDiffuse, kEmitterSpecular);
     in[kEmitterAfterDiffuse].flags = 0;
-    in[kEmitterBack] = {{-0.5, 5, -0.5}, {-0.5, 4, -0.5}, kLightA};
+    place(kEmitterBack, {{-0.5, 5, -0.5}, {-0.5, 4, -0.5}, kLightA});
     in[kEmitterBack].radiance = {0.1, 0.2, 0.3};
 
-    in[kDiffuseToLightA] = {{-1, 2.5, 0.5}, {-2, 0, -1}, kFloor};
-    in[kDiffuseToLightA].throughput = {1, 0.5, 0.25};
+    place(kDiffuseToLightA, {{-1, 2.5, 0.5}, {-2, 0, -1}, kFloor});
+    in[kDiffuseToLightA].throughput = {1, 0.5, 0.25}; // x reflectance: max 0.8
     in[kDiffuseToLightA].depth = 1;
-    in[kDiffuseToLightA].pixel = find_pixel(300, picks(false, 0.8, 1));
-    in[kDiffuseToLightB] = {{2, 3, 1}, {-1.5, 0, -2.5}, kFloor};
-    in[kDiffuseToLightB].throughput = {0.7, 0.9, 0.8};
+    in[kDiffuseToLightA].pixel = find_pixel(300, picks(kDiffuseToLightA, false, 0.8, 1));
+    place(kDiffuseToLightB, {{2, 3, 1}, {-1.5, 0, -2.5}, kFloor});
+    in[kDiffuseToLightB].throughput = {0.7, 0.9, 0.8}; // x reflectance: max 0.56
     in[kDiffuseToLightB].radiance = {1, 1, 1};
     in[kDiffuseToLightB].flags = 0;
-    in[kDiffuseToLightB].pixel = find_pixel(400, picks(true, 0.72, 0));
+    in[kDiffuseToLightB].pixel = find_pixel(400, picks(kDiffuseToLightB, true, 0.56, 0));
 
-    in[kDiffuseBackFace] = {{-1, -0.5, -1}, {-1.5, 0, -1.5}, kFloor};
-    in[kDiffuseBackFace].pixel = find_pixel(500, survives(0.8, 0));
+    place(kDiffuseBackFace, {{-1, -0.5, -1}, {-1.5, 0, -1.5}, kFloor});
+    in[kDiffuseBackFace].pixel = find_pixel(500, survives(kDiffuseBackFace, 0.8, 0));
 
-    in[kRouletteKill] = {{-1, -0.5, -1}, {-1, -1, -1}, kDarkFloor};
+    place(kRouletteKill, {{-1, -0.5, -1}, {-1, -1, -1}, kDarkFloor});
     in[kRouletteKill].radiance = {0.5, 0.5, 0.5};
-    in[kRouletteKill].pixel =
-        find_pixel(600, [](cl_uint p) { return random(p, 0, WP_DIM_ROULETTE) >= 0.1; });
+    in[kRouletteKill].pixel = find_pixel(600, [](cl_uint p) {
+        return random(p, sample_of(kRouletteKill), 0, WP_DIM_ROULETTE) >= 0.1;
+    });
 
-    in[kDepthCap] = in[kMirrorSphere];
+    copy_path(kDepthCap, kMirrorSphere);
     in[kDepthCap].depth = kMaxDepth;
-    in[kDepthCap].pixel = find_pixel(700, survives(0.7, kMaxDepth));
+    in[kDepthCap].pixel = find_pixel(700, survives(kDepthCap, 0.7, kMaxDepth));
+    // At the cap too, but roulette ends it first: finished, and not counted as cut.
+    copy_path(kDepthCapKilled, kDepthCap);
+    in[kDepthCapKilled].pixel = find_pixel(800, [](cl_uint p) {
+        return random(p, sample_of(kDepthCapKilled), kMaxDepth, WP_DIM_ROULETTE) >= 0.7;
+    });
 
-    in[kMiss] = {{0, 0, 0}, {0, 10, 0}, WP_NO_HIT};
-    in[kNotQueued] = in[kDiffuseToLightA];
-    in[kPastRayCount] = in[kDiffuseToLightA];
+    // A miss keeps the radiance it brought (from earlier bounces and shadow rays).
+    place(kMiss, {{0, 0, 0}, {0, 10, 0}, WP_NO_HIT});
+    in[kMiss].radiance = {0.3, 0.6, 0.9};
+    copy_path(kNotQueued, kDiffuseToLightA);
+    copy_path(kPastRayCount, kDiffuseToLightA);
 
     // Upload: each slot's ray ends at its hit point.
     const std::size_t n = kSlotCount;
     std::vector<cl_float4> origin(n), direction(n), throughput(n), radiance(n);
     std::vector<cl_float> hit_t(n);
-    std::vector<cl_uint> primitive(n), depth(n), flags(n), pixel(n);
+    std::vector<cl_uint> primitive(n), depth(n), flags(n), pixel(n), sample(n);
     for (std::size_t i = 0; i < n; ++i) {
         D3 segment = in[i].hit_point - in[i].origin;
         origin[i] = to_float4(in[i].origin);
@@ -194,10 +222,12 @@ TEST_CASE("shade: mirrors, emitters, next-event estimation and roulette on hand-
         hit_t[i] = float(length(segment));
         primitive[i] = in[i].primitive;
         throughput[i] = to_float4(in[i].throughput);
-        radiance[i] = to_float4(in[i].radiance);
+        // w is not radiance: a marker that shows whether shade wrote the slot's radiance.
+        radiance[i] = to_float4(in[i].radiance, 0.5);
         depth[i] = in[i].depth;
         flags[i] = in[i].flags;
         pixel[i] = in[i].pixel;
+        sample[i] = in[i].sample;
     }
     std::vector<cl_uint> queue;
     for (cl_uint slot = 0; slot < n; ++slot)
@@ -214,22 +244,34 @@ TEST_CASE("shade: mirrors, emitters, next-event estimation and roulette on hand-
     cl::Buffer t_buffer = upload(hit_t), primitive_buffer = upload(primitive);
     cl::Buffer throughput_buffer = upload(throughput), radiance_buffer = upload(radiance);
     cl::Buffer depth_buffer = upload(depth), flags_buffer = upload(flags);
-    cl::Buffer pixel_buffer = upload(pixel);
+    cl::Buffer pixel_buffer = upload(pixel), sample_buffer = upload(sample);
     cl::Buffer triangles = upload(flat.triangles), spheres = upload(flat.spheres);
     cl::Buffer materials = upload(flat.materials), lights = upload(flat.lights);
     cl::Buffer next_queue = upload(std::vector<cl_uint>(n, sentinel));
+    cl::Buffer finished_queue = upload(std::vector<cl_uint>(n, sentinel));
     cl::Buffer shadow_queue = upload(std::vector<cl_uint>(n, sentinel));
     cl::Buffer shadow_origin = upload(std::vector<cl_float4>(n, sentinel4));
     cl::Buffer shadow_direction = upload(std::vector<cl_float4>(n, sentinel4));
     cl::Buffer shadow_contribution = upload(std::vector<cl_float4>(n, sentinel4));
-    cl::Buffer counters = upload(std::vector<cl_uint>{0u, 0u, 7u, 0u});
+    // The input queue is A (its length in its counter), survivors go to B;
+    // 7 paths were cut before, and the spare entries must stay as they are.
+    static_assert(WP_COUNTER_COUNT == 8, "entries 6 and 7 are spare");
+    std::vector<cl_uint> initial_counters(WP_COUNTER_COUNT, 0u);
+    initial_counters[WP_COUNTER_QUEUE_A] = ray_count;
+    initial_counters[WP_COUNTER_CAPPED] = 7u;
+    initial_counters[6] = 66u;
+    initial_counters[7] = 77u;
+    cl::Buffer counters = upload(initial_counters);
 
     cl::Kernel kernel = wavefront_kernel("shade");
-    set_args(kernel, frame, ray_count, queue_buffer, origin_buffer, direction_buffer, t_buffer,
+    set_args(kernel, frame, queue_buffer, counters, WP_COUNTER_QUEUE_A, next_queue,
+             WP_COUNTER_QUEUE_B, finished_queue, origin_buffer, direction_buffer, t_buffer,
              primitive_buffer, throughput_buffer, radiance_buffer, depth_buffer, flags_buffer,
-             pixel_buffer, triangles, spheres, materials, lights, next_queue, shadow_queue,
-             shadow_origin, shadow_direction, shadow_contribution, counters);
-    launch(kernel, ray_count);
+             pixel_buffer, sample_buffer, triangles, spheres, materials, lights, shadow_queue,
+             shadow_origin, shadow_direction, shadow_contribution);
+    // Launched for every entry of the queue buffer, as the host launches for
+    // the most the queue can hold: the one past the queue's length must idle.
+    launch(kernel, queue.size());
 
     auto out_origin = download<cl_float4>(origin_buffer, n);
     auto out_direction = download<cl_float4>(direction_buffer, n);
@@ -238,24 +280,43 @@ TEST_CASE("shade: mirrors, emitters, next-event estimation and roulette on hand-
     auto out_depth = download<cl_uint>(depth_buffer, n);
     auto out_flags = download<cl_uint>(flags_buffer, n);
     auto out_next = download<cl_uint>(next_queue, n);
+    auto out_finished = download<cl_uint>(finished_queue, n);
     auto out_shadow_queue = download<cl_uint>(shadow_queue, n);
     auto out_shadow_origin = download<cl_float4>(shadow_origin, n);
     auto out_shadow_direction = download<cl_float4>(shadow_direction, n);
     auto out_contribution = download<cl_float4>(shadow_contribution, n);
     auto out_counters = download<cl_uint>(counters, WP_COUNTER_COUNT);
 
-    // Which paths continue and which queue a shadow ray.
+    // Which paths continue, which end, and which queue a shadow ray.
     const std::set<cl_uint> continuing = {kMirrorTriangle, kMirrorSphere, kDiffuseToLightA,
                                           kDiffuseToLightB, kDiffuseBackFace};
+    const std::set<cl_uint> finished = {
+        kEmitterSpecular, kEmitterAfterDiffuse, kEmitterBack, kRouletteKill,
+        kDepthCap,        kDepthCapKilled,      kMiss};
     const std::set<cl_uint> shadowed = {kDiffuseToLightA, kDiffuseToLightB, kRouletteKill};
-    REQUIRE(out_counters[WP_COUNTER_NEXT_RAYS] == continuing.size());
+    REQUIRE(continuing.size() + finished.size() == ray_count); // every queued path, once
+    REQUIRE(out_counters[WP_COUNTER_QUEUE_B] == continuing.size());
+    REQUIRE(out_counters[WP_COUNTER_FINISHED] == finished.size());
     REQUIRE(out_counters[WP_COUNTER_SHADOW_RAYS] == shadowed.size());
-    CHECK(out_counters[WP_COUNTER_CAPPED] == 8u); // 7 before, plus the capped path
+    CHECK(out_counters[WP_COUNTER_QUEUE_A] == ray_count); // the input queue is not consumed
+    CHECK(out_counters[WP_COUNTER_CAPPED] == 8u);         // 7 before, plus the capped path
     CHECK(out_counters[WP_COUNTER_NONFINITE] == 0u);
-    CHECK(std::set<cl_uint>(out_next.begin(), out_next.begin() + continuing.size()) == continuing);
+    CHECK(out_counters[6] == 66u);
+    CHECK(out_counters[7] == 77u);
+    // Each queue holds its slots exactly once (sorted lists, so a duplicate shows).
+    auto entries = [](const std::vector<cl_uint>& list, std::size_t count) {
+        std::vector<cl_uint> out(list.begin(), list.begin() + std::ptrdiff_t(count));
+        std::sort(out.begin(), out.end());
+        return out;
+    };
+    auto listed = [](const std::set<cl_uint>& slots) {
+        return std::vector<cl_uint>(slots.begin(), slots.end());
+    };
+    CHECK(entries(out_next, continuing.size()) == listed(continuing));
     CHECK(out_next[continuing.size()] == sentinel);
-    CHECK(std::set<cl_uint>(out_shadow_queue.begin(), out_shadow_queue.begin() + shadowed.size()) ==
-          shadowed);
+    CHECK(entries(out_finished, finished.size()) == listed(finished));
+    CHECK(out_finished[finished.size()] == sentinel);
+    CHECK(entries(out_shadow_queue, shadowed.size()) == listed(shadowed));
     CHECK(out_shadow_queue[shadowed.size()] == sentinel);
 
     // The geometry at each hit, in double: normal, and the side the ray came from.
@@ -271,7 +332,8 @@ TEST_CASE("shade: mirrors, emitters, next-event estimation and roulette on hand-
     };
 
     for (cl_uint slot = 0; slot < n; ++slot) {
-        INFO("slot " << slot << " (pixel " << in[slot].pixel << ")");
+        INFO("slot " << slot << " (pixel " << in[slot].pixel << ", sample " << in[slot].sample
+                     << ")");
         const PathIn& p = in[slot];
         const D3 d = D3(direction[slot]);
         const bool queued = slot != kNotQueued && slot != kPastRayCount;
@@ -284,8 +346,14 @@ TEST_CASE("shade: mirrors, emitters, next-event estimation and roulette on hand-
         for (int k = 0; k < 3; ++k)
             CHECK(std::fabs(out_radiance[slot].s[k] - expected_radiance[k]) <=
                   1e-6 * std::fabs(expected_radiance[k]));
-        if (hit)
+        if (hit) {
+            // Written for every hit, whether the path goes on or ends here.
             CHECK(out_radiance[slot].s[3] == 0.0f);
+        } else {
+            // Misses and slots not processed keep their radiance bit for bit.
+            for (int k = 0; k < 4; ++k)
+                CHECK(float_bits(out_radiance[slot].s[k]) == float_bits(radiance[slot].s[k]));
+        }
 
         if (continuing.count(slot)) {
             D3 n_surface = surface_normal(slot);
@@ -293,6 +361,8 @@ TEST_CASE("shade: mirrors, emitters, next-event estimation and roulette on hand-
             wp::Material m = material_of(slot);
             D3 beta = p.throughput * rgb(m.reflectance);
             double survival = std::min(1.0, std::max({beta.x, beta.y, beta.z}));
+            // The pixel was chosen so that roulette lets the path go on.
+            CHECK(random(p.pixel, p.sample, p.depth, WP_DIM_ROULETTE) < survival);
             D3 expected_throughput = beta / survival;
             for (int k = 0; k < 3; ++k)
                 CHECK(std::fabs(out_throughput[slot].s[k] - expected_throughput[k]) <=
@@ -315,7 +385,7 @@ TEST_CASE("shade: mirrors, emitters, next-event estimation and roulette on hand-
                 CHECK(out_flags[slot] == WP_PATH_SPECULAR);
             } else {
                 // Cosine-weighted: the cosine to the normal is sqrt(1 - u1).
-                double u1 = random(p.pixel, p.depth, WP_DIM_BSDF_U);
+                double u1 = random(p.pixel, p.sample, p.depth, WP_DIM_BSDF_U);
                 CHECK(std::fabs(dot(next, facing) - std::sqrt(1.0 - u1)) < 1e-5);
                 CHECK(out_flags[slot] == 0u);
             }
@@ -332,9 +402,9 @@ TEST_CASE("shade: mirrors, emitters, next-event estimation and roulette on hand-
 
         if (shadowed.count(slot)) {
             // Next-event estimation with the same random numbers, in double.
-            double u_pick = random(p.pixel, p.depth, WP_DIM_LIGHT_PICK);
-            double u = random(p.pixel, p.depth, WP_DIM_LIGHT_U);
-            double v = random(p.pixel, p.depth, WP_DIM_LIGHT_V);
+            double u_pick = random(p.pixel, p.sample, p.depth, WP_DIM_LIGHT_PICK);
+            double u = random(p.pixel, p.sample, p.depth, WP_DIM_LIGHT_U);
+            double v = random(p.pixel, p.sample, p.depth, WP_DIM_LIGHT_V);
             const WpTriangle& light = flat.triangles[u_pick < cdf_a ? kLightA : kLightB];
             double su = std::sqrt(u), b0 = 1.0 - su, b1 = v * su;
             D3 light_point =
@@ -371,22 +441,24 @@ TEST_CASE("shade: mirrors, emitters, next-event estimation and roulette on hand-
         }
     }
     // Both lights were sampled, by the light table's cdf.
-    CHECK(random(in[kDiffuseToLightA].pixel, 1, WP_DIM_LIGHT_PICK) < cdf_a);
-    CHECK(random(in[kDiffuseToLightB].pixel, 0, WP_DIM_LIGHT_PICK) > cdf_a);
+    CHECK(random(in[kDiffuseToLightA].pixel, in[kDiffuseToLightA].sample, 1, WP_DIM_LIGHT_PICK) <
+          cdf_a);
+    CHECK(random(in[kDiffuseToLightB].pixel, in[kDiffuseToLightB].sample, 0, WP_DIM_LIGHT_PICK) >
+          cdf_a);
 }
 
 // Kernels compiled with WP_HAS_LIGHTS=1 (the general kernels, `render
 // --general`) may meet a scene without emissive triangles: light sampling must
 // then be skipped, not read lights[count - 1] with count = 0 (which wrapped to
 // 0xffffffff and crashed PoCL before the guard moved in front of it).
-TEST_CASE("shade: a diffuse hit in a scene without lights queues no shadow ray",
-          "[cl][shade]") {
+TEST_CASE("shade: a diffuse hit in a scene without lights queues no shadow ray", "[cl][shade]") {
     std::vector<WpTriangle> triangles(1);
     triangles[0].v0 = float4(-5, 0, -5);
     triangles[0].v1 = float4(-5, 0, 5);
     triangles[0].v2 = float4(5, 0, -5);
     std::vector<WpMaterial> materials(1);
-    materials[0].reflectance = float4(0.5f, 0.5f, 0.5f);
+    // A red channel of 1 makes roulette's survival probability 1: the path goes on.
+    materials[0].reflectance = float4(1.0f, 0.5f, 0.5f);
     materials[0].kind = WP_MATERIAL_DIFFUSE;
     WpFrame frame{};
     frame.triangle_count = 1;
@@ -398,20 +470,37 @@ TEST_CASE("shade: a diffuse hit in a scene without lights queues no shadow ray",
     cl::Buffer queue = word(0), origin = one(float4(-1, 1, -1)), direction = one(float4(0, -1, 0));
     cl::Buffer hit_t = upload(std::vector<cl_float>{1.0f}), primitive = word(0);
     cl::Buffer throughput = one(float4(1, 1, 1)), radiance = one(float4(0, 0, 0));
-    cl::Buffer depth = word(0), flags = word(WP_PATH_SPECULAR), pixel = word(0);
+    cl::Buffer depth = word(0), flags = word(WP_PATH_SPECULAR), pixel = word(0), sample = word(0);
     cl::Buffer triangle_buffer = upload(triangles), spheres = upload(std::vector<WpSphere>(1));
     cl::Buffer material_buffer = upload(materials), lights = upload(std::vector<WpLight>(1));
-    cl::Buffer next_queue = word(0), shadow_queue = word(0);
+    // Queues with room to spare, so an append at the wrong counter shows.
+    const cl_uint sentinel = 0xeeeeeeeeu;
+    auto spare = [&] { return upload(std::vector<cl_uint>(WP_COUNTER_COUNT, sentinel)); };
+    cl::Buffer next_queue = spare(), finished_queue = spare(), shadow_queue = spare();
     cl::Buffer shadow_origin = one(float4(0, 0, 0)), shadow_direction = one(float4(0, 0, 0));
     cl::Buffer shadow_contribution = one(float4(0, 0, 0));
-    cl::Buffer counters = upload(std::vector<cl_uint>(WP_COUNTER_COUNT, 0u));
+    // Queue roles swapped against the test above: input B, survivors to A.
+    std::vector<cl_uint> initial(WP_COUNTER_COUNT, 0u);
+    initial[WP_COUNTER_QUEUE_B] = 1u;
+    cl::Buffer counters = upload(initial);
     cl::Kernel kernel = wavefront_kernel("shade");
-    set_args(kernel, frame, cl_uint(1), queue, origin, direction, hit_t, primitive, throughput,
-             radiance, depth, flags, pixel, triangle_buffer, spheres, material_buffer, lights,
-             next_queue, shadow_queue, shadow_origin, shadow_direction, shadow_contribution,
-             counters);
+    set_args(kernel, frame, queue, counters, WP_COUNTER_QUEUE_B, next_queue, WP_COUNTER_QUEUE_A,
+             finished_queue, origin, direction, hit_t, primitive, throughput, radiance, depth,
+             flags, pixel, sample, triangle_buffer, spheres, material_buffer, lights, shadow_queue,
+             shadow_origin, shadow_direction, shadow_contribution);
     launch(kernel, 1);
     std::vector<cl_uint> out = download<cl_uint>(counters, WP_COUNTER_COUNT);
     CHECK(out[WP_COUNTER_SHADOW_RAYS] == 0u);
-    CHECK(out[WP_COUNTER_NEXT_RAYS] <= 1u);
+    CHECK(download<cl_uint>(shadow_queue, WP_COUNTER_COUNT) ==
+          std::vector<cl_uint>(WP_COUNTER_COUNT, sentinel));
+    // The path goes on, in queue A (the counter it was told), and does not end.
+    CHECK(out[WP_COUNTER_QUEUE_A] == 1u);
+    CHECK(out[WP_COUNTER_QUEUE_B] == 1u);
+    CHECK(out[WP_COUNTER_FINISHED] == 0u);
+    std::vector<cl_uint> expected_next(WP_COUNTER_COUNT, sentinel);
+    expected_next[0] = 0u;
+    CHECK(download<cl_uint>(next_queue, WP_COUNTER_COUNT) == expected_next);
+    CHECK(download<cl_uint>(finished_queue, WP_COUNTER_COUNT) ==
+          std::vector<cl_uint>(WP_COUNTER_COUNT, sentinel));
+    CHECK(download<cl_uint>(depth, 1)[0] == 1u);
 }
