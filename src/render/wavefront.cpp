@@ -243,8 +243,29 @@ void WavefrontIntegrator::flush_film(Film& film) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+std::uint32_t WavefrontIntegrator::max_samples_per_call(std::uint64_t pixels, std::uint64_t pool) {
+    const std::uint64_t owned = (pixels + pool - 1) / pool; // pixels of the busiest slot
+    return static_cast<std::uint32_t>(std::max<std::uint64_t>(1, 0xffffffffu / owned));
+}
+
 void WavefrontIntegrator::render(std::uint32_t first_sample, std::uint32_t count, Film& film,
                                  const std::function<void(double)>& on_progress) {
+    // A slot's task counter is 32 bits: (pixels it owns) x (samples in one
+    // call) must stay below 2^32, so a huge image on a small pool renders in
+    // several calls (the counter-based random numbers make that invisible).
+    const std::uint32_t most = max_samples_per_call(pixel_count_, pool_size_);
+    for (std::uint32_t done = 0; done < count;) {
+        std::uint32_t part = std::min(count - done, most);
+        render_range(first_sample + done, part, film, [&](double spp) {
+            if (on_progress)
+                on_progress(done + spp);
+        });
+        done += part;
+    }
+}
+
+void WavefrontIntegrator::render_range(std::uint32_t first_sample, std::uint32_t count,
+                                       Film& film, const std::function<void(double)>& on_progress) {
     if (count == 0)
         return;
     auto start = std::chrono::steady_clock::now();

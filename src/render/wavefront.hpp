@@ -70,6 +70,10 @@ class WavefrontIntegrator {
     void render(std::uint32_t first_sample, std::uint32_t count, Film& film,
                 const std::function<void(double)>& on_progress = {});
 
+    // The most samples per pixel one pass over the pool may hold: a slot's
+    // 32-bit task counter must not wrap (render() splits larger requests).
+    static std::uint32_t max_samples_per_call(std::uint64_t pixels, std::uint64_t pool);
+
     // Records every launch in `profiler` (nullptr: off). The device's queue
     // must have been created with profiling enabled.
     void set_profiler(Profiler* profiler) { profiler_ = profiler; }
@@ -92,6 +96,8 @@ class WavefrontIntegrator {
                        const std::vector<cl_float4>& directions, int repetitions);
 
   private:
+    void render_range(std::uint32_t first_sample, std::uint32_t count, Film& film,
+                      const std::function<void(double)>& on_progress);
     void launch(cl::Kernel& kernel, std::uint32_t items, Stage stage);
     void read(const cl::Buffer& buffer, std::size_t bytes, void* out, bool blocking);
     void flush_film(Film& film);

@@ -158,3 +158,17 @@ TEST_CASE("profile: the JSON and the trace parse, one trace event per launch") {
     CHECK(complete_events == r.profiler.records().size());
     std::filesystem::remove_all(dir);
 }
+
+TEST_CASE("render: requests whose task counts would wrap 32 bits are split") {
+    // 4096 x 4096 on 16 slots: each slot owns 2^20 pixels, so 4096 samples
+    // would be 2^32 tasks; one call may hold at most 4095.
+    CHECK(WavefrontIntegrator::max_samples_per_call(4096ull * 4096, 16) == 4095u);
+    CHECK(WavefrontIntegrator::max_samples_per_call(800ull * 800, 800ull * 800) == 0xffffffffu);
+    // Splitting is invisible: a small pool renders the same image.
+    Scene scene = small_hexroom(9, 7);
+    ProfiledRender full = profiled_render(scene, 3, false);
+    ProfiledRender tiny = profiled_render(scene, 3, false, 5);
+    Image a = full.film.mean(), b = tiny.film.mean();
+    for (std::size_t i = 0; i < a.rgb.size(); ++i)
+        REQUIRE(a.rgb[i] == Approx(b.rgb[i]).epsilon(1e-5).margin(1e-6));
+}
