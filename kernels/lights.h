@@ -1,11 +1,14 @@
 /* Next-event estimation: sampling a point on the area lights.
  *
  * Lights are the emissive triangles. One is picked with probability
- * proportional to its area, then a point uniformly on it, so the point's
- * density is 1 / (total light area) over all lights. */
+ * proportional to its area, then a point on it: uniformly by area (the
+ * point's density is 1 / (total light area) over all lights), or, with
+ * WP_LIGHT_SAMPLING == WP_LIGHT_SOLID_ANGLE, uniformly in the solid angle the
+ * triangle subtends (estimator.h). */
 #ifndef WP_LIGHTS_H
 #define WP_LIGHTS_H
 
+#include "estimator.h"
 #include "geometry.h"
 #include "sampling.h"
 
@@ -43,8 +46,39 @@ static inline int wp_sample_light(WpFrame frame, __global const WpTriangle* tria
     if (frame.light_count == 0u) /* general kernels may meet a scene without lights */
         return 0;
     WpTriangle light = triangles[lights[wp_pick_light(lights, frame.light_count, u_pick)].triangle];
-    float3 point = wp_sample_triangle(light.v0.xyz, light.v1.xyz, light.v2.xyz, u, v);
     float3 light_normal = normalize(wp_triangle_normal(&light));
+#if WP_LIGHT_SAMPLING == WP_LIGHT_SOLID_ANGLE
+    /* Uniform in the triangle's solid angle Omega: the direction's density is
+     * p_pick / Omega, p_pick = area / total area. Lights are one-sided, so a
+     * point behind the light's plane gets nothing. */
+    float3 r0 = light.v0.xyz - origin, r1 = light.v1.xyz - origin, r2 = light.v2.xyz - origin;
+    float plane_distance = -dot(r0, light_normal); /* > 0 in front of the light */
+    float solid_angle = wp_spherical_triangle_area(r0, r1, r2);
+    if (plane_distance > 0.0f && solid_angle >= WP_MIN_SPHERICAL_AREA &&
+        solid_angle <= WP_MAX_SPHERICAL_AREA) {
+        float3 wi = wp_sample_spherical_triangle(normalize(r0), normalize(r1), normalize(r2),
+                                                 solid_angle, u, v);
+        float cos_surface = dot(normal, wi);
+        float cos_light = -dot(light_normal, wi);
+        if (!(cos_surface > 0.0f && cos_light > 0.0f))
+            return 0;
+        float distance = plane_distance / cos_light; /* along wi to the light's plane */
+        float3 point = origin + distance * wi;
+        float length_to_test =
+            distance - WP_SHADOW_END_MARGIN * wp_offset_distance(point, wp_triangle_scale(&light));
+        if (!(length_to_test > 0.0f))
+            return 0;
+        float triangle_area = 0.5f * length(cross(light.v1.xyz - light.v0.xyz,
+                                                  light.v2.xyz - light.v0.xyz));
+        out->direction = wi;
+        out->length = length_to_test;
+        out->irradiance = materials[light.material].emission.xyz *
+                          (cos_surface * solid_angle * frame.light_area / triangle_area);
+        return 1;
+    }
+    /* Too small (or too large) a solid angle for float: area sampling below. */
+#endif
+    float3 point = wp_sample_triangle(light.v0.xyz, light.v1.xyz, light.v2.xyz, u, v);
     float3 to_light = point - origin;
     float distance = length(to_light);
     float3 wi = to_light / distance;

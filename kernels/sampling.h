@@ -26,6 +26,64 @@ static inline float3 wp_sample_cosine_hemisphere(float3 n, float u1, float u2) {
     return normalize(t * (r * cos(phi)) + b * (r * sin(phi)) + n * z);
 }
 
+/* The direction (theta, phi) around unit n, theta from n: the report's
+ * parametrisation (x = sin theta cos phi, y = sin theta sin phi, z = cos theta). */
+static inline float3 wp_direction_from_angles(float3 n, float theta, float phi) {
+    float sin_theta = sin(theta);
+    float3 t, b;
+    wp_make_basis(n, &t, &b);
+    return normalize(t * (sin_theta * cos(phi)) + b * (sin_theta * sin(phi)) + n * cos(theta));
+}
+
+/* The angle between unit vectors, accurate near 0 and pi (unlike acos). */
+static inline float wp_angle_between(float3 a, float3 b) {
+    if (dot(a, b) < 0.0f)
+        return WP_PI - 2.0f * asin(fmin(1.0f, 0.5f * length(a + b)));
+    return 2.0f * asin(fmin(1.0f, 0.5f * length(b - a)));
+}
+
+/* Solid angle subtended at the origin by the triangle (r0, r1, r2), given
+ * relative to the point (Van Oosterom and Strackee 1983). The triple product
+ * comes from the triangle's edges, so it stays accurate for small, distant
+ * triangles; the vectors need not be unit. */
+static inline float wp_spherical_triangle_area(float3 r0, float3 r1, float3 r2) {
+    float l0 = length(r0), l1 = length(r1), l2 = length(r2);
+    float triple = fabs(dot(r0, cross(r1 - r0, r2 - r0)));
+    float denominator = l0 * l1 * l2 + dot(r0, r1) * l2 + dot(r0, r2) * l1 + dot(r1, r2) * l0;
+    return 2.0f * atan2(triple, denominator);
+}
+
+/* A direction uniformly distributed in the solid angle of the spherical
+ * triangle of unit vectors (a, b, c), whose area is `area` (Arvo, "Stratified
+ * sampling of spherical triangles", SIGGRAPH 1995; in the form of pbrt-v4's
+ * SampleSphericalTriangle). u1 picks the sub-triangle (a, b, c') of area
+ * u1 * area, u2 the point on the arc from b to c'. */
+static inline float3 wp_sample_spherical_triangle(float3 a, float3 b, float3 c, float area,
+                                                  float u1, float u2) {
+    float3 n_ab = normalize(cross(a, b));
+    float3 n_bc = normalize(cross(b, c));
+    float3 n_ca = normalize(cross(c, a));
+    float alpha = wp_angle_between(n_ab, -n_ca); /* the triangle's angle at a */
+    float cos_alpha = cos(alpha), sin_alpha = sin(alpha);
+    /* phi = (pi + u1 * area) - alpha, where pi + u1 * area is the angle sum of
+     * the sub-triangle; its sine and cosine without adding pi in float. */
+    float alpha_minus = alpha - u1 * area;
+    float sin_phi = sin(alpha_minus);
+    float cos_phi = -cos(alpha_minus);
+    float k1 = cos_phi + cos_alpha;
+    float k2 = sin_phi - sin_alpha * dot(a, b);
+    float cos_bp = (k2 + (k2 * cos_phi - k1 * sin_phi) * cos_alpha) /
+                   ((k2 * sin_phi + k1 * cos_phi) * sin_alpha);
+    cos_bp = clamp(cos_bp, -1.0f, 1.0f);
+    float sin_bp = sqrt(fmax(0.0f, 1.0f - cos_bp * cos_bp));
+    float3 c_perp = normalize(c - dot(c, a) * a);
+    float3 c_prime = cos_bp * a + sin_bp * c_perp; /* on the arc from a to c */
+    float cos_theta = 1.0f - u2 * (1.0f - dot(c_prime, b));
+    float sin_theta = sqrt(fmax(0.0f, 1.0f - cos_theta * cos_theta));
+    float3 towards = normalize(c_prime - dot(c_prime, b) * b);
+    return normalize(cos_theta * b + sin_theta * towards);
+}
+
 /* A uniformly distributed point of the triangle (p0, p1, p2). */
 static inline float3 wp_sample_triangle(float3 p0, float3 p1, float3 p2, float u1, float u2) {
     float su = sqrt(u1);

@@ -15,10 +15,14 @@
  *     divide survivors' throughput by it, which keeps the estimate unbiased.
  *     Past frame.max_depth bounces a path is cut and counted; the cap is a
  *     guard against endless mirror corridors, not part of the estimator.
+ *  With WP_DIFFUSE_SAMPLING == WP_DIFFUSE_REPORT, steps 3 and 4 are the
+ *  report's estimator instead: uniform (theta, phi) directions weighted by
+ *  pi rho cos sin, and its albedo ("angle") roulette (estimator.h). 
  *
  * Survivors go to the next ray queue, finished paths (missed, absorbed, cut)
  * to the finished queue, each with one atomic per item.
  */
+#include "estimator.h"
 #include "lights.h"
 #include "material.h"
 #include "rng.h"
@@ -93,6 +97,11 @@ __kernel void shade(WpFrame frame, __global const wp_uint* ray_queue, __global w
     float3 origin = wp_offset_ray_origin(position, facing_normal, scale);
     float3 reflectance = material.reflectance.xyz;
     float3 next_direction;
+    float3 weight = reflectance; /* BRDF x cos / pdf of next_direction */
+#if WP_DIFFUSE_SAMPLING == WP_DIFFUSE_REPORT
+    /* decides the roulette: a fresh number for mirrors, theta's for diffuse */
+    float u_survive = wp_random(frame.seed, pixel, sample, depth, WP_DIM_ROULETTE);
+#endif
 #if WP_HAS_MIRROR
     if (material.kind == WP_MATERIAL_MIRROR) {
         next_direction = wp_reflect(direction, facing_normal);
@@ -117,14 +126,33 @@ __kernel void shade(WpFrame frame, __global const wp_uint* ray_queue, __global w
 #endif
         float u1 = wp_random(frame.seed, pixel, sample, depth, WP_DIM_BSDF_U);
         float u2 = wp_random(frame.seed, pixel, sample, depth, WP_DIM_BSDF_V);
+#if WP_DIFFUSE_SAMPLING == WP_DIFFUSE_REPORT
+        /* theta' = u1 pi/2; the roulette below ends the path when
+         * theta' > sigma pi/2, i.e. u1 >= sigma; survivors go on at
+         * theta = theta' / sigma, uniform in [0, pi/2] (estimator.h). */
+        float sigma = fmin(1.0f, wp_max_component(reflectance));
+        u_survive = u1;
+        float theta = (sigma > 0.0f ? fmin(1.0f, u1 / sigma) : 0.0f) * (0.5f * WP_PI);
+        next_direction = wp_direction_from_angles(facing_normal, theta, 2.0f * WP_PI * u2);
+        weight = reflectance * (WP_PI * cos(theta) * sin(theta));
+#else
         next_direction = wp_sample_cosine_hemisphere(facing_normal, u1, u2);
+#endif
         flags &= ~WP_PATH_SPECULAR;
     }
-    beta *= reflectance;
 
+#if WP_DIFFUSE_SAMPLING == WP_DIFFUSE_REPORT
+    /* The report's roulette: survive with the surface's albedo sigma, whatever
+     * the path carries; eq. 2.10 divides survivors by it. */
+    float survival = fmin(1.0f, wp_max_component(reflectance));
+    int survives = u_survive < survival;
+    beta *= weight;
+#else
+    beta *= weight;
     float survival = fmin(1.0f, wp_max_component(beta));
     float u_roulette = wp_random(frame.seed, pixel, sample, depth, WP_DIM_ROULETTE);
     int survives = u_roulette < survival;
+#endif
     if (survives && depth + 1u > frame.max_depth) {
         atomic_inc(&counters[WP_COUNTER_CAPPED]);
         survives = 0;

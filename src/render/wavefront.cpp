@@ -81,6 +81,12 @@ WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const Scene& sce
     std::string build_options = compiled.build_options();
     if (!options_.next_event_estimation)
         build_options += " -D WP_USE_NEE=0";
+    build_options += options_.diffuse_sampling == DiffuseSampling::Report
+                         ? " -D WP_DIFFUSE_SAMPLING=1"
+                         : " -D WP_DIFFUSE_SAMPLING=0";
+    build_options += options_.light_sampling == LightSampling::SolidAngle
+                         ? " -D WP_LIGHT_SAMPLING=1"
+                         : " -D WP_LIGHT_SAMPLING=0";
     program_ = build_wavefront_program(ctx, device_.info.device, build_options);
 
     generate_ = cl::Kernel(program_.program, "generate");

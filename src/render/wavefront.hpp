@@ -24,6 +24,18 @@
 
 namespace wp {
 
+// Estimator variants (kernels/estimator.h; compared in docs/convergence.md).
+// How a Lambertian bounce picks its next direction, and how paths end:
+enum class DiffuseSampling {
+    Cosine, // cosine-weighted directions, throughput roulette
+    Report, // the student report's: uniform (theta, phi), albedo roulette
+};
+// How next-event estimation picks a point on a light triangle:
+enum class LightSampling {
+    Area,       // uniform by area
+    SolidAngle, // uniform in the subtended solid angle (spherical triangles)
+};
+
 struct IntegratorOptions {
     std::uint32_t seed = 0;
     // Safety cap on bounces. Russian roulette ends paths long before it in
@@ -34,6 +46,8 @@ struct IntegratorOptions {
     // Next-event estimation: one shadow ray to a light per diffuse hit. Off,
     // light is found only by paths that hit emitters.
     bool next_event_estimation = true;
+    DiffuseSampling diffuse_sampling = DiffuseSampling::Cosine;
+    LightSampling light_sampling = LightSampling::Area;
     // Refill finished slots with new samples at once, instead of waiting for
     // the whole pool to finish (a "wave") before generating again. Off by
     // default: on PoCL's CPU device it was measured 30-40 % slower (camera

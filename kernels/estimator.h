@@ -1,0 +1,63 @@
+/* Estimator switches: which Monte Carlo estimator the kernels compile.
+ *
+ * The host passes them as -D options (IntegratorOptions::diffuse_sampling and
+ * ::light_sampling; see src/render/wavefront.cpp), always both, so what a
+ * render uses never depends on the defaults below. Left undefined, they give
+ * the original estimator, which the stage tests in tests/cl model on the host.
+ * Every combination is unbiased and converges to the same image; they differ
+ * in variance and cost (docs/convergence.md measures them on the hexroom).
+ * Next-event estimation on/off is WP_USE_NEE, in scene_features.h.
+ *
+ * WP_DIFFUSE_SAMPLING: the next direction at a Lambertian surface.
+ *   WP_DIFFUSE_COSINE (0): cosine-weighted directions (pdf cos(theta)/pi), so
+ *     the throughput takes the reflectance; then throughput roulette: survive
+ *     with probability min(1, max(throughput)), survivors divided by it.
+ *   WP_DIFFUSE_REPORT (1): the student report's estimator (seed report, eqs.
+ *     2.2, 2.9 and 2.10), made unbiased:
+ *       - theta' = u * pi/2 with u uniform in [0, 1), phi uniform in [0, 2pi);
+ *       - the report's roulette: terminate when theta' > sigma * pi/2 (eq.
+ *         2.9), with sigma = min(1, max(reflectance)): probability 1 - sigma;
+ *       - a survivor does NOT continue at theta' (the report does: that never
+ *         samples theta > sigma * pi/2, so it loses that part of the
+ *         hemisphere and is biased dark). Given survival theta' is uniform in
+ *         [0, sigma * pi/2], so theta = theta' / sigma is uniform in [0, pi/2]
+ *         again and independent of the roulette: that is the direction;
+ *       - (theta, phi) uniform in the rectangle has solid-angle pdf
+ *         1 / (pi^2 sin theta), so the unbiased weight is
+ *         f cos / pdf = (rho/pi) cos theta pi^2 sin theta = pi rho cos sin
+ *         (eq. 2.2), divided by the survival probability sigma (eq. 2.10 with
+ *         1 - alpha = sigma). At most pi/2 per bounce: bounded, but the
+ *         throughput can grow above 1.
+ *     Mirrors keep their exact reflection and take the same albedo roulette
+ *     (survive with probability sigma, no angle). No throughput roulette.
+ *
+ * WP_LIGHT_SAMPLING: how next-event estimation picks a point on a light
+ * (a triangle is always picked with probability proportional to its area).
+ *   WP_LIGHT_AREA (0): uniform by area on the triangle; the estimate carries
+ *     cos_light / d^2, unbounded for points close to a light.
+ *   WP_LIGHT_SOLID_ANGLE (1): uniform in the solid angle the triangle subtends
+ *     (Arvo 1995, spherical triangles): weight Le cos_surface Omega / p_pick,
+ *     bounded. Triangles subtending less than WP_MIN_SPHERICAL_AREA or more
+ *     than WP_MAX_SPHERICAL_AREA steradians fall back to area sampling (float
+ *     precision); the choice depends on the geometry only, so it stays
+ *     unbiased.
+ */
+#ifndef WP_ESTIMATOR_H
+#define WP_ESTIMATOR_H
+
+#define WP_DIFFUSE_COSINE 0
+#define WP_DIFFUSE_REPORT 1
+#ifndef WP_DIFFUSE_SAMPLING
+#define WP_DIFFUSE_SAMPLING WP_DIFFUSE_COSINE
+#endif
+
+#define WP_LIGHT_AREA 0
+#define WP_LIGHT_SOLID_ANGLE 1
+#ifndef WP_LIGHT_SAMPLING
+#define WP_LIGHT_SAMPLING WP_LIGHT_AREA
+#endif
+
+#define WP_MIN_SPHERICAL_AREA 1e-3f
+#define WP_MAX_SPHERICAL_AREA 6.2f
+
+#endif /* WP_ESTIMATOR_H */
