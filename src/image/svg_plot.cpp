@@ -84,8 +84,8 @@ std::vector<std::pair<double, std::string>> ticks(const Range& range) {
     for (int e = first; e <= last; ++e)
         if (e >= range.lo && e <= range.hi)
             ++decades_inside;
-    // With fewer than two labelled decades, also label 2x and 5x.
-    const bool label_between = decades_inside < 2;
+    // With fewer than three labelled decades, also label 2x and 5x.
+    const bool label_between = decades_inside < 3;
     std::vector<std::pair<double, std::string>> out;
     for (int e = first; e <= last; ++e) {
         for (int m = 1; m <= 9; ++m) {
@@ -214,10 +214,14 @@ std::string render_svg(const LogLogPlot& plot) {
             if (s.markers)
                 svg += "<circle cx=\"" + fixed(x, 2) + "\" cy=\"" + fixed(y, 2) +
                        "\" r=\"3.5\" fill=\"" + colour + "\"/>\n";
-            if (i < s.point_labels.size() && !s.point_labels[i].empty())
-                svg += "<text x=\"" + fixed(x + 5) + "\" y=\"" + fixed(y - 6) +
-                       "\" font-size=\"10\" fill=\"" + colour + "\">" + escape(s.point_labels[i]) +
+            if (i < s.point_labels.size() && !s.point_labels[i].empty()) {
+                // Right of the point, or left of it near the right edge.
+                const bool left_side = x > left + w - 60;
+                svg += "<text x=\"" + fixed(left_side ? x - 5 : x + 5) + "\" y=\"" + fixed(y - 6) +
+                       "\" font-size=\"10\" fill=\"" + colour + "\"" +
+                       (left_side ? " text-anchor=\"end\"" : "") + ">" + escape(s.point_labels[i]) +
                        "</text>\n";
+            }
         }
         svg += "</g>\n";
     }
