@@ -3,8 +3,13 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "image/tonemap.hpp"
+
+namespace CLI {
+class App;
+}
 
 namespace wp {
 
@@ -34,6 +39,38 @@ struct BenchCommand {
     std::uint32_t spp = 8;
     int repetitions = 5; // launches of each stage-alone workload
 };
+
+// Convergence reports (docs/convergence.md): converge.cpp and compare.cpp.
+struct ConvergeCommand {
+    std::string scene;
+    std::string reference;             // .exr or .pfm; empty: error from the half images
+    std::string csv;                   // optional outputs
+    std::string plot;                  // SVG
+    std::string out;                   // the final image
+    std::vector<std::string> overlays; // earlier CSVs drawn in the same plot
+    std::string device;
+    std::uint32_t max_spp = 0; // with max_time 0 too: 256
+    double max_time = 0.0;     // seconds of render time
+    std::uint32_t seed = 0;
+    int width = 0;
+    int height = 0;
+    std::uint32_t max_depth = 1024;
+    std::string diffuse; // "cosine" or "report"
+    std::string light;   // "area" or "solid-angle"
+    bool nee = true;
+};
+
+struct CompareCommand {
+    std::string image;
+    std::string reference;
+    std::string diff; // optional: .png false colour, .exr/.pfm the raw map
+};
+
+// Register the subcommands' options (in converge.cpp and compare.cpp).
+CLI::App* add_converge_subcommand(CLI::App& app, ConvergeCommand& command);
+CLI::App* add_compare_subcommand(CLI::App& app, CompareCommand& command);
+int run_converge(const ConvergeCommand& command);
+int run_compare(const CompareCommand& command);
 
 int run_devices();
 int run_bench(const BenchCommand& command);

@@ -85,6 +85,12 @@ int main(int argc, char** argv) {
         ->capture_default_str()
         ->check(CLI::Range(1, 1000));
 
+    // Convergence reports (converge.cpp, compare.cpp; docs/convergence.md).
+    wp::ConvergeCommand converge;
+    wp::CompareCommand compare;
+    CLI::App* converge_app = wp::add_converge_subcommand(app, converge);
+    CLI::App* compare_app = wp::add_compare_subcommand(app, compare);
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) { // --help
@@ -100,6 +106,10 @@ int main(int argc, char** argv) {
             return wp::run_devices();
         if (app.got_subcommand("bench"))
             return wp::run_bench(bench);
+        if (converge_app->parsed())
+            return wp::run_converge(converge);
+        if (compare_app->parsed())
+            return wp::run_compare(compare);
         return wp::run_render(render);
     } catch (const wp::BuildError& e) {
         std::cerr << e.log() << "\nwavepath: error: " << e.what() << "\n";

@@ -1,0 +1,200 @@
+// `wavepath converge`: error against render time (docs/convergence.md).
+#include <cctype>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <map>
+
+#include <CLI/CLI.hpp>
+
+#include "app/commands.hpp"
+#include "cl/context.hpp"
+#include "cl/device.hpp"
+#include "image/image_io.hpp"
+#include "render/convergence.hpp"
+#include "render/wavefront.hpp"
+#include "scene/load.hpp"
+
+namespace wp {
+namespace {
+
+const std::map<std::string, DiffuseSampling> kDiffuse = {{"cosine", DiffuseSampling::Cosine},
+                                                         {"report", DiffuseSampling::Report}};
+const std::map<std::string, LightSampling> kLight = {{"area", LightSampling::Area},
+                                                     {"solid-angle", LightSampling::SolidAngle}};
+
+template <typename Enum> std::string name_of(const std::map<std::string, Enum>& names, Enum value) {
+    for (const auto& [name, v] : names)
+        if (v == value)
+            return name;
+    return "?";
+}
+
+std::string lower_extension(const std::string& path) {
+    std::string extension = std::filesystem::path(path).extension().string();
+    for (char& c : extension)
+        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return extension;
+}
+
+// Fails before rendering, not after, if an output cannot be written.
+void check_output(const std::string& path, const std::vector<std::string>& extensions) {
+    if (path.empty())
+        return;
+    std::filesystem::path p(path);
+    std::filesystem::path dir = p.has_parent_path() ? p.parent_path() : ".";
+    if (!std::filesystem::is_directory(dir))
+        throw std::runtime_error("cannot write '" + path + "': directory '" + dir.string() +
+                                 "' does not exist");
+    const std::string extension = lower_extension(path);
+    for (const std::string& e : extensions)
+        if (extension == e)
+            return;
+    std::string list;
+    for (const std::string& e : extensions)
+        list += (list.empty() ? "" : ", ") + e;
+    throw std::runtime_error("cannot write '" + path + "': unsupported extension '" +
+                             p.extension().string() + "' (use " + list + ")");
+}
+
+std::string format(const char* pattern, double value) {
+    char text[64];
+    std::snprintf(text, sizeof text, pattern, value);
+    return text;
+}
+
+} // namespace
+
+CLI::App* add_converge_subcommand(CLI::App& app, ConvergeCommand& command) {
+    const IntegratorOptions defaults;
+    command.diffuse = name_of(kDiffuse, defaults.diffuse_sampling);
+    command.light = name_of(kLight, defaults.light_sampling);
+    command.nee = defaults.next_event_estimation;
+    CLI::App* c = app.add_subcommand(
+        "converge", "Render progressively and report the error against render time at 1, 2, "
+                    "4, ... samples per pixel (CSV, SVG plot); see docs/convergence.md");
+    c->add_option("scene", command.scene, "Scene file (JSON)")->required();
+    c->add_option("--reference,-r", command.reference,
+                  "Reference image (.exr or .pfm) of the same size: the true error is measured. "
+                  "Without one the error is estimated from the even/odd half images");
+    auto* spp = c->add_option("--max-spp", command.max_spp,
+                              "Last checkpoint, in samples per pixel (default 256)")
+                    ->check(CLI::Range(1u, 1u << 24));
+    auto* time = c->add_option("--max-time", command.max_time,
+                               "Render for this many seconds (render time, kernel build "
+                               "excluded); the last batch is cut to fit")
+                     ->check(CLI::PositiveNumber);
+    spp->excludes(time);
+    c->add_option("--csv", command.csv, "Write the checkpoints as CSV");
+    c->add_option("--plot", command.plot, "Write a log-log plot of RMSE against time (SVG)");
+    c->add_option("--overlay", command.overlays,
+                  "An earlier converge CSV to draw in the same plot (repeatable)");
+    c->add_option("--out,-o", command.out, "Write the final image (.exr, .pfm or .png)");
+    c->add_option("--device,-d", command.device, "OpenCL device (as for render)");
+    c->add_option("--seed", command.seed, "Random seed")->capture_default_str();
+    c->add_option("--width", command.width, "Image width (default: the scene's)")
+        ->check(CLI::Range(1, 16384));
+    c->add_option("--height", command.height, "Image height (default: the scene's)")
+        ->check(CLI::Range(1, 16384));
+    c->add_option("--max-depth", command.max_depth, "Safety cap on bounces")
+        ->capture_default_str()
+        ->check(CLI::Range(1u, 1u << 20));
+    c->add_option("--diffuse", command.diffuse,
+                  "Lambertian sampling: 'cosine' (cosine-weighted, throughput roulette) or "
+                  "'report' (the seed report's uniform angles and albedo roulette, made "
+                  "unbiased)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"cosine", "report"}));
+    c->add_option("--light-sampling", command.light,
+                  "Next-event estimation: 'area' (uniform on the light) or 'solid-angle' "
+                  "(uniform in the light's spherical triangles)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"area", "solid-angle"}));
+    c->add_flag("!--no-nee", command.nee,
+                "Next-event estimation off: light only from paths that hit an emitter");
+    return c;
+}
+
+int run_converge(const ConvergeCommand& command) {
+    check_output(command.csv, {".csv"});
+    check_output(command.plot, {".svg"});
+    check_output(command.out, {".exr", ".pfm", ".png"});
+    // Overlays are read first, so a bad one fails before the render.
+    std::vector<ConvergenceRun> runs(1);
+    for (const std::string& path : command.overlays)
+        runs.push_back(read_convergence_csv(path));
+
+    Scene scene = load_scene(command.scene);
+    for (const std::string& warning : scene.warnings)
+        std::cerr << "wavepath: warning: " << warning << "\n";
+    if (command.width > 0)
+        scene.camera.width = command.width;
+    if (command.height > 0)
+        scene.camera.height = command.height;
+
+    Image reference;
+    if (!command.reference.empty()) {
+        reference = read_image(command.reference);
+        if (reference.width != scene.camera.width || reference.height != scene.camera.height)
+            throw std::runtime_error(
+                "reference '" + command.reference + "' is " + std::to_string(reference.width) +
+                "x" + std::to_string(reference.height) + " but the render is " +
+                std::to_string(scene.camera.width) + "x" + std::to_string(scene.camera.height) +
+                " (use --width/--height)");
+    }
+
+    IntegratorOptions options;
+    options.seed = command.seed;
+    options.max_depth = command.max_depth;
+    options.next_event_estimation = command.nee;
+    options.diffuse_sampling = kDiffuse.at(command.diffuse);
+    options.light_sampling = kLight.at(command.light);
+    DeviceContext device(select_device(command.device), false);
+    WavefrontIntegrator integrator(device, scene, options);
+
+    std::cerr << "wavepath: converge " << scene.camera.width << "x" << scene.camera.height
+              << ", estimator " << describe_estimator(options) << ", on " << device.info.name
+              << "; kernels built in " << format("%.3f", integrator.program().build_seconds)
+              << " s (not counted in the times below)\n";
+
+    ConvergenceSettings settings;
+    settings.max_spp = command.max_spp;
+    settings.max_seconds = command.max_time;
+    if (settings.max_spp == 0 && settings.max_seconds <= 0.0)
+        settings.max_spp = 256;
+    const bool with_reference = !command.reference.empty();
+    std::printf("error %s\n%8s %10s %12s %12s %12s %12s\n",
+                with_reference ? ("against " + command.reference).c_str()
+                               : "estimated from the even/odd half images",
+                "spp", "seconds", "RMSE", "relMSE", "efficiency", "rel. eff.");
+    std::fflush(stdout);
+    Film film(scene.camera.width, scene.camera.height);
+    ConvergenceRun& run = runs[0];
+    run = run_convergence(
+        integrator, film, with_reference ? &reference : nullptr, settings, [](const Checkpoint& c) {
+            std::printf("%8u %10.3f %12.5g %12.5g %12.5g %12.5g\n", c.spp, c.seconds, c.rmse,
+                        c.rel_mse, c.efficiency, c.rel_efficiency);
+            std::fflush(stdout);
+        });
+
+    std::cerr << "wavepath: warm-up render (1 spp, first-launch kernel compilation): "
+              << format("%.3f", run.warm_up_seconds) << " s (not counted)\n";
+    if (!command.csv.empty())
+        write_convergence_csv(command.csv, run);
+    if (!command.plot.empty()) {
+        const std::string title = std::filesystem::path(command.scene).filename().string() + ", " +
+                                  std::to_string(run.width) + "x" + std::to_string(run.height) +
+                                  ", " + device.info.name;
+        write_svg(command.plot, convergence_plot(runs, title));
+    }
+    if (!command.out.empty())
+        write_image(command.out, film.mean());
+    const RenderStats& stats = integrator.stats();
+    if (stats.nonfinite_samples > 0 || stats.capped_paths > 0)
+        std::cerr << "wavepath: warning: " << stats.nonfinite_samples
+                  << " NaN/Inf samples dropped, " << stats.capped_paths
+                  << " paths cut by the depth cap\n";
+    return 0;
+}
+
+} // namespace wp
