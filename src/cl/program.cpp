@@ -1,6 +1,8 @@
 #include "cl/program.hpp"
 
 #include <chrono>
+#include <filesystem>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -40,6 +42,36 @@ void expand_into(std::string_view text, std::string_view name, std::set<std::str
     }
 }
 
+// The binary of a program built for `device` (one of its context's devices).
+std::vector<unsigned char> program_binary(const cl::Program& program, const cl::Device& device) {
+    std::vector<cl::Device> devices = program.getInfo<CL_PROGRAM_DEVICES>();
+    cl::Program::Binaries binaries = program.getInfo<CL_PROGRAM_BINARIES>();
+    for (std::size_t i = 0; i < devices.size() && i < binaries.size(); ++i)
+        if (devices[i]() == device())
+            return binaries[i];
+    return {};
+}
+
+// A program from a cached binary, built with the same options; nothing if the
+// driver refuses the binary (another driver version, a damaged file that
+// passed the checksum, ...).
+std::optional<cl::Program> load_binary(const cl::Context& context, const cl::Device& device,
+                                       const std::vector<unsigned char>& binary,
+                                       const std::string& options) {
+    try {
+        std::vector<cl_int> status;
+        cl::Program program(context, {device}, cl::Program::Binaries{binary}, &status);
+        if (status.empty() || status[0] != CL_SUCCESS)
+            return std::nullopt;
+        program.build({device}, options.c_str());
+        if (program.getBuildInfo<CL_PROGRAM_BUILD_STATUS>(device) != CL_BUILD_SUCCESS)
+            return std::nullopt;
+        return program;
+    } catch (const cl::Error&) {
+        return std::nullopt;
+    }
+}
+
 } // namespace
 
 std::string_view kernel_file(std::string_view name) {
@@ -56,12 +88,61 @@ std::string expand_includes(std::string_view text, std::string_view name) {
     return out;
 }
 
+const char* cache_outcome_name(CacheOutcome outcome) {
+    switch (outcome) {
+    case CacheOutcome::Off:
+        return "off";
+    case CacheOutcome::Miss:
+        return "miss";
+    case CacheOutcome::Hit:
+        return "hit";
+    case CacheOutcome::Rejected:
+        return "rejected";
+    }
+    return "?";
+}
+
 BuiltProgram build_program(const cl::Context& context, const cl::Device& device,
                            std::string_view source, std::string_view source_name,
-                           const std::string& options) {
-    std::string expanded = expand_includes(source, source_name);
-    BuiltProgram built{cl::Program(context, expanded), options, 0.0};
+                           const std::string& options, const CachePolicy& cache) {
     auto start = std::chrono::steady_clock::now();
+    auto elapsed = [&] {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    };
+    std::string expanded = expand_includes(source, source_name);
+    BuiltProgram built;
+    built.options = options;
+
+    std::optional<ProgramCache> store;
+    std::uint64_t key = 0;
+    if (cache.enabled) {
+        std::filesystem::path dir =
+            cache.directory.empty() ? default_program_cache_directory() : cache.directory;
+        if (dir.empty()) {
+            built.cache_note = "no cache directory (neither XDG_CACHE_HOME nor HOME is set)";
+        } else {
+            store.emplace(dir);
+            key = program_cache_key(expanded, options, device_cache_identity(device));
+            built.cache_file = store->entry_path(key).string();
+            CacheLookup found = store->load(key);
+            if (found.binary) {
+                if (std::optional<cl::Program> loaded =
+                        load_binary(context, device, *found.binary, options)) {
+                    built.program = std::move(*loaded);
+                    built.cache = CacheOutcome::Hit;
+                    built.cache_hit = true;
+                    built.build_seconds = elapsed();
+                    return built;
+                }
+                store->remove(key);
+                found.rejected = "the driver rejected the cached binary";
+            }
+            built.cache = found.rejected.empty() ? CacheOutcome::Miss : CacheOutcome::Rejected;
+            built.cache_note = found.rejected;
+        }
+    }
+
+    built.program = cl::Program(context, expanded);
     try {
         built.program.build({device}, options.c_str());
     } catch (const cl::Error& error) {
@@ -75,18 +156,33 @@ BuiltProgram build_program(const cl::Context& context, const cl::Device& device,
                              cl_error_name(error.err()) + "); the compiler log is above",
                          log);
     }
-    built.build_seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    built.build_seconds = elapsed();
+
+    if (store) {
+        std::vector<unsigned char> binary = program_binary(built.program, device);
+        std::string failure =
+            binary.empty() ? std::string("the driver gave no binary") : store->store(key, binary);
+        if (!failure.empty())
+            built.cache_note += (built.cache_note.empty() ? "" : "; ") + ("not stored: " + failure);
+    }
     return built;
+}
+
+std::string_view wavefront_program_source() {
+    // One translation unit with every stage: the shared headers compile once.
+    return "#include \"generate.cl\"\n#include \"intersect.cl\"\n#include \"shade.cl\"\n"
+           "#include \"shadow.cl\"\n#include \"accumulate.cl\"\n";
 }
 
 BuiltProgram build_wavefront_program(const cl::Context& context, const cl::Device& device,
                                      const std::string& options) {
-    // One translation unit with every stage: the shared headers compile once.
-    static constexpr const char* stages =
-        "#include \"generate.cl\"\n#include \"intersect.cl\"\n#include \"shade.cl\"\n"
-        "#include \"shadow.cl\"\n#include \"accumulate.cl\"\n";
-    return build_program(context, device, stages, "wavefront.cl", options);
+    return build_wavefront_program(context, device, options, CachePolicy::from_environment());
+}
+
+BuiltProgram build_wavefront_program(const cl::Context& context, const cl::Device& device,
+                                     const std::string& options, const CachePolicy& cache) {
+    return build_program(context, device, wavefront_program_source(), "wavefront.cl", options,
+                         cache);
 }
 
 } // namespace wp

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cl/cl.hpp"
+#include "cl/program_cache.hpp"
 
 namespace wp {
 
@@ -30,20 +31,43 @@ std::string_view kernel_file(std::string_view name);
 // diagnostics name the original file and line.
 std::string expand_includes(std::string_view text, std::string_view name);
 
+// How a build went with the program cache.
+enum class CacheOutcome {
+    Off,      // the cache was not used
+    Miss,     // no entry: built from source and stored (cache_note says if it could not be)
+    Hit,      // loaded from a cached binary
+    Rejected, // an entry was damaged, stale or refused by the driver: removed, rebuilt, stored
+};
+
+const char* cache_outcome_name(CacheOutcome outcome); // "off", "miss", "hit", "rejected"
+
 struct BuiltProgram {
     cl::Program program;
     std::string options;
-    double build_seconds = 0.0;
+    double build_seconds = 0.0; // wall time from source text to a built program
+    CacheOutcome cache = CacheOutcome::Off;
+    bool cache_hit = false; // cache == CacheOutcome::Hit
+    std::string cache_file; // the entry used or written; empty with the cache off
+    std::string cache_note; // why an entry was rejected, or could not be stored
 };
 
 // Builds `source` (which may include embedded kernel headers) with `options`.
-// Throws BuildError with the compiler log when the build fails.
+// Throws BuildError with the compiler log when the build fails. With the
+// cache on, a valid cached binary for the same expanded source, options and
+// device is loaded instead of compiling, and a fresh build is stored.
 BuiltProgram build_program(const cl::Context& context, const cl::Device& device,
                            std::string_view source, std::string_view source_name,
-                           const std::string& options);
+                           const std::string& options,
+                           const CachePolicy& cache = CachePolicy::off());
 
-// The five wavefront stages in one program.
+// The text build_wavefront_program compiles (before include expansion).
+std::string_view wavefront_program_source();
+
+// The five wavefront stages in one program, through the program cache unless
+// WAVEPATH_NO_CACHE is set (CachePolicy::from_environment()).
 BuiltProgram build_wavefront_program(const cl::Context& context, const cl::Device& device,
                                      const std::string& options);
+BuiltProgram build_wavefront_program(const cl::Context& context, const cl::Device& device,
+                                     const std::string& options, const CachePolicy& cache);
 
 } // namespace wp

@@ -1,0 +1,252 @@
+#include "cl/program_cache.hpp"
+
+#include <atomic>
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <system_error>
+
+#include <fcntl.h>
+#include <unistd.h>
+
+namespace wp {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr char kMagic[8] = {'W', 'P', 'C', 'L', 'B', 'I', 'N', '\0'};
+constexpr std::uint64_t kFnvPrime = 1099511628211ull;
+
+void put32(std::vector<unsigned char>& out, std::size_t at, std::uint32_t value) {
+    for (int i = 0; i < 4; ++i)
+        out[at + static_cast<std::size_t>(i)] = static_cast<unsigned char>(value >> (8 * i));
+}
+
+void put64(std::vector<unsigned char>& out, std::size_t at, std::uint64_t value) {
+    for (int i = 0; i < 8; ++i)
+        out[at + static_cast<std::size_t>(i)] = static_cast<unsigned char>(value >> (8 * i));
+}
+
+std::uint32_t get32(const std::vector<unsigned char>& in, std::size_t at) {
+    std::uint32_t value = 0;
+    for (int i = 0; i < 4; ++i)
+        value |= static_cast<std::uint32_t>(in[at + static_cast<std::size_t>(i)]) << (8 * i);
+    return value;
+}
+
+std::uint64_t get64(const std::vector<unsigned char>& in, std::size_t at) {
+    std::uint64_t value = 0;
+    for (int i = 0; i < 8; ++i)
+        value |= static_cast<std::uint64_t>(in[at + static_cast<std::size_t>(i)]) << (8 * i);
+    return value;
+}
+
+std::uint64_t hash_part(std::string_view part, std::uint64_t state) {
+    std::uint64_t size = part.size();
+    unsigned char size_bytes[8];
+    for (int i = 0; i < 8; ++i)
+        size_bytes[i] = static_cast<unsigned char>(size >> (8 * i));
+    return fnv1a64(part, fnv1a64_bytes(size_bytes, sizeof size_bytes, state));
+}
+
+std::string hex(std::uint64_t value) {
+    char text[17];
+    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(value));
+    return text;
+}
+
+std::string errno_text(int err) {
+    return std::error_code(err, std::generic_category()).message();
+}
+
+// Writes `bytes` to a fresh temporary file next to `path` and renames it over
+// `path`. The temporary name holds the pid and a counter, and O_EXCL keeps two
+// writers from sharing one.
+std::string write_atomically(const fs::path& path, const std::vector<unsigned char>& bytes) {
+    static std::atomic<unsigned long> counter{0};
+    int fd = -1;
+    fs::path temp;
+    for (int attempt = 0; attempt < 100 && fd < 0; ++attempt) {
+        temp = path;
+        temp += ".tmp-" + std::to_string(getpid()) + "-" + std::to_string(counter++);
+        fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+        if (fd < 0 && errno != EEXIST)
+            return "cannot create '" + temp.string() + "': " + errno_text(errno);
+    }
+    if (fd < 0)
+        return "cannot create a temporary file next to '" + path.string() + "'";
+    std::size_t done = 0;
+    while (done < bytes.size()) {
+        ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n <= 0) {
+            int err = errno;
+            ::close(fd);
+            ::unlink(temp.c_str());
+            return "cannot write '" + temp.string() + "': " + errno_text(err);
+        }
+        done += static_cast<std::size_t>(n);
+    }
+    // No fsync: after a crash an entry may be empty or partial, which load()
+    // detects (size and checksum) and replaces.
+    if (::close(fd) != 0 || std::rename(temp.c_str(), path.c_str()) != 0) {
+        int err = errno;
+        ::unlink(temp.c_str());
+        return "cannot store '" + path.string() + "': " + errno_text(err);
+    }
+    return "";
+}
+
+} // namespace
+
+std::uint64_t fnv1a64_bytes(const void* data, std::size_t size, std::uint64_t state) {
+    const auto* bytes = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < size; ++i) {
+        state ^= bytes[i];
+        state *= kFnvPrime;
+    }
+    return state;
+}
+
+std::uint64_t fnv1a64(std::string_view data, std::uint64_t state) {
+    return fnv1a64_bytes(data.data(), data.size(), state);
+}
+
+std::string device_cache_identity(const cl::Device& device) {
+    cl::Platform platform(device.getInfo<CL_DEVICE_PLATFORM>(), true);
+    return device.getInfo<CL_DEVICE_NAME>().c_str() + std::string("|") +
+           device.getInfo<CL_DEVICE_VERSION>().c_str() + "|" +
+           device.getInfo<CL_DRIVER_VERSION>().c_str() + "|" +
+           platform.getInfo<CL_PLATFORM_VERSION>().c_str();
+}
+
+std::uint64_t program_cache_key(std::string_view expanded_source, std::string_view options,
+                                std::string_view device_identity) {
+    std::uint64_t state = hash_part("wavepath program cache", kFnvOffset);
+    state = hash_part(std::to_string(kProgramCacheFormat), state);
+    state = hash_part(expanded_source, state);
+    state = hash_part(options, state);
+    return hash_part(device_identity, state);
+}
+
+fs::path default_program_cache_directory() {
+    const char* own = std::getenv("WAVEPATH_CACHE_DIR");
+    if (own != nullptr && own[0] != '\0')
+        return fs::path(own);
+    const char* xdg = std::getenv("XDG_CACHE_HOME");
+    if (xdg != nullptr && xdg[0] == '/') // the XDG spec: relative paths are ignored
+        return fs::path(xdg) / "wavepath";
+    const char* home = std::getenv("HOME");
+    if (home != nullptr && home[0] != '\0')
+        return fs::path(home) / ".cache" / "wavepath";
+    return {};
+}
+
+bool program_cache_disabled_by_environment() {
+    const char* value = std::getenv("WAVEPATH_NO_CACHE");
+    return value != nullptr && value[0] != '\0' && std::strcmp(value, "0") != 0;
+}
+
+CachePolicy CachePolicy::from_environment() {
+    if (program_cache_disabled_by_environment())
+        return off();
+    return {true, default_program_cache_directory()};
+}
+
+fs::path ProgramCache::entry_path(std::uint64_t key) const {
+    return directory_ / (hex(key) + ".clbin");
+}
+
+std::vector<unsigned char> ProgramCache::encode(std::uint64_t key,
+                                                const std::vector<unsigned char>& binary) {
+    std::vector<unsigned char> bytes(kProgramCacheHeaderSize + binary.size());
+    std::memcpy(bytes.data(), kMagic, sizeof kMagic);
+    put32(bytes, 8, kProgramCacheFormat);
+    put32(bytes, 12, 0);
+    put64(bytes, 16, key);
+    put64(bytes, 24, binary.size());
+    put64(bytes, 32, fnv1a64_bytes(binary.data(), binary.size()));
+    if (!binary.empty())
+        std::memcpy(bytes.data() + kProgramCacheHeaderSize, binary.data(), binary.size());
+    return bytes;
+}
+
+std::optional<std::vector<unsigned char>>
+ProgramCache::decode(std::uint64_t key, const std::vector<unsigned char>& bytes,
+                     std::string& fault) {
+    if (bytes.size() < kProgramCacheHeaderSize) {
+        fault = "truncated header (" + std::to_string(bytes.size()) + " bytes)";
+        return std::nullopt;
+    }
+    if (std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0) {
+        fault = "bad magic";
+        return std::nullopt;
+    }
+    if (get32(bytes, 8) != kProgramCacheFormat) {
+        fault = "format version " + std::to_string(get32(bytes, 8)) + ", expected " +
+                std::to_string(kProgramCacheFormat);
+        return std::nullopt;
+    }
+    if (get64(bytes, 16) != key) {
+        fault = "key mismatch";
+        return std::nullopt;
+    }
+    std::uint64_t size = get64(bytes, 24);
+    if (size != bytes.size() - kProgramCacheHeaderSize) {
+        fault = "size mismatch (header says " + std::to_string(size) + " bytes, file holds " +
+                std::to_string(bytes.size() - kProgramCacheHeaderSize) + ")";
+        return std::nullopt;
+    }
+    if (size == 0) {
+        fault = "empty binary";
+        return std::nullopt;
+    }
+    const unsigned char* payload = bytes.data() + kProgramCacheHeaderSize;
+    if (fnv1a64_bytes(payload, static_cast<std::size_t>(size)) != get64(bytes, 32)) {
+        fault = "checksum mismatch";
+        return std::nullopt;
+    }
+    return std::vector<unsigned char>(payload, payload + size);
+}
+
+CacheLookup ProgramCache::load(std::uint64_t key) const {
+    CacheLookup result;
+    if (directory_.empty())
+        return result;
+    const fs::path path = entry_path(key);
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+        return result; // a plain miss
+    std::vector<unsigned char> bytes{std::istreambuf_iterator<char>(in),
+                                     std::istreambuf_iterator<char>()};
+    if (in.bad()) {
+        result.rejected = "read error";
+    } else {
+        result.binary = decode(key, bytes, result.rejected);
+        if (result.binary)
+            return result;
+    }
+    remove(key);
+    return result;
+}
+
+std::string ProgramCache::store(std::uint64_t key, const std::vector<unsigned char>& binary) const {
+    if (directory_.empty())
+        return "no cache directory (neither XDG_CACHE_HOME nor HOME is set)";
+    std::error_code ec;
+    fs::create_directories(directory_, ec);
+    if (ec)
+        return "cannot create '" + directory_.string() + "': " + ec.message();
+    return write_atomically(entry_path(key), encode(key, binary));
+}
+
+void ProgramCache::remove(std::uint64_t key) const {
+    std::error_code ec;
+    fs::remove(entry_path(key), ec); // best effort: another process may have removed it
+}
+
+} // namespace wp
