@@ -23,9 +23,13 @@ std::string flag(const char* name, bool on) {
 } // namespace
 
 std::string SceneFeatures::build_options() const {
-    return flag("WP_HAS_TRIANGLES", triangles) + " " + flag("WP_HAS_SPHERES", spheres) + " " +
-           flag("WP_HAS_DIFFUSE", diffuse) + " " + flag("WP_HAS_MIRROR", mirror) + " " +
-           flag("WP_HAS_LIGHTS", lights);
+    std::string options = flag("WP_HAS_TRIANGLES", triangles) + " " +
+                          flag("WP_HAS_SPHERES", spheres) + " " + flag("WP_HAS_DIFFUSE", diffuse) +
+                          " " + flag("WP_HAS_MIRROR", mirror) + " " + flag("WP_HAS_LIGHTS", lights);
+    if (fixed_counts)
+        options += " -D WP_TRIANGLE_COUNT=" + std::to_string(triangle_count) +
+                   " -D WP_SPHERE_COUNT=" + std::to_string(sphere_count);
+    return options;
 }
 
 std::string SceneFeatures::describe() const {
@@ -42,10 +46,12 @@ std::string SceneFeatures::describe() const {
     add(diffuse, "diffuse");
     add(mirror, "mirror");
     add(lights, "lights");
+    if (fixed_counts)
+        out += "; counts " + std::to_string(triangle_count) + "+" + std::to_string(sphere_count);
     return out;
 }
 
-SceneFeatures analyse_features(const Scene& scene) {
+SceneFeatures analyse_features(const Scene& scene, std::uint32_t max_fixed_count_primitives) {
     SceneFeatures f;
     f.triangles = !scene.triangles.empty();
     f.spheres = !scene.spheres.empty();
@@ -63,6 +69,12 @@ SceneFeatures analyse_features(const Scene& scene) {
     f.lights = false;
     for (const Triangle& t : scene.triangles)
         f.lights = f.lights || scene.materials[t.material].is_emissive();
+    const std::size_t primitives = scene.triangles.size() + scene.spheres.size();
+    f.fixed_counts = primitives <= max_fixed_count_primitives;
+    if (f.fixed_counts) {
+        f.triangle_count = static_cast<std::uint32_t>(scene.triangles.size());
+        f.sphere_count = static_cast<std::uint32_t>(scene.spheres.size());
+    }
     return f;
 }
 

@@ -2,6 +2,7 @@
 // features that decide which code the kernels are compiled with.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -10,22 +11,40 @@
 
 namespace wp {
 
+// Scenes with at most this many primitives (triangles plus spheres) get
+// kernels with the counts compiled in (see SceneFeatures::fixed_counts). The
+// limit comes from measurement on PoCL: docs/specialization.md.
+inline constexpr std::uint32_t kMaxFixedCountPrimitives = 64;
+
 // Which kinds of primitive, material and light the scene uses. Each is a
-// preprocessor switch in kernels/features.h.
+// preprocessor switch in kernels/scene_features.h.
 struct SceneFeatures {
     bool triangles = true;
     bool spheres = true;
     bool diffuse = true;
     bool mirror = true;
     bool lights = true; // emissive triangles for next-event estimation
+    // Small scenes: the primitive counts as compile-time constants
+    // (-D WP_TRIANGLE_COUNT=n -D WP_SPHERE_COUNT=m), so the traversal loops of
+    // kernels/traverse.h have fixed trip counts and unroll. A program built so
+    // is only valid for scenes with exactly these counts.
+    bool fixed_counts = false;
+    std::uint32_t triangle_count = 0;
+    std::uint32_t sphere_count = 0;
 
+    // Every feature and runtime counts: the general kernels, valid for any scene.
     static SceneFeatures all() { return {}; }
-    // The -D options that compile exactly these features, e.g. "-D WP_HAS_SPHERES=0 ...".
+    // The -D options that compile exactly these features, e.g.
+    // "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=0 ... -D WP_TRIANGLE_COUNT=26 -D WP_SPHERE_COUNT=0".
     std::string build_options() const;
-    std::string describe() const; // "triangles spheres diffuse mirror lights"
+    // "triangles spheres diffuse mirror lights", then "; counts 26+2" with fixed counts.
+    std::string describe() const;
 };
 
-SceneFeatures analyse_features(const Scene& scene);
+// The features of a scene; fixed counts when it has at most
+// `max_fixed_count_primitives` primitives (0 turns them off).
+SceneFeatures analyse_features(const Scene& scene,
+                               std::uint32_t max_fixed_count_primitives = kMaxFixedCountPrimitives);
 
 struct DeviceScene {
     std::vector<WpTriangle> triangles;

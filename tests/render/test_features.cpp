@@ -1,0 +1,223 @@
+// Scene features and specialised kernels: the build options each scene
+// gets, and that the specialised kernels (features switched off, primitive
+// counts compiled in) render exactly what the general ones render.
+#include <catch2/catch.hpp>
+
+#include <unistd.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <string>
+
+#include "render/device_scene.hpp"
+#include "scene/load.hpp"
+#include "support/render_helpers.hpp"
+#include "support/scene_builder.hpp"
+
+using namespace wp;
+
+namespace {
+
+// Programs built by this executable's tests through the default cache go to
+// a shared cache under the system temp directory, not to ~/.cache:
+// WAVEPATH_CACHE_DIR outranks XDG_CACHE_HOME. (Each ctest test is a process
+// of its own; they share the entries.)
+const bool kTestCacheDirectory = [] {
+    std::string dir = (std::filesystem::temp_directory_path() /
+                       ("wavepath-test-cache-" + std::to_string(getuid())))
+                          .string();
+    setenv("WAVEPATH_CACHE_DIR", dir.c_str(), 0);
+    return true;
+}();
+
+Scene hexroom(int size = 24) {
+    Scene scene = load_scene(std::string(WAVEPATH_SOURCE_DIR) + "/scenes/hexroom.json");
+    scene.camera.width = scene.camera.height = size;
+    return scene;
+}
+
+std::uint32_t material_named(const Scene& scene, const std::string& name) {
+    for (std::size_t i = 0; i < scene.materials.size(); ++i)
+        if (scene.materials[i].name == name)
+            return static_cast<std::uint32_t>(i);
+    FAIL("no material " << name);
+    return 0;
+}
+
+// The hexroom without its two spheres.
+Scene triangles_only() {
+    Scene scene = hexroom();
+    scene.spheres.clear();
+    return scene;
+}
+
+// The hexroom with both mirrors (wall and sphere) made diffuse.
+Scene no_mirror() {
+    Scene scene = hexroom();
+    for (const char* name : {"front_right_wall", "mirror_sphere"})
+        scene.materials[material_named(scene, name)].kind = MaterialKind::Diffuse;
+    return scene;
+}
+
+// The hexroom without its area light; the red sphere glows instead. Spheres
+// are not lights (next-event estimation samples triangles), so the scene has
+// no lights, and the sphere's light arrives by camera rays and mirrors only
+// (with next-event estimation on) or after every bounce (off).
+Scene no_light() {
+    Scene scene = hexroom();
+    const std::uint32_t light = material_named(scene, "light");
+    std::erase_if(scene.triangles, [&](const Triangle& t) { return t.material == light; });
+    scene.materials[material_named(scene, "red_sphere")].emission = glm::dvec3(20.0, 4.0, 2.0);
+    return scene;
+}
+
+// Spheres only, built in code: the camera inside a big diffuse sphere that
+// glows a little, a mirror sphere, and a glowing diffuse sphere.
+Scene spheres_only() {
+    Scene scene;
+    auto room = test::add_material(scene, MaterialKind::Diffuse, glm::dvec3(0.7), glm::dvec3(0.2));
+    auto mirror = test::add_material(scene, MaterialKind::Mirror, glm::dvec3(0.9));
+    auto glow = test::add_material(scene, MaterialKind::Diffuse, glm::dvec3(0.5, 0.2, 0.1),
+                                   glm::dvec3(5.0, 4.0, 3.0));
+    scene.spheres.push_back({{0.0, 0.0, 0.0}, 10.0, room});
+    scene.spheres.push_back({{4.0, 1.5, -1.0}, 2.0, mirror});
+    scene.spheres.push_back({{5.0, -2.0, 1.0}, 1.0, glow});
+    scene.camera = test::make_camera({-6, 0, 0}, {0, 0, 0}, {0, 0, 1}, 70.0, 24, 24);
+    return scene;
+}
+
+// More primitives than fixed counts allow: the hexroom plus a grid of small
+// triangles, so the kernels keep the runtime-count loops.
+Scene large() {
+    Scene scene = hexroom();
+    auto clutter = test::add_material(scene, MaterialKind::Diffuse, glm::dvec3(0.5));
+    for (std::uint32_t i = 0;
+         scene.triangles.size() + scene.spheres.size() <= kMaxFixedCountPrimitives; ++i) {
+        glm::dvec3 c(1.0 + (i % 8), -3.0 + 0.8 * (i / 8 % 8), -2.0 + 0.5 * (i / 64));
+        scene.triangles.push_back(
+            {{c, c + glm::dvec3(0.3, 0, 0), c + glm::dvec3(0, 0.3, 0.1)}, clutter});
+    }
+    return scene;
+}
+
+// Every float of the two images, bit for bit.
+bool same_bits(const Image& a, const Image& b) {
+    return a.width == b.width && a.height == b.height && a.rgb.size() == b.rgb.size() &&
+           std::memcmp(a.rgb.data(), b.rgb.data(), a.rgb.size() * sizeof(a.rgb[0])) == 0;
+}
+
+double image_sum(const Image& image) {
+    double sum = 0.0;
+    for (auto v : image.rgb)
+        sum += static_cast<double>(v);
+    return sum;
+}
+
+void check_specialised_equals_general(const Scene& scene, bool nee = true) {
+    IntegratorOptions specialised_options;
+    specialised_options.next_event_estimation = nee;
+    IntegratorOptions general_options = specialised_options;
+    general_options.general_kernels = true;
+
+    test::Rendered specialised = test::render(scene, 4, 7, 0, specialised_options);
+    test::Rendered general = test::render(scene, 4, 7, 0, general_options);
+
+    Image a = specialised.film.mean(), b = general.film.mean();
+    CHECK(image_sum(a) > 0.0); // not a trivially equal pair of black images
+    CHECK(same_bits(a, b));
+    CHECK(same_bits(specialised.film.variance_of_mean(), general.film.variance_of_mean()));
+    CHECK(same_bits(specialised.film.half_mean(1), general.film.half_mean(1)));
+    CHECK(specialised.stats.camera_rays == general.stats.camera_rays);
+    CHECK(specialised.stats.bounce_rays == general.stats.bounce_rays);
+    CHECK(specialised.stats.shadow_rays == general.stats.shadow_rays);
+}
+
+} // namespace
+
+TEST_CASE("features: each scene's build options are exactly the expected ones") {
+    CHECK(analyse_features(hexroom()).build_options() ==
+          "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 "
+          "-D WP_HAS_LIGHTS=1 -D WP_TRIANGLE_COUNT=26 -D WP_SPHERE_COUNT=2");
+    CHECK(analyse_features(triangles_only()).build_options() ==
+          "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=0 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 "
+          "-D WP_HAS_LIGHTS=1 -D WP_TRIANGLE_COUNT=26 -D WP_SPHERE_COUNT=0");
+    CHECK(analyse_features(spheres_only()).build_options() ==
+          "-D WP_HAS_TRIANGLES=0 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 "
+          "-D WP_HAS_LIGHTS=0 -D WP_TRIANGLE_COUNT=0 -D WP_SPHERE_COUNT=3");
+    CHECK(analyse_features(no_mirror()).build_options() ==
+          "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=0 "
+          "-D WP_HAS_LIGHTS=1 -D WP_TRIANGLE_COUNT=26 -D WP_SPHERE_COUNT=2");
+    CHECK(analyse_features(no_light()).build_options() ==
+          "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 "
+          "-D WP_HAS_LIGHTS=0 -D WP_TRIANGLE_COUNT=24 -D WP_SPHERE_COUNT=2");
+    CHECK(analyse_features(large()).build_options() ==
+          "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 "
+          "-D WP_HAS_LIGHTS=1");
+    // The general kernels: every feature, runtime counts.
+    CHECK(SceneFeatures::all().build_options() ==
+          "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 "
+          "-D WP_HAS_LIGHTS=1");
+}
+
+TEST_CASE("features: fixed counts stop at the limit, and 0 turns them off") {
+    Scene scene = hexroom();
+    const std::uint32_t primitives =
+        static_cast<std::uint32_t>(scene.triangles.size() + scene.spheres.size());
+    CHECK(analyse_features(scene, primitives).fixed_counts);
+    CHECK_FALSE(analyse_features(scene, primitives - 1).fixed_counts);
+    CHECK_FALSE(analyse_features(scene, 0).fixed_counts);
+    SceneFeatures runtime = analyse_features(scene, 0);
+    CHECK(runtime.triangle_count == 0);
+    CHECK(runtime.build_options().find("COUNT") == std::string::npos);
+    CHECK(analyse_features(large()).fixed_counts == false);
+}
+
+TEST_CASE("features: describe() names the features and the compiled-in counts") {
+    CHECK(analyse_features(hexroom()).describe() ==
+          "triangles spheres diffuse mirror lights; counts 26+2");
+    CHECK(analyse_features(spheres_only()).describe() == "spheres diffuse mirror; counts 0+3");
+    CHECK(analyse_features(large()).describe() == "triangles spheres diffuse mirror lights");
+    CHECK(SceneFeatures::all().describe() == "triangles spheres diffuse mirror lights");
+}
+
+// The program's options begin with the features' (estimator options may follow).
+bool starts_with_features(const std::string& options, const SceneFeatures& features) {
+    const std::string expected = features.build_options();
+    return options == expected || options.rfind(expected + " ", 0) == 0;
+}
+
+TEST_CASE("features: the integrator compiles the scene's options, or the general ones") {
+    Scene scene = triangles_only();
+    WavefrontIntegrator specialised(test::device(), scene, IntegratorOptions{});
+    CHECK(starts_with_features(specialised.program().options, analyse_features(scene)));
+    CHECK(specialised.features().build_options() == analyse_features(scene).build_options());
+    IntegratorOptions general_options;
+    general_options.general_kernels = true;
+    WavefrontIntegrator general(test::device(), scene, general_options);
+    CHECK(starts_with_features(general.program().options, SceneFeatures::all()));
+}
+
+TEST_CASE("features: specialised and general kernels render bit-identical images") {
+    SECTION("hexroom") {
+        check_specialised_equals_general(hexroom());
+    }
+    SECTION("triangles only") {
+        check_specialised_equals_general(triangles_only());
+    }
+    SECTION("spheres only") {
+        check_specialised_equals_general(spheres_only());
+    }
+    SECTION("no mirror") {
+        check_specialised_equals_general(no_mirror());
+    }
+    SECTION("no light, next-event estimation on") {
+        check_specialised_equals_general(no_light());
+    }
+    SECTION("no light, next-event estimation off") {
+        check_specialised_equals_general(no_light(), false);
+    }
+    SECTION("more primitives than fixed counts allow") {
+        check_specialised_equals_general(large());
+    }
+}
