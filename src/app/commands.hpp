@@ -72,6 +72,18 @@ CLI::App* add_compare_subcommand(CLI::App& app, CompareCommand& command);
 int run_converge(const ConvergeCommand& command);
 int run_compare(const CompareCommand& command);
 
+// `wavepath info` (info.cpp): a scene's counts, features, build options and
+// build times (docs/specialization.md).
+struct InfoCommand {
+    std::string scene;
+    std::string device;
+    bool general = false;
+};
+CLI::App* add_info_subcommand(CLI::App& app, InfoCommand& command);
+int run_info(const InfoCommand& command);
+// Adds --no-cache to a subcommand: it sets WAVEPATH_NO_CACHE=1 (info.cpp).
+void add_no_cache_flag(CLI::App* subcommand);
+
 int run_devices();
 int run_bench(const BenchCommand& command);
 int run_render(const RenderCommand& command);

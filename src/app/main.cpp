@@ -90,6 +90,9 @@ int main(int argc, char** argv) {
     wp::CompareCommand compare;
     CLI::App* converge_app = wp::add_converge_subcommand(app, converge);
     CLI::App* compare_app = wp::add_compare_subcommand(app, compare);
+    wp::InfoCommand info;
+    CLI::App* info_app = wp::add_info_subcommand(app, info);
+    wp::add_no_cache_flag(r);
 
     try {
         app.parse(argc, argv);
@@ -110,6 +113,8 @@ int main(int argc, char** argv) {
             return wp::run_converge(converge);
         if (compare_app->parsed())
             return wp::run_compare(compare);
+        if (info_app->parsed())
+            return wp::run_info(info);
         return wp::run_render(render);
     } catch (const wp::BuildError& e) {
         std::cerr << e.log() << "\nwavepath: error: " << e.what() << "\n";

@@ -1,0 +1,307 @@
+// `wavepath info`: what a scene contains, which kernels it gets, and what
+// building them costs (docs/specialization.md).
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <glm/geometric.hpp>
+
+#include "app/commands.hpp"
+#include "cl/context.hpp"
+#include "cl/device.hpp"
+#include "cl/error.hpp"
+#include "cl/program.hpp"
+#include "render/device_scene.hpp"
+#include "render/wavefront.hpp"
+#include "scene/load.hpp"
+
+namespace wp {
+namespace {
+
+const char* const kStages[] = {"generate", "intersect", "shade", "shadow", "accumulate"};
+
+// Launches use this work-group size, as the integrator's do, so that a driver
+// that compiles per work-group size (PoCL) compiles what a render will use.
+constexpr std::size_t kLaunchGroup = 64;
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::string format_seconds(double s) {
+    char text[32];
+    std::snprintf(text, sizeof text, s < 0.1 ? "%.4f s" : "%.3f s", s);
+    return text;
+}
+
+std::string format_bytes(std::uint64_t bytes) {
+    return std::to_string(bytes) + " B";
+}
+
+// What the driver reports of one kernel, and how long its first launch took.
+struct KernelReport {
+    std::string name;
+    double first_launch = -1.0; // < 0: could not be launched (see why)
+    std::string why;
+    std::size_t work_group_size = 0;
+    std::size_t preferred_multiple = 0;
+    std::uint64_t private_bytes = 0;
+    std::uint64_t local_bytes = 0;
+    bool have_attributes = false;
+};
+
+// How to fill each argument of a kernel for a launch that does no work.
+enum class ArgumentKind { Buffer, Local, Frame, Scalar };
+
+// The argument kinds of a kernel from its argument info (which needs a
+// program built with -cl-kernel-arg-info); empty with `why` set if unknown.
+std::vector<ArgumentKind> argument_kinds(const cl::Kernel& kernel, std::string& why) {
+    std::vector<ArgumentKind> kinds;
+    cl_uint arguments = kernel.getInfo<CL_KERNEL_NUM_ARGS>();
+    for (cl_uint i = 0; i < arguments; ++i) {
+        cl_kernel_arg_address_qualifier space = 0;
+        std::string type;
+        try {
+            space = kernel.getArgInfo<CL_KERNEL_ARG_ADDRESS_QUALIFIER>(i);
+            type = kernel.getArgInfo<CL_KERNEL_ARG_TYPE_NAME>(i);
+        } catch (const cl::Error&) {
+            why = "the driver gives no argument types";
+            return {};
+        }
+        type.erase(std::find(type.begin(), type.end(), '\0'), type.end());
+        if (space == CL_KERNEL_ARG_ADDRESS_GLOBAL || space == CL_KERNEL_ARG_ADDRESS_CONSTANT)
+            kinds.push_back(ArgumentKind::Buffer);
+        else if (space == CL_KERNEL_ARG_ADDRESS_LOCAL)
+            kinds.push_back(ArgumentKind::Local);
+        else if (type == "WpFrame")
+            kinds.push_back(ArgumentKind::Frame);
+        else if (type == "uint" || type == "wp_uint" || type == "int" || type == "float")
+            kinds.push_back(ArgumentKind::Scalar);
+        else {
+            why = "argument " + std::to_string(i) + " has type '" + type + "'";
+            return {};
+        }
+    }
+    return kinds;
+}
+
+// Times one launch of `kernel` that does no work: every buffer argument is a
+// zero-filled dummy and every scalar or struct argument zero, and the
+// wavefront kernels return at once when their item count is zero. The time
+// is then the driver's deferred compilation, if it has one (PoCL compiles
+// each kernel for its work-group size when first launched).
+double time_empty_launch(DeviceContext& device, cl::Kernel& kernel,
+                         const std::vector<ArgumentKind>& kinds) {
+    static const std::vector<unsigned char> zeros(4096, 0);
+    cl::Buffer dummy(device.context, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, zeros.size(),
+                     const_cast<unsigned char*>(zeros.data()));
+    for (cl_uint i = 0; i < kinds.size(); ++i) {
+        switch (kinds[i]) {
+        case ArgumentKind::Buffer:
+            kernel.setArg(i, dummy);
+            break;
+        case ArgumentKind::Local:
+            kernel.setArg(i, cl::Local(16));
+            break;
+        case ArgumentKind::Frame:
+            kernel.setArg(i, sizeof(WpFrame), zeros.data());
+            break;
+        case ArgumentKind::Scalar:
+            kernel.setArg(i, 4, zeros.data());
+            break;
+        }
+    }
+    std::size_t group = std::min(kLaunchGroup, device.info.max_work_group_size);
+    device.queue.finish();
+    auto start = std::chrono::steady_clock::now();
+    device.queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(group),
+                                      cl::NDRange(group));
+    device.queue.finish();
+    return seconds_since(start);
+}
+
+// Attributes and first-launch time of every stage of `program`; `arguments`
+// holds each stage's argument kinds (from a program with argument info).
+std::vector<KernelReport> report_kernels(DeviceContext& device, const cl::Program& program,
+                                         const std::vector<std::vector<ArgumentKind>>& arguments,
+                                         const std::vector<std::string>& unknown) {
+    std::vector<KernelReport> reports;
+    for (std::size_t k = 0; k < std::size(kStages); ++k) {
+        KernelReport r;
+        r.name = kStages[k];
+        cl::Kernel kernel(program, kStages[k]);
+        const cl::Device& d = device.info.device;
+        try {
+            r.work_group_size = kernel.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(d);
+            r.preferred_multiple =
+                kernel.getWorkGroupInfo<CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE>(d);
+            r.private_bytes = kernel.getWorkGroupInfo<CL_KERNEL_PRIVATE_MEM_SIZE>(d);
+            r.local_bytes = kernel.getWorkGroupInfo<CL_KERNEL_LOCAL_MEM_SIZE>(d);
+            r.have_attributes = true;
+        } catch (const cl::Error&) {
+        }
+        r.why = unknown[k];
+        if (r.why.empty()) {
+            try {
+                r.first_launch = time_empty_launch(device, kernel, arguments[k]);
+            } catch (const cl::Error& e) {
+                r.why = describe_cl_error(e);
+            }
+        }
+        reports.push_back(r);
+    }
+    return reports;
+}
+
+double triangle_area(const Triangle& t) {
+    return 0.5 * glm::length(glm::cross(t.v[1] - t.v[0], t.v[2] - t.v[0]));
+}
+
+void print_scene(const std::string& path, const Scene& scene) {
+    std::size_t kinds[3] = {0, 0, 0}, emissive_materials = 0;
+    for (const Material& m : scene.materials) {
+        std::size_t kind = static_cast<std::size_t>(m.kind);
+        if (kind < 3)
+            ++kinds[kind];
+        emissive_materials += m.is_emissive();
+    }
+    std::size_t emissive = 0;
+    double light_area = 0.0;
+    for (const Triangle& t : scene.triangles)
+        if (scene.materials[t.material].is_emissive()) {
+            ++emissive;
+            light_area += triangle_area(t);
+        }
+    std::printf("scene: %s\n", path.c_str());
+    std::printf("  primitives: %zu triangles, %zu spheres\n", scene.triangles.size(),
+                scene.spheres.size());
+    std::printf("  materials: %zu (%zu diffuse, %zu mirror, %zu emitter; %zu emissive)\n",
+                scene.materials.size(), kinds[0], kinds[1], kinds[2], emissive_materials);
+    std::printf("  lights: %zu emissive triangles, total area %.6g\n", emissive, light_area);
+    std::printf("  camera: %dx%d\n", scene.camera.width, scene.camera.height);
+    for (const std::string& warning : scene.warnings)
+        std::printf("  warning: %s\n", warning.c_str());
+}
+
+} // namespace
+
+void add_no_cache_flag(CLI::App* subcommand) {
+    subcommand->add_flag_callback(
+        "--no-cache", [] { setenv("WAVEPATH_NO_CACHE", "1", 1); },
+        "Build the kernels from source; neither read nor write the program cache "
+        "(~/.cache/wavepath; same as WAVEPATH_NO_CACHE=1)");
+}
+
+CLI::App* add_info_subcommand(CLI::App& app, InfoCommand& command) {
+    CLI::App* i = app.add_subcommand(
+        "info", "Print a scene's counts, its kernel features and build options, each build's "
+                "time cold and cached, and what the driver reports of each kernel");
+    i->add_option("scene", command.scene, "Scene file (JSON)")->required();
+    i->add_option("--device,-d", command.device, "OpenCL device (as for render)");
+    i->add_flag("--general", command.general,
+                "Report the all-features kernels instead of the scene's specialised ones");
+    add_no_cache_flag(i);
+    return i;
+}
+
+int run_info(const InfoCommand& command) {
+    Scene scene = load_scene(command.scene);
+    print_scene(command.scene, scene);
+
+    DeviceContext device(select_device(command.device));
+    std::printf("device: %s (%s, driver %s)\n", device.info.name.c_str(),
+                device.info.platform_name.c_str(), device.info.driver_version.c_str());
+
+    SceneFeatures features = analyse_features(scene);
+    std::printf("features: %s\n", features.describe().c_str());
+    if (!features.fixed_counts)
+        std::printf("  (runtime counts: more than %u primitives)\n", kMaxFixedCountPrimitives);
+
+    // The program exactly as a render builds it (a tiny image: the options do
+    // not depend on the resolution), through the cache unless it is off.
+    scene.camera.width = scene.camera.height = 8;
+    IntegratorOptions options;
+    options.general_kernels = command.general;
+    WavefrontIntegrator integrator(device, scene, options);
+    const BuiltProgram& built = integrator.program();
+    std::printf("kernels: %s\n", command.general ? "general (--general)" : "specialised");
+    std::printf("build options: %s\n", built.options.c_str());
+
+    const CachePolicy cache = CachePolicy::from_environment();
+    std::printf("program build (the five kernels are one program):\n");
+    std::printf("  this run: %s, cache %s%s%s\n", format_seconds(built.build_seconds).c_str(),
+                cache_outcome_name(built.cache), built.cache_file.empty() ? "" : ", ",
+                built.cache_file.c_str());
+    if (!built.cache_note.empty())
+        std::printf("  cache note: %s\n", built.cache_note.c_str());
+
+    // Cold: from source with a define no earlier build had, so that no cache
+    // (wavepath's or the driver's) can serve it; with argument info, which
+    // the empty launches below need.
+    std::random_device entropy;
+    const std::string cold_options =
+        built.options + " -cl-kernel-arg-info -D WP_INFO_COLD_BUILD=" + std::to_string(entropy());
+    BuiltProgram cold = build_wavefront_program(device.context, device.info.device, cold_options,
+                                                CachePolicy::off());
+    std::printf("  cold (from source, no cache can serve it): %s\n",
+                format_seconds(cold.build_seconds).c_str());
+
+    BuiltProgram cached;
+    bool have_cached = false;
+    if (cache.enabled) {
+        cached = build_wavefront_program(device.context, device.info.device, built.options, cache);
+        have_cached = cached.cache_hit;
+        if (have_cached)
+            std::printf("  cached (loaded from the wavepath cache): %s\n",
+                        format_seconds(cached.build_seconds).c_str());
+        else
+            std::printf("  cached: not available (%s)\n",
+                        cached.cache_note.empty() ? "entry not stored" : cached.cache_note.c_str());
+    } else {
+        std::printf("  cached: the program cache is off (--no-cache or WAVEPATH_NO_CACHE)\n");
+    }
+
+    std::vector<std::vector<ArgumentKind>> arguments;
+    std::vector<std::string> unknown;
+    for (const char* name : kStages) {
+        std::string why;
+        arguments.push_back(argument_kinds(cl::Kernel(cold.program, name), why));
+        unknown.push_back(why);
+    }
+    std::vector<KernelReport> cold_kernels =
+        report_kernels(device, cold.program, arguments, unknown);
+    std::vector<KernelReport> cached_kernels =
+        report_kernels(device, have_cached ? cached.program : built.program, arguments, unknown);
+    std::printf("per kernel (first launch: the driver's deferred compile, if any, for "
+                "work-groups of %zu;\n  the second column is the program above, whose "
+                "kernels the driver may have cached):\n",
+                std::min(kLaunchGroup, device.info.max_work_group_size));
+    std::printf("  %-11s %13s %13s %10s %9s %12s %10s\n", "kernel", "launch cold",
+                have_cached ? "launch cached" : "launch again", "wg size", "multiple",
+                "private mem", "local mem");
+    for (std::size_t k = 0; k < cold_kernels.size(); ++k) {
+        const KernelReport& c = cold_kernels[k];
+        const KernelReport& h = cached_kernels[k];
+        auto launch = [](const KernelReport& r) {
+            return r.first_launch < 0.0 ? std::string("n/a") : format_seconds(r.first_launch);
+        };
+        if (h.have_attributes)
+            std::printf("  %-11s %13s %13s %10zu %9zu %12s %10s\n", c.name.c_str(),
+                        launch(c).c_str(), launch(h).c_str(), h.work_group_size,
+                        h.preferred_multiple, format_bytes(h.private_bytes).c_str(),
+                        format_bytes(h.local_bytes).c_str());
+        else
+            std::printf("  %-11s %13s %13s %10s %9s %12s %10s\n", c.name.c_str(), launch(c).c_str(),
+                        launch(h).c_str(), "n/a", "n/a", "n/a", "n/a");
+        if (!c.why.empty())
+            std::printf("    (%s not launched: %s)\n", c.name.c_str(), c.why.c_str());
+    }
+    return 0;
+}
+
+} // namespace wp
