@@ -46,6 +46,11 @@
 #ifndef WP_NAIVE_OFFSET
 #define WP_NAIVE_OFFSET 0
 #endif
+/* How far outside the box of a triangle's projected corners a ray may pass
+ * and still hit it, relative to the corners' distance from the ray origin:
+ * about 8 float ulps, above the rounding of the sheared coordinates. */
+#define WP_SLIVER_GUARD_RELATIVE 1.0e-6f
+
 /* The naive variant's fixed offset: a typical "shadow epsilon". */
 #define WP_NAIVE_OFFSET_EPSILON 1.0e-4f
 
@@ -124,25 +129,27 @@ static inline int wp_intersect_triangle(const WpShearedRay* ray, float3 p0, floa
      * triangle computes its barycentrics from its own edge vectors, so two
      * triangles sharing an edge round differently and a ray through the
      * edge can miss both. */
-    float3 e1 = p1 - p0, e2 = p2 - p0;
-    float3 pv = cross(ray->direction, e2);
-    float det = dot(e1, pv);
-    if (det == 0.0f)
-        return 0;
-    float inv_det = 1.0f / det;
-    float3 s = ray->origin - p0;
-    float bu = dot(s, pv) * inv_det;
-    if (bu < 0.0f || bu > 1.0f)
-        return 0;
-    float3 qv = cross(s, e1);
-    float bv = dot(ray->direction, qv) * inv_det;
-    if (bv < 0.0f || bu + bv > 1.0f)
-        return 0;
-    float naive_t = dot(e2, qv) * inv_det;
-    if (!(naive_t > 0.0f && naive_t < t_max))
-        return 0;
-    *t = naive_t;
-    return 1;
+    {
+        float3 e1 = p1 - p0, e2 = p2 - p0;
+        float3 pv = cross(ray->direction, e2);
+        float det = dot(e1, pv);
+        if (det == 0.0f)
+            return 0;
+        float inv_det = 1.0f / det;
+        float3 s = ray->origin - p0;
+        float bu = dot(s, pv) * inv_det;
+        if (bu < 0.0f || bu > 1.0f)
+            return 0;
+        float3 qv = cross(s, e1);
+        float bv = dot(ray->direction, qv) * inv_det;
+        if (bv < 0.0f || bu + bv > 1.0f)
+            return 0;
+        float naive_t = dot(e2, qv) * inv_det;
+        if (!(naive_t > 0.0f && naive_t < t_max))
+            return 0;
+        *t = naive_t;
+        return 1;
+    }
 #endif
     float3 a = p0 - ray->origin;
     float3 b = p1 - ray->origin;
@@ -160,6 +167,20 @@ static inline int wp_intersect_triangle(const WpShearedRay* ray, float3 p0, floa
     float w = bx * ay - by * ax; /* edge p0-p1 */
     if ((u < 0.0f || v < 0.0f || w < 0.0f) && (u > 0.0f || v > 0.0f || w > 0.0f))
         return 0;
+    /* A ray within about 1e-7 rad of the triangle's plane sees it as a sliver
+     * thinner than the rounding of the sheared corners, and the edge values'
+     * signs become noise: they could accept a ray passing far beside the
+     * triangle (docs/stability.md, case 10). The ray's point (0, 0) must at
+     * least lie in the box of the three projected corners, widened by their
+     * rounding. A point the exact edge tests would accept always does, so
+     * this rejects only wrong decisions, and it keeps the test watertight:
+     * a ray through a shared edge or vertex lies in both triangles' boxes. */
+    float slack =
+        WP_SLIVER_GUARD_RELATIVE *
+        fmax(fmax(wp_max_abs_component(a), wp_max_abs_component(b)), wp_max_abs_component(c));
+    if (fmin(fmin(ax, bx), cx) > slack || fmax(fmax(ax, bx), cx) < -slack ||
+        fmin(fmin(ay, by), cy) > slack || fmax(fmax(ay, by), cy) < -slack)
+        return 0;
     float det = u + v + w;
     if (det == 0.0f)
         return 0; /* the ray lies in the triangle's plane */
@@ -170,6 +191,50 @@ static inline int wp_intersect_triangle(const WpShearedRay* ray, float3 p0, floa
         return 0;
     *t = T / det;
     return 1;
+}
+
+/* Error-free transformations: a - b == s + *err exactly (Knuth's TwoSum,
+ * valid for any rounding-to-nearest floats, hence FP_CONTRACT OFF), and
+ * a * b == p + *err exactly (the FMA gives the product's rounding error). */
+static inline float3 wp_two_diff3(float3 a, float3 b, float3* err) {
+    float3 s = a - b;
+    float3 bb = s - a;
+    *err = (a - (s - bb)) - (b + bb);
+    return s;
+}
+
+static inline float wp_two_sum(float a, float b, float* err) {
+    float s = a + b;
+    float bb = s - a;
+    *err = (a - (s - bb)) + (b - bb);
+    return s;
+}
+
+static inline float wp_two_product(float a, float b, float* err) {
+    float p = a * b;
+    *err = fma(a, b, -p);
+    return p;
+}
+
+/* c = |f + f_error|^2 - r^2 to nearly full float precision, even when |f|^2
+ * and r^2 agree in most of their digits (the ray starts close to a sphere
+ * much bigger than the distance, as on a planet-sized ground). The squares
+ * are split exactly into value + rounding error and summed with
+ * compensation; the plain dot(f, f) - r * r would keep only the absolute
+ * precision of |f|^2 (8 for a radius of 1e4, against c = 3.4e4 at 1.7 above
+ * that ground: a 2e-4 error in t). */
+static inline float wp_sphere_c(float3 f, float3 f_error, float radius) {
+    float ex, ey, ez, er, s1, s2, s3;
+    float px = wp_two_product(f.x, f.x, &ex);
+    float py = wp_two_product(f.y, f.y, &ey);
+    float pz = wp_two_product(f.z, f.z, &ez);
+    float rr = wp_two_product(radius, radius, &er);
+    float sum = wp_two_sum(px, py, &s1);
+    sum = wp_two_sum(sum, pz, &s2);
+    sum = wp_two_sum(sum, -rr, &s3);
+    /* The small terms: compensations, product errors, 2 f.f_error + |f_error|^2. */
+    float small = ((s1 + s2) + s3) + ((ex + ey) + (ez - er)) + dot(f + f + f_error, f_error);
+    return sum + small;
 }
 
 /* Returns 1 and sets *t if the ray hits the sphere at 0 < t < t_max. */
@@ -197,19 +262,34 @@ static inline int wp_intersect_sphere(float3 origin, float3 direction, float4 ce
         return 1;
     }
 #endif
-    float3 f = origin - center_radius.xyz;
     float radius = center_radius.w;
+    /* f = origin - centre, kept exactly as f + f_error: for a ray starting
+     * near a big sphere (a radius-1e4 ground seen from 1.7 above it), the
+     * rounding of f alone would move the surface by 5e-4. */
+    float3 f_error;
+    float3 f = wp_two_diff3(origin, center_radius.xyz, &f_error);
     float a = dot(direction, direction);
-    float half_b = dot(f, direction);
-    /* Perpendicular offset of the centre from the ray line: no cancellation
-     * between b^2 and 4ac when the sphere is small or far. */
-    float3 perpendicular = f - (half_b / a) * direction;
-    float l = length(perpendicular);
-    float discriminant = a * (radius - l) * (radius + l);
+    float half_b = dot(f, direction) + dot(f_error, direction);
+    float c = wp_sphere_c(f, f_error, radius);
+    /* The discriminant half_b^2 - a c, whichever way rounds less:
+     *  - from the perpendicular offset l of the centre from the ray line,
+     *    a (r - l)(r + l): l's error is a few ulps of |f|, so this one
+     *    suits a small or far sphere, where half_b^2 and a c agree in every
+     *    float digit and the direct form cancels completely;
+     *  - directly, with the accurate c: its error is a few ulps of
+     *    half_b^2 + a |c|, far less than the other's (about r |f|) when the
+     *    ray starts near a big sphere, where c is small. */
+    float discriminant;
+    if (half_b * half_b + a * fabs(c) < 2.0f * a * radius * (fabs(f.x) + fabs(f.y) + fabs(f.z))) {
+        discriminant = half_b * half_b - a * c;
+    } else {
+        float3 perpendicular = (f - (half_b / a) * direction) + f_error;
+        float l = length(perpendicular);
+        discriminant = a * (radius - l) * (radius + l);
+    }
     if (discriminant < 0.0f)
         return 0;
     float q = -(half_b + copysign(sqrt(discriminant), half_b));
-    float c = dot(f, f) - radius * radius;
     float t_far = q / a;
     float t_near = (q != 0.0f) ? c / q : t_far;
     if (t_near > t_far) {
