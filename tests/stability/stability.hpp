@@ -1,0 +1,369 @@
+// Shared helpers of the stability suite (docs/stability.md): loading the stress
+// scenes, comparing renders within noise, small OpenCL test kernels that call
+// the intersection code of kernels/geometry.h and kernels/traverse.h directly,
+// and double-precision reference intersections.
+#pragma once
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "cl/cl.hpp"
+#include "cl/program.hpp"
+#include "scene/load.hpp"
+#include "support/render_helpers.hpp"
+#include "support/scene_builder.hpp"
+#include "support/test_device.hpp"
+#include "wp_shared.h"
+
+namespace wp::stability {
+
+// "Within noise" (specs/stability.md): under five standard errors.
+constexpr double kSigmas = 5.0;
+
+inline std::string stress_path(const std::string& name) {
+    return std::string(WAVEPATH_SOURCE_DIR) + "/scenes/stress/" + name + ".json";
+}
+
+inline Scene stress_scene(const std::string& name, int width = 0, int height = 0) {
+    Scene scene = load_scene(stress_path(name));
+    if (width > 0) {
+        scene.camera.width = width;
+        scene.camera.height = height > 0 ? height : width;
+    }
+    return scene;
+}
+
+inline Scene hexroom(int size) {
+    Scene scene = load_scene(std::string(WAVEPATH_SOURCE_DIR) + "/scenes/hexroom.json");
+    scene.camera.width = size;
+    scene.camera.height = size;
+    return scene;
+}
+
+// Every point mapped to s * p + offset, every radius times s; the camera too.
+inline Scene transformed(Scene scene, double s, glm::dvec3 offset = glm::dvec3(0.0)) {
+    scene.camera.eye = s * scene.camera.eye + offset;
+    scene.camera.look_at = s * scene.camera.look_at + offset;
+    for (Triangle& t : scene.triangles)
+        for (glm::dvec3& v : t.v)
+            v = s * v + offset;
+    for (Sphere& sp : scene.spheres) {
+        sp.center = s * sp.center + offset;
+        sp.radius *= s;
+    }
+    return scene;
+}
+
+inline double seconds_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Every value of the estimate is finite (and the film saw no non-finite sample).
+inline bool all_finite(const test::Rendered& r) {
+    Image mean = r.film.mean();
+    Image variance = r.film.variance_of_mean();
+    for (std::size_t i = 0; i < mean.rgb.size(); ++i)
+        if (!std::isfinite(mean.rgb[i]) || !std::isfinite(variance.rgb[i]))
+            return false;
+    return r.stats.nonfinite_samples == 0;
+}
+
+// Mean and standard error of channel c over the pixel rectangle [x0, x1) x [y0, y1).
+inline test::MeanWithError region_mean(const Film& film, int channel, int x0, int y0, int x1,
+                                       int y1) {
+    Image mean = film.mean();
+    Image variance = film.variance_of_mean();
+    double sum = 0.0, var = 0.0;
+    int n = 0;
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) {
+            std::size_t p = static_cast<std::size_t>(y) * film.width() + x;
+            sum += mean.rgb[p * 3 + channel];
+            var += variance.rgb[p * 3 + channel];
+            ++n;
+        }
+    return {sum / n, std::sqrt(var) / n};
+}
+
+// Two renders of the same image compared block by block and channel by
+// channel: each block mean of `a` against `b`, in units of their combined
+// standard error.
+struct BlockComparison {
+    int blocks = 0;  // block-channel comparisons
+    int outside = 0; // over kSigmas
+    double worst_sigmas = 0.0;
+    double mean_sigmas = 0.0; // of |difference| / sigma
+    double largest_relative_sigma = 0.0;
+    std::string worst_where;
+};
+
+inline BlockComparison compare_blocks(const Film& a, const Film& b, int block) {
+    REQUIRE(a.width() == b.width());
+    REQUIRE(a.height() == b.height());
+    BlockComparison out;
+    double total = 0.0;
+    for (int y0 = 0; y0 + block <= a.height(); y0 += block)
+        for (int x0 = 0; x0 + block <= a.width(); x0 += block)
+            for (int c = 0; c < 3; ++c) {
+                test::MeanWithError ma = region_mean(a, c, x0, y0, x0 + block, y0 + block);
+                test::MeanWithError mb = region_mean(b, c, x0, y0, x0 + block, y0 + block);
+                double sigma = std::hypot(ma.standard_error, mb.standard_error);
+                double d = std::abs(ma.mean - mb.mean);
+                double s = sigma > 0.0 ? d / sigma : (d == 0.0 ? 0.0 : INFINITY);
+                ++out.blocks;
+                total += s;
+                if (s > kSigmas)
+                    ++out.outside;
+                if (ma.mean > 0.0)
+                    out.largest_relative_sigma =
+                        std::max(out.largest_relative_sigma, sigma / ma.mean);
+                if (s > out.worst_sigmas) {
+                    out.worst_sigmas = s;
+                    out.worst_where = "block (" + std::to_string(x0) + ", " + std::to_string(y0) +
+                                      ") channel " + std::to_string(c) + ": " +
+                                      std::to_string(ma.mean) + " vs " + std::to_string(mb.mean) +
+                                      " +- " + std::to_string(sigma);
+                }
+            }
+    out.mean_sigmas = total / std::max(1, out.blocks);
+    return out;
+}
+
+// Whole-image mean per channel, difference in combined standard errors.
+inline double image_mean_sigmas(const Film& a, const Film& b, int channel) {
+    test::MeanWithError ma = test::image_mean(a, channel), mb = test::image_mean(b, channel);
+    return std::abs(ma.mean - mb.mean) / std::hypot(ma.standard_error, mb.standard_error);
+}
+
+// ---------------------------------------------------------------- OpenCL
+
+// Builds a test kernel's source (which may include the embedded kernel
+// headers, e.g. "traverse.h") once per executable and option string.
+inline const cl::Program& test_program(const std::string& source, const std::string& name,
+                                       const std::string& options = "") {
+    static std::map<std::string, cl::Program> cache;
+    const std::string key = name + '\n' + options + '\n' + source;
+    auto found = cache.find(key);
+    if (found != cache.end())
+        return found->second;
+    try {
+        BuiltProgram built = build_program(test::device().context, test::device().info.device,
+                                           source, name, options);
+        return cache.emplace(key, built.program).first->second;
+    } catch (const BuildError& error) {
+        FAIL(error.what() << '\n' << error.log());
+        throw;
+    }
+}
+
+template <typename T> cl::Buffer upload(const std::vector<T>& data) {
+    std::vector<T> padded = data.empty() ? std::vector<T>(1) : data;
+    return cl::Buffer(test::device().context, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR,
+                      sizeof(T) * padded.size(), padded.data());
+}
+
+template <typename T> std::vector<T> download(const cl::Buffer& buffer, std::size_t count) {
+    std::vector<T> out(count);
+    if (count > 0)
+        test::device().queue.enqueueReadBuffer(buffer, CL_TRUE, 0, sizeof(T) * count, out.data());
+    return out;
+}
+
+constexpr std::size_t kLocalSize = 64;
+
+inline void launch(cl::Kernel& kernel, std::size_t items) {
+    std::size_t global =
+        std::max<std::size_t>(1, (items + kLocalSize - 1) / kLocalSize) * kLocalSize;
+    test::device().queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global),
+                                              cl::NDRange(kLocalSize));
+    test::device().queue.finish();
+}
+
+template <typename... Args> void set_args(cl::Kernel& kernel, const Args&... args) {
+    cl_uint index = 0;
+    (kernel.setArg(index++, args), ...);
+}
+
+// ---------------------------------------------------------------- double references
+
+struct D3 {
+    double x = 0.0, y = 0.0, z = 0.0;
+    D3() = default;
+    D3(double x_, double y_, double z_) : x(x_), y(y_), z(z_) {}
+    explicit D3(const cl_float4& v) : x(v.s[0]), y(v.s[1]), z(v.s[2]) {}
+    D3 operator+(const D3& o) const { return {x + o.x, y + o.y, z + o.z}; }
+    D3 operator-(const D3& o) const { return {x - o.x, y - o.y, z - o.z}; }
+    D3 operator*(double s) const { return {x * s, y * s, z * s}; }
+    D3 operator/(double s) const { return {x / s, y / s, z / s}; }
+    double operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
+};
+inline D3 operator*(double s, const D3& v) {
+    return v * s;
+}
+inline double dot(const D3& a, const D3& b) {
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+inline D3 cross(const D3& a, const D3& b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+inline double length(const D3& v) {
+    return std::sqrt(dot(v, v));
+}
+inline D3 normalize(const D3& v) {
+    return v / length(v);
+}
+inline double max_abs(const D3& v) {
+    return std::max(std::fabs(v.x), std::max(std::fabs(v.y), std::fabs(v.z)));
+}
+inline D3 from_glm(const glm::dvec3& v) {
+    return {v.x, v.y, v.z};
+}
+
+inline cl_float4 to_float4(const D3& v, double w = 0.0) {
+    cl_float4 r;
+    r.s[0] = static_cast<float>(v.x);
+    r.s[1] = static_cast<float>(v.y);
+    r.s[2] = static_cast<float>(v.z);
+    r.s[3] = static_cast<float>(w);
+    return r;
+}
+
+// The value a double vector takes once rounded to float, back in double.
+inline D3 rounded(const D3& v) {
+    return D3(to_float4(v));
+}
+
+// Ray/triangle in double, both faces: the ray parameter t where the line
+// meets the plane, and the barycentric coordinates (b0, b1, b2) of that point
+// (the triangle holds it when all three are >= 0). Returns false for a ray
+// parallel to the plane.
+struct PlaneHit {
+    double t = 0.0;
+    double b[3] = {0.0, 0.0, 0.0};
+    double min_barycentric() const { return std::min(b[0], std::min(b[1], b[2])); }
+};
+
+inline bool plane_hit(const D3& o, const D3& d, const D3& v0, const D3& v1, const D3& v2,
+                      PlaneHit* out) {
+    // long double: the references must be far more precise than float, and
+    // grazing rays stress even double's cancellation.
+    using L = long double;
+    L e1[3] = {L(v1.x) - v0.x, L(v1.y) - v0.y, L(v1.z) - v0.z};
+    L e2[3] = {L(v2.x) - v0.x, L(v2.y) - v0.y, L(v2.z) - v0.z};
+    L n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+              e1[0] * e2[1] - e1[1] * e2[0]};
+    L dn = n[0] * d.x + n[1] * d.y + n[2] * d.z;
+    if (dn == 0)
+        return false;
+    L w[3] = {L(v0.x) - o.x, L(v0.y) - o.y, L(v0.z) - o.z};
+    L t = (n[0] * w[0] + n[1] * w[1] + n[2] * w[2]) / dn;
+    L p[3] = {L(o.x) + t * d.x - v0.x, L(o.y) + t * d.y - v0.y, L(o.z) + t * d.z - v0.z};
+    // Barycentrics of p (relative to v0) from the areas of the sub-triangles.
+    auto area = [&](const L* a, const L* b) {
+        L c[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+        return c[0] * n[0] + c[1] * n[1] + c[2] * n[2];
+    };
+    L nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    L b1 = area(p, e2) / nn; // weight of v1
+    L b2 = area(e1, p) / nn; // weight of v2
+    out->t = static_cast<double>(t);
+    out->b[1] = static_cast<double>(b1);
+    out->b[2] = static_cast<double>(b2);
+    out->b[0] = static_cast<double>(1 - b1 - b2);
+    return true;
+}
+
+// Ray/sphere in long double: the nearest root with t > 0, or -1.
+inline double sphere_hit(const D3& o, const D3& d, const D3& c, double r) {
+    using L = long double;
+    L f[3] = {L(o.x) - c.x, L(o.y) - c.y, L(o.z) - c.z};
+    L a = L(d.x) * d.x + L(d.y) * d.y + L(d.z) * d.z;
+    L hb = f[0] * d.x + f[1] * d.y + f[2] * d.z;
+    L cc = f[0] * f[0] + f[1] * f[1] + f[2] * f[2] - L(r) * r;
+    L disc = hb * hb - a * cc;
+    if (disc < 0)
+        return -1.0;
+    L q = -(hb + (hb < 0 ? -1 : 1) * std::sqrt(disc));
+    L t0 = cc / q, t1 = q / a;
+    if (t0 > t1)
+        std::swap(t0, t1);
+    if (t0 > 0)
+        return static_cast<double>(t0);
+    return t1 > 0 ? static_cast<double>(t1) : -1.0;
+}
+
+// ---------------------------------------------------------------- the trace kernel
+
+// Closest hits of a list of rays against triangles and spheres, through
+// wp_closest_hit of kernels/traverse.h exactly as the intersect stage calls
+// it. Compiled as is, or with -D WP_NAIVE_INTERSECTION=1 for the naive
+// variant of kernels/geometry.h.
+inline const char* kTraceSource = R"CLC(
+#include "traverse.h"
+
+__kernel void trace(wp_uint count, __global const float4* origins,
+                    __global const float4* directions, __global const WpTriangle* triangles,
+                    wp_uint triangle_count, __global const WpSphere* spheres,
+                    wp_uint sphere_count, __global float* t_out, __global wp_uint* hit_out) {
+    wp_uint i = get_global_id(0);
+    if (i >= count)
+        return;
+    WpFrame frame;
+    frame.triangle_count = triangle_count;
+    frame.sphere_count = sphere_count;
+    float t;
+    hit_out[i] = wp_closest_hit(origins[i].xyz, directions[i].xyz, INFINITY, triangles, spheres,
+                                frame, &t);
+    t_out[i] = t;
+}
+)CLC";
+
+struct TraceResult {
+    std::vector<float> t;
+    std::vector<cl_uint> hit;
+};
+
+inline TraceResult trace(const std::vector<cl_float4>& origins,
+                         const std::vector<cl_float4>& directions,
+                         const std::vector<WpTriangle>& triangles,
+                         const std::vector<WpSphere>& spheres, bool naive) {
+    const cl::Program& program =
+        test_program(kTraceSource, "stability_trace.cl", naive ? "-D WP_NAIVE_INTERSECTION=1" : "");
+    cl::Kernel kernel(program, "trace");
+    const std::size_t n = origins.size();
+    cl::Buffer o = upload(origins), d = upload(directions), tri = upload(triangles),
+               sph = upload(spheres);
+    cl::Buffer t(test::device().context, CL_MEM_READ_WRITE,
+                 sizeof(float) * std::max<std::size_t>(n, 1));
+    cl::Buffer h(test::device().context, CL_MEM_READ_WRITE,
+                 sizeof(cl_uint) * std::max<std::size_t>(n, 1));
+    set_args(kernel, static_cast<cl_uint>(n), o, d, tri, static_cast<cl_uint>(triangles.size()),
+             sph, static_cast<cl_uint>(spheres.size()), t, h);
+    launch(kernel, n);
+    return {download<float>(t, n), download<cl_uint>(h, n)};
+}
+
+inline WpTriangle make_triangle(const D3& a, const D3& b, const D3& c, cl_uint material = 0) {
+    WpTriangle t{};
+    t.v0 = to_float4(a);
+    t.v1 = to_float4(b);
+    t.v2 = to_float4(c);
+    t.material = material;
+    return t;
+}
+
+inline WpSphere make_sphere(const D3& centre, double radius, cl_uint material = 0) {
+    WpSphere s{};
+    s.center_radius = to_float4(centre, radius);
+    s.material = material;
+    return s;
+}
+
+} // namespace wp::stability
