@@ -17,7 +17,7 @@
  *     guard against endless mirror corridors, not part of the estimator.
  *  With WP_DIFFUSE_SAMPLING == WP_DIFFUSE_REPORT, steps 3 and 4 are the
  *  report's estimator instead: uniform (theta, phi) directions weighted by
- *  pi rho cos sin, and its albedo ("angle") roulette (estimator.h). 
+ *  pi rho cos sin, and its albedo ("angle") roulette (estimator.h).
  *
  * Survivors go to the next ray queue, finished paths (missed, absorbed, cut)
  * to the finished queue, each with one atomic per item.
@@ -66,6 +66,14 @@ __kernel void shade(WpFrame frame, __global const wp_uint* ray_queue, __global w
         position = sphere.center_radius.xyz + sphere.center_radius.w * normal;
         scale = wp_sphere_scale(sphere.center_radius);
         material_index = sphere.material;
+        if (dot(direction, normal) >= 0.0f) {
+            /* Spheres are opaque solids: a ray meets one from inside only
+             * when an offset origin landed inside it, next to a contact point
+             * (docs/stability.md, case 4). Inside a mirror sphere such a path
+             * would bounce until the depth cap; absorb it instead. */
+            finished_queue[atomic_inc(&counters[WP_COUNTER_FINISHED])] = slot;
+            return;
+        }
     } else
 #endif
     {
@@ -111,7 +119,7 @@ __kernel void shade(WpFrame frame, __global const wp_uint* ray_queue, __global w
     {
 #if WP_HAS_LIGHTS && WP_USE_NEE
         WpLightSample light;
-        if (wp_sample_light(frame, triangles, materials, lights, origin, facing_normal,
+        if (wp_sample_light(frame, triangles, materials, lights, position, origin, facing_normal,
                             wp_random(frame.seed, pixel, sample, depth, WP_DIM_LIGHT_PICK),
                             wp_random(frame.seed, pixel, sample, depth, WP_DIM_LIGHT_U),
                             wp_random(frame.seed, pixel, sample, depth, WP_DIM_LIGHT_V), &light)) {

@@ -66,9 +66,8 @@ TEST_CASE("contact: no seam along a tetrahedron's base in the floor plane, at ev
 }
 
 TEST_CASE("contact: no path is trapped inside the hexroom's mirror sphere where it touches the "
-          "floor (needs shade.cl to end paths that hit a sphere from inside, docs/stability.md "
-          "case 4)",
-          "[stability][contact][!mayfail]") {
+          "floor (shade.cl absorbs paths that meet a sphere from inside, docs/stability.md case 4)",
+          "[stability][contact]") {
     // The mirror sphere (centre (9, 2.5, -3), radius 2) touches the floor at
     // (9, 2.5, -5). A floor point within sqrt(2 R o) ~ 1 cm of it has its
     // offset origin (o = 2e-6 x 13) inside the sphere; a lossless mirror seen

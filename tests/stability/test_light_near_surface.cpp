@@ -18,9 +18,9 @@
 // that of a light at h - o, (1 - o / h)^2 = 0.92 of the right one (nearly
 // uniformly: every visible floor point sees the light at grazing angles).
 // The first test measures the noise's convergence after fitting one factor to
-// the image; the second, marked [!mayfail], holds the image to the true one
-// and passes once the geometry term uses the surface point (docs/stability.md,
-// case 6; checked with that change applied).
+// the image; the second holds the image to the true one, which needs the
+// geometry term taken at the surface point (docs/stability.md, case 6; the
+// offset origin biased it by the factor above).
 #include "stability.hpp"
 
 using namespace wp;
@@ -225,15 +225,15 @@ TEST_CASE("light 1e-3 above a floor: finite everywhere, and the error keeps fall
         CHECK(l.stats[i].rms_relative < l.stats[i - 1].rms_relative);
     CHECK(l.slope < -0.4); // Monte Carlo's -0.5
     CHECK(l.stats.back().mean_sigmas < kSigmas);
-    // The bias stays bounded: 0.91 now, 0.99 with the change, 0.81 with a
-    // fixed 1e-4 offset (a tenth of the gap).
+    // The bias stays bounded: 0.99 now (0.91 with the geometry term taken at
+    // the offset origin, 0.81 with a fixed 1e-4 offset, a tenth of the gap).
     CHECK(l.stats.back().scale > 0.85);
     CHECK(l.stats.back().scale < 1.05);
 }
 
-TEST_CASE("light 1e-3 above a floor: the direct light matches the exact image (needs the "
-          "geometry term from the surface point, docs/stability.md case 6)",
-          "[stability][near-light][!mayfail]") {
+TEST_CASE("light 1e-3 above a floor: the direct light matches the exact image (geometry term "
+          "from the surface point, docs/stability.md case 6)",
+          "[stability][near-light]") {
     NearLightScene s;
     Ladder l = converge(s.scene, exact_image(s.scene, s.rho, s.le, s.h, 0.5), 1024, false);
     WARN("light 1e-3 above the floor, against the true image: " << l.describe());
