@@ -14,7 +14,7 @@ namespace wp {
 // Scenes with at most this many primitives (triangles plus spheres) get
 // kernels with the counts compiled in (see SceneFeatures::fixed_counts). The
 // limit comes from measurement on PoCL: docs/specialization.md.
-inline constexpr std::uint32_t kMaxFixedCountPrimitives = 64;
+inline constexpr std::uint32_t kMaxFixedCountPrimitives = 128;
 
 // Which kinds of primitive, material and light the scene uses. Each is a
 // preprocessor switch in kernels/scene_features.h.

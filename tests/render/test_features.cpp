@@ -72,18 +72,21 @@ Scene no_light() {
     return scene;
 }
 
-// Spheres only, built in code: the camera inside a big diffuse sphere that
-// glows a little, a mirror sphere, and a glowing diffuse sphere.
+// Spheres only, built in code (the loader would refuse the glowing sphere):
+// a big ground sphere, a mirror sphere, a diffuse sphere and a glowing one,
+// all seen from outside.
 Scene spheres_only() {
     Scene scene;
-    auto room = test::add_material(scene, MaterialKind::Diffuse, glm::dvec3(0.7), glm::dvec3(0.2));
+    auto ground = test::add_material(scene, MaterialKind::Diffuse, glm::dvec3(0.7));
     auto mirror = test::add_material(scene, MaterialKind::Mirror, glm::dvec3(0.9));
+    auto white = test::add_material(scene, MaterialKind::Diffuse, glm::dvec3(0.8));
     auto glow = test::add_material(scene, MaterialKind::Diffuse, glm::dvec3(0.5, 0.2, 0.1),
                                    glm::dvec3(5.0, 4.0, 3.0));
-    scene.spheres.push_back({{0.0, 0.0, 0.0}, 10.0, room});
-    scene.spheres.push_back({{4.0, 1.5, -1.0}, 2.0, mirror});
-    scene.spheres.push_back({{5.0, -2.0, 1.0}, 1.0, glow});
-    scene.camera = test::make_camera({-6, 0, 0}, {0, 0, 0}, {0, 0, 1}, 70.0, 24, 24);
+    scene.spheres.push_back({{0.0, 0.0, -1001.0}, 1000.0, ground});
+    scene.spheres.push_back({{4.0, 1.5, 0.0}, 1.0, mirror});
+    scene.spheres.push_back({{3.0, -1.5, -0.3}, 0.7, white});
+    scene.spheres.push_back({{6.0, -0.5, 0.5}, 1.0, glow});
+    scene.camera = test::make_camera({-3, 0, 0.5}, {4, 0, -0.3}, {0, 0, 1}, 60.0, 24, 24);
     return scene;
 }
 
@@ -144,7 +147,7 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "-D WP_HAS_LIGHTS=1 -D WP_TRIANGLE_COUNT=26 -D WP_SPHERE_COUNT=0");
     CHECK(analyse_features(spheres_only()).build_options() ==
           "-D WP_HAS_TRIANGLES=0 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 "
-          "-D WP_HAS_LIGHTS=0 -D WP_TRIANGLE_COUNT=0 -D WP_SPHERE_COUNT=3");
+          "-D WP_HAS_LIGHTS=0 -D WP_TRIANGLE_COUNT=0 -D WP_SPHERE_COUNT=4");
     CHECK(analyse_features(no_mirror()).build_options() ==
           "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=0 "
           "-D WP_HAS_LIGHTS=1 -D WP_TRIANGLE_COUNT=26 -D WP_SPHERE_COUNT=2");
@@ -176,7 +179,7 @@ TEST_CASE("features: fixed counts stop at the limit, and 0 turns them off") {
 TEST_CASE("features: describe() names the features and the compiled-in counts") {
     CHECK(analyse_features(hexroom()).describe() ==
           "triangles spheres diffuse mirror lights; counts 26+2");
-    CHECK(analyse_features(spheres_only()).describe() == "spheres diffuse mirror; counts 0+3");
+    CHECK(analyse_features(spheres_only()).describe() == "spheres diffuse mirror; counts 0+4");
     CHECK(analyse_features(large()).describe() == "triangles spheres diffuse mirror lights");
     CHECK(SceneFeatures::all().describe() == "triangles spheres diffuse mirror lights");
 }
@@ -205,8 +208,11 @@ TEST_CASE("features: specialised and general kernels render bit-identical images
     SECTION("triangles only") {
         check_specialised_equals_general(triangles_only());
     }
-    SECTION("spheres only") {
+    SECTION("spheres only, next-event estimation on") {
         check_specialised_equals_general(spheres_only());
+    }
+    SECTION("spheres only, next-event estimation off") {
+        check_specialised_equals_general(spheres_only(), false);
     }
     SECTION("no mirror") {
         check_specialised_equals_general(no_mirror());
