@@ -217,6 +217,14 @@ int run_info(const InfoCommand& command) {
     std::printf("device: %s (%s, driver %s)\n", device.info.name.c_str(),
                 device.info.platform_name.c_str(), device.info.driver_version.c_str());
 
+    // The first build in a process pays for starting the compiler (PoCL
+    // loads its kernel library); a trivial one here keeps that out of the
+    // figures below and reports it on its own.
+    std::random_device entropy;
+    BuiltProgram warm_up = build_program(
+        device.context, device.info.device, "__kernel void wp_info_warm_up(void) {}", "warm_up.cl",
+        "-D WP_INFO_WARM_UP=" + std::to_string(entropy()), CachePolicy::off());
+
     SceneFeatures features = analyse_features(scene);
     std::printf("features: %s\n", features.describe().c_str());
     if (!features.fixed_counts)
@@ -234,6 +242,8 @@ int run_info(const InfoCommand& command) {
 
     const CachePolicy cache = CachePolicy::from_environment();
     std::printf("program build (the five kernels are one program):\n");
+    std::printf("  compiler start-up (a trivial first build in this process): %s\n",
+                format_seconds(warm_up.build_seconds).c_str());
     std::printf("  this run: %s, cache %s%s%s\n", format_seconds(built.build_seconds).c_str(),
                 cache_outcome_name(built.cache), built.cache_file.empty() ? "" : ", ",
                 built.cache_file.c_str());
@@ -243,7 +253,6 @@ int run_info(const InfoCommand& command) {
     // Cold: from source with a define no earlier build had, so that no cache
     // (wavepath's or the driver's) can serve it; with argument info, which
     // the empty launches below need.
-    std::random_device entropy;
     const std::string cold_options =
         built.options + " -cl-kernel-arg-info -D WP_INFO_COLD_BUILD=" + std::to_string(entropy());
     BuiltProgram cold = build_wavefront_program(device.context, device.info.device, cold_options,
