@@ -328,7 +328,7 @@ TEST_CASE("program cache: a corrupt payload or a binary the driver refuses is re
     CHECK(entry_files(dir).size() == 1);
 }
 
-TEST_CASE("program cache: off, nothing is read or written; unwritable, the build still works") {
+TEST_CASE("program cache: off it writes nothing, and an unwritable one stops no build") {
     test::TempDir dir;
     DeviceContext& device = test::device();
     BuiltProgram off = build_program(device.context, device.info.device, add_kernel(), "add.cl",
