@@ -86,24 +86,28 @@ double rel_mse_from_halves(const Image& even, const Image& odd, std::uint64_t n_
                            std::uint64_t n_odd) {
     check_comparable(even, odd, "relative MSE from half images");
     const double k = halves_factor(n_even, n_odd, "relative MSE from half images");
+    const double we = static_cast<double>(n_even) / static_cast<double>(n_even + n_odd);
+    const auto mean = [&](int x, int y, int c) {
+        return we * static_cast<double>(even.pixel(x, y)[c]) +
+               (1.0 - we) * static_cast<double>(odd.pixel(x, y)[c]);
+    };
     const int w = even.width, h = even.height;
     double sum = 0.0;
     for (int y = 0; y < h; ++y) {
         for (int x = 0; x < w; ++x) {
             for (int c = 0; c < 3; ++c) {
-                double product = 0.0; // 3x3 box mean of even x odd, clipped to the image
+                double r = 0.0; // 3x3 box mean of the full mean, clipped to the image
                 int n = 0;
                 for (int yy = std::max(0, y - 1); yy <= std::min(h - 1, y + 1); ++yy) {
                     for (int xx = std::max(0, x - 1); xx <= std::min(w - 1, x + 1); ++xx) {
-                        product += static_cast<double>(even.pixel(xx, yy)[c]) *
-                                   static_cast<double>(odd.pixel(xx, yy)[c]);
+                        r += mean(xx, yy, c);
                         ++n;
                     }
                 }
-                const double r_squared = std::max(0.0, product / n);
+                r /= n;
                 const double d = static_cast<double>(even.pixel(x, y)[c]) -
                                  static_cast<double>(odd.pixel(x, y)[c]);
-                sum += k * d * d / (r_squared + 0.01);
+                sum += k * d * d / (r * r + 0.01);
             }
         }
     }

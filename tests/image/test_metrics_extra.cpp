@@ -60,20 +60,22 @@ TEST_CASE("mse_from_halves by hand: equal and unequal halves", "[metrics]") {
     CHECK_THROWS_AS(wp::mse_from_halves(even, Image(1, 1), 1, 1), wp::ImageError);
 }
 
-TEST_CASE("rel_mse_from_halves by hand: the 3x3 box of even x odd as r^2", "[metrics]") {
-    // 1x1: the box is the pixel itself. Halves of one sample each: k = 1/4.
-    // R: d = 1, r^2 = 2 * 1 = 2; G: d = 0; B: d = -2, r^2 = 0 * 2 = 0.
+TEST_CASE("rel_mse_from_halves by hand: the 3x3 box of the full mean as r", "[metrics]") {
+    // 1x1: the box is the pixel itself. Halves of one sample each: k = 1/4, and
+    // the full mean m = (2 + 1) / 2, (1 + 1) / 2, (0 + 2) / 2 = 1.5, 1, 1.
+    // R: d = 1, r^2 = 2.25; G: d = 0; B: d = -2, r^2 = 1.
     const Image even = make(1, 1, {2, 1, 0}), odd = make(1, 1, {1, 1, 2});
-    const double expected = (0.25 * 1.0 / 2.01 + 0.0 + 0.25 * 4.0 / 0.01) / 3.0;
+    const double expected = (0.25 * 1.0 / 2.26 + 0.0 + 0.25 * 4.0 / 1.01) / 3.0;
     CHECK(wp::rel_mse_from_halves(even, odd, 1, 1) == Approx(expected).epsilon(1e-12));
-    // A negative product (halves on either side of 0) counts as r^2 = 0.
-    CHECK(wp::rel_mse_from_halves(make(1, 1, {1, 0, 0}), make(1, 1, {-1, 0, 0}), 1, 1) ==
-          Approx(0.25 * 4.0 / 0.01 / 3.0).epsilon(1e-12));
-    // 2x1: each pixel's box covers both pixels: r^2 = (1 * 1 + 3 * 1) / 2 = 2 in
-    // every channel; only the second pixel differs (d = 2 in each channel).
+    // Unequal halves weight the mean: 3 samples averaging 1, one sample -1:
+    // m = (3 - 1) / 4 = 0.5, k = 3 / 16, d = 2.
+    CHECK(wp::rel_mse_from_halves(make(1, 1, {1, 0, 0}), make(1, 1, {-1, 0, 0}), 3, 1) ==
+          Approx(3.0 / 16.0 * 4.0 / 0.26 / 3.0).epsilon(1e-12));
+    // 2x1: each pixel's box covers both pixels: means 1 and 2, r = 1.5 in every
+    // channel; only the second pixel's halves differ (d = 2 in each channel).
     const Image e2 = make(2, 1, {1, 1, 1, 3, 3, 3}), o2 = make(2, 1, {1, 1, 1, 1, 1, 1});
     CHECK(wp::rel_mse_from_halves(e2, o2, 1, 1) ==
-          Approx(3.0 * (0.25 * 4.0 / 2.01) / 6.0).epsilon(1e-12));
+          Approx(3.0 * (0.25 * 4.0 / 2.26) / 6.0).epsilon(1e-12));
     CHECK_THROWS_AS(wp::rel_mse_from_halves(e2, o2, 0, 1), wp::ImageError);
 }
 
