@@ -48,6 +48,8 @@ struct ConvergeCommand {
     std::string plot;                  // SVG
     std::string out;                   // the final image
     std::vector<std::string> overlays; // earlier CSVs drawn in the same plot
+    bool replot = false;               // plot the overlays only, render nothing
+    std::string title;                 // of the plot
     std::string device;
     std::uint32_t max_spp = 0; // with max_time 0 too: 256
     double max_time = 0.0;     // seconds of render time

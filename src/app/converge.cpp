@@ -73,7 +73,7 @@ CLI::App* add_converge_subcommand(CLI::App& app, ConvergeCommand& command) {
     CLI::App* c = app.add_subcommand(
         "converge", "Render progressively and report the error against render time at 1, 2, "
                     "4, ... samples per pixel (CSV, SVG plot); see docs/convergence.md");
-    c->add_option("scene", command.scene, "Scene file (JSON)")->required();
+    c->add_option("scene", command.scene, "Scene file (JSON); not needed with --replot");
     c->add_option("--reference,-r", command.reference,
                   "Reference image (.exr or .pfm) of the same size: the true error is measured. "
                   "Without one the error is estimated from the even/odd half images");
@@ -89,7 +89,10 @@ CLI::App* add_converge_subcommand(CLI::App& app, ConvergeCommand& command) {
     c->add_option("--plot", command.plot, "Write a log-log plot of RMSE against time (SVG)");
     c->add_option("--overlay", command.overlays,
                   "An earlier converge CSV to draw in the same plot (repeatable)");
+    c->add_flag("--replot", command.replot,
+                "Render nothing: draw --plot from the --overlay CSVs alone");
     c->add_option("--out,-o", command.out, "Write the final image (.exr, .pfm or .png)");
+    c->add_option("--title", command.title, "The plot's title (default: scene, size, device)");
     c->add_option("--device,-d", command.device, "OpenCL device (as for render)");
     c->add_option("--seed", command.seed, "Random seed")->capture_default_str();
     c->add_option("--width", command.width, "Image width (default: the scene's)")
@@ -123,6 +126,19 @@ int run_converge(const ConvergeCommand& command) {
     std::vector<ConvergenceRun> runs(1);
     for (const std::string& path : command.overlays)
         runs.push_back(read_convergence_csv(path));
+    if (command.replot) {
+        if (command.plot.empty() || command.overlays.empty())
+            throw std::runtime_error("--replot needs --plot and at least one --overlay");
+        runs.erase(runs.begin());
+        const std::string title = std::to_string(runs[0].width) + "x" +
+                                  std::to_string(runs[0].height) + ", " +
+                                  std::to_string(runs.size()) + " runs";
+        write_svg(command.plot,
+                  convergence_plot(runs, command.title.empty() ? title : command.title));
+        return 0;
+    }
+    if (command.scene.empty())
+        throw std::runtime_error("converge needs a scene file (or --replot)");
 
     Scene scene = load_scene(command.scene);
     for (const std::string& warning : scene.warnings)
@@ -182,9 +198,11 @@ int run_converge(const ConvergeCommand& command) {
     if (!command.csv.empty())
         write_convergence_csv(command.csv, run);
     if (!command.plot.empty()) {
-        const std::string title = std::filesystem::path(command.scene).filename().string() + ", " +
-                                  std::to_string(run.width) + "x" + std::to_string(run.height) +
-                                  ", " + device.info.name;
+        const std::string title = !command.title.empty()
+                                      ? command.title
+                                      : std::filesystem::path(command.scene).filename().string() +
+                                            ", " + std::to_string(run.width) + "x" +
+                                            std::to_string(run.height) + ", " + device.info.name;
         write_svg(command.plot, convergence_plot(runs, title));
     }
     if (!command.out.empty())
