@@ -96,7 +96,7 @@ std::size_t count(const std::string& text, const std::string& what) {
 
 // At 32x32 a handful of pixels hold most of the squared error: those the
 // light's edges cross (each sample is 0 or 100 there) and those that see the
-// light in the mirror. One image's MSE then varies by about +-30 % between
+// light in the mirror. One image's MSE then varies by about 25 % between
 // seeds, so the checks below pool several independent runs: disjoint sample
 // ranges of one seed, each a full progressive run from its own first sample.
 
