@@ -270,8 +270,8 @@ void WavefrontIntegrator::render(std::uint32_t first_sample, std::uint32_t count
     }
 }
 
-void WavefrontIntegrator::render_range(std::uint32_t first_sample, std::uint32_t count,
-                                       Film& film, const std::function<void(double)>& on_progress) {
+void WavefrontIntegrator::render_range(std::uint32_t first_sample, std::uint32_t count, Film& film,
+                                       const std::function<void(double)>& on_progress) {
     if (count == 0)
         return;
     auto start = std::chrono::steady_clock::now();
@@ -407,15 +407,7 @@ double WavefrontIntegrator::time_intersect(const std::vector<cl_float4>& origins
     intersect_.setArg(0, frame_);
     intersect_.setArg(1, queue_a_);
     intersect_.setArg(3, WP_COUNTER_QUEUE_A);
-    Profiler local;
-    Profiler* saved = profiler_;
-    profiler_ = &local;
-    for (int r = 0; r < repetitions; ++r)
-        launch(intersect_, n, Stage::Intersect);
-    q.finish();
-    local.resolve_completed();
-    profiler_ = saved;
-    return local.device_busy_seconds();
+    return time_launches(intersect_, n, Stage::Intersect, repetitions);
 }
 
 double WavefrontIntegrator::time_shadow(const std::vector<cl_float4>& origins,
@@ -429,12 +421,17 @@ double WavefrontIntegrator::time_shadow(const std::vector<cl_float4>& origins,
     q.enqueueCopyBuffer(all_slots_, shadow_queue_, 0, 0, sizeof(cl_uint) * n);
     shadow_.setArg(0, frame_);
     shadow_.setArg(1, n);
+    return time_launches(shadow_, n, Stage::Shadow, repetitions);
+}
+
+double WavefrontIntegrator::time_launches(cl::Kernel& kernel, std::uint32_t items, Stage stage,
+                                          int repetitions) {
     Profiler local;
     Profiler* saved = profiler_;
     profiler_ = &local;
     for (int r = 0; r < repetitions; ++r)
-        launch(shadow_, n, Stage::Shadow);
-    q.finish();
+        launch(kernel, items, stage);
+    device_.queue.finish();
     local.resolve_completed();
     profiler_ = saved;
     return local.device_busy_seconds();

@@ -116,6 +116,8 @@ class WavefrontIntegrator {
     void render_range(std::uint32_t first_sample, std::uint32_t count, Film& film,
                       const std::function<void(double)>& on_progress);
     void launch(cl::Kernel& kernel, std::uint32_t items, Stage stage);
+    // Device seconds of `repetitions` launches of an already set-up kernel.
+    double time_launches(cl::Kernel& kernel, std::uint32_t items, Stage stage, int repetitions);
     void read(const cl::Buffer& buffer, std::size_t bytes, void* out, bool blocking);
     void flush_film(Film& film);
     void set_queue_arguments(cl::Buffer& in, cl_uint in_counter, cl::Buffer& out,
