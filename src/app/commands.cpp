@@ -37,6 +37,17 @@ void check_output_path(const std::string& path, bool image = true) {
 
 } // namespace
 
+Scene load_scene_for_render(const std::string& path, int width, int height) {
+    Scene scene = load_scene(path);
+    for (const std::string& warning : scene.warnings)
+        std::cerr << "wavepath: warning: " << warning << "\n";
+    if (width > 0)
+        scene.camera.width = width;
+    if (height > 0)
+        scene.camera.height = height;
+    return scene;
+}
+
 int run_devices() {
     std::vector<DeviceInfo> devices = list_devices();
     if (devices.empty()) {
@@ -54,13 +65,7 @@ int run_render(const RenderCommand& command) {
     check_output_path(command.profile_json, false);
     check_output_path(command.trace, false);
 
-    Scene scene = load_scene(command.scene);
-    for (const std::string& warning : scene.warnings)
-        std::cerr << "wavepath: warning: " << warning << "\n";
-    if (command.width > 0)
-        scene.camera.width = command.width;
-    if (command.height > 0)
-        scene.camera.height = command.height;
+    Scene scene = load_scene_for_render(command.scene, command.width, command.height);
 
     const bool profiling =
         command.profile || !command.profile_json.empty() || !command.trace.empty();

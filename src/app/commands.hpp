@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "image/tonemap.hpp"
+#include "scene/scene.hpp"
 
 namespace CLI {
 class App;
@@ -85,6 +86,10 @@ CLI::App* add_info_subcommand(CLI::App& app, InfoCommand& command);
 int run_info(const InfoCommand& command);
 // Adds --no-cache to a subcommand: it sets WAVEPATH_NO_CACHE=1 (info.cpp).
 void add_no_cache_flag(CLI::App* subcommand);
+
+// Loads a scene, prints its warnings, and applies --width/--height (0 keeps
+// the scene's resolution).
+Scene load_scene_for_render(const std::string& path, int width, int height);
 
 int run_devices();
 int run_bench(const BenchCommand& command);

@@ -140,13 +140,7 @@ int run_converge(const ConvergeCommand& command) {
     if (command.scene.empty())
         throw std::runtime_error("converge needs a scene file (or --replot)");
 
-    Scene scene = load_scene(command.scene);
-    for (const std::string& warning : scene.warnings)
-        std::cerr << "wavepath: warning: " << warning << "\n";
-    if (command.width > 0)
-        scene.camera.width = command.width;
-    if (command.height > 0)
-        scene.camera.height = command.height;
+    Scene scene = load_scene_for_render(command.scene, command.width, command.height);
 
     Image reference;
     if (!command.reference.empty()) {

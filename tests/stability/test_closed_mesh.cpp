@@ -27,16 +27,8 @@ namespace {
 // its own edges meets it at a grazing angle, where an error across the plane
 // of a few ulps becomes one along the ray divided by the angle's sine.
 const char* kClosedMeshSource = R"CLC(
+#include "rng.h"
 #include "traverse.h"
-
-static inline wp_uint st_hash(wp_uint x) {
-    x ^= x >> 16;
-    x *= 0x7feb352du;
-    x ^= x >> 15;
-    x *= 0x846ca68bu;
-    x ^= x >> 16;
-    return x;
-}
 
 static inline float st_unit(wp_uint h) {
     return (float)(h >> 8) * (1.0f / 16777216.0f);
@@ -51,9 +43,9 @@ __kernel void closed_mesh(wp_uint first, wp_uint count, __global const WpTriangl
     if (i >= count)
         return;
     wp_uint id = first + i;
-    wp_uint h1 = st_hash(id * 0x9e3779b9u + 0x632be5abu);
-    wp_uint h2 = st_hash(h1 ^ 0x85ebca6bu);
-    wp_uint h3 = st_hash(h2 + 0xc2b2ae35u);
+    wp_uint h1 = wp_mix32(id * 0x9e3779b9u + 0x632be5abu);
+    wp_uint h2 = wp_mix32(h1 ^ 0x85ebca6bu);
+    wp_uint h3 = wp_mix32(h2 + 0xc2b2ae35u);
     float3 o = origins[h1 % origin_count].xyz;
     wp_uint kind = id & 3u;
     float3 target;
