@@ -3,7 +3,7 @@
  * The host passes them as -D options (IntegratorOptions::diffuse_sampling and
  * ::light_sampling; see src/render/wavefront.cpp), always both, so what a
  * render uses never depends on the defaults below. Left undefined, they give
- * the original estimator, which the stage tests in tests/cl model on the host.
+ * the original estimator, which the stage tests in tests/kernels model on the host.
  * Every combination is unbiased and converges to the same image; they differ
  * in variance and cost (docs/convergence.md measures them on the hexroom).
  * Next-event estimation on/off is WP_USE_NEE, in scene_features.h.

@@ -41,7 +41,7 @@ static inline wp_uint wp_hash(wp_uint seed, wp_uint pixel, wp_uint sample, wp_ui
     h = wp_mix32(h ^ sample);
     /* Counters of one bounce differ in their low bits only; a second round
      * decorrelates them (one round left a measurable chi-square excess in
-     * the joint histogram of two dimensions, tests/cl/test_sampling.cpp). */
+     * the joint histogram of two dimensions, tests/kernels/test_sampling.cpp). */
     return wp_mix32(wp_mix32(h ^ counter));
 }
 

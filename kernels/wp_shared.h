@@ -1,7 +1,7 @@
 /* Data shared by the host (C++) and the kernels (OpenCL C 1.2).
  *
  * Both sides include this one header, so a struct cannot drift between them;
- * tests/cl/test_layout.cpp still checks every size and offset on the device
+ * tests/kernels/test_layout.cpp still checks every size and offset on the device
  * against the host's, because the two compilers lay structs out separately.
  * Rules that keep the layouts equal: 16-byte vectors first, then 4-byte
  * scalars, explicit padding to a multiple of 16 bytes, no bool, no pointers.

@@ -1,7 +1,7 @@
 // Stage 5, accumulate: film sums over many launches against host sums, with
 // only the finished slots added, the sample counts kept in w, and non-finite
 // samples dropped (as zero-valued samples) and counted.
-#include "cl_test_util.hpp"
+#include "support/kernel_test_util.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 // Stage 2, intersect: closest hits against a double-precision reference
 // (Moller-Trumbore for triangles, the plain quadratic for spheres).
-#include "cl_test_util.hpp"
+#include "support/kernel_test_util.hpp"
 
 #include <algorithm>
 #include <cmath>

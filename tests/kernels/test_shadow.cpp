@@ -1,6 +1,6 @@
 // Stage 4, shadow: an unblocked segment adds its contribution to its slot's
 // radiance, a blocked one adds nothing, and slots not queued are untouched.
-#include "cl_test_util.hpp"
+#include "support/kernel_test_util.hpp"
 
 #include <vector>
 

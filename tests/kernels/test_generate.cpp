@@ -2,7 +2,7 @@
 // from the scene's Camera fields, with the jitter the host draws from rng.h;
 // the slots' task lists (which pixel and sample each call hands out) against
 // a host model built from wp_shared.h's description.
-#include "cl_test_util.hpp"
+#include "support/kernel_test_util.hpp"
 #include "render/device_scene.hpp"
 #include "rng.h"
 

@@ -1,7 +1,7 @@
 // Stage 3, shade: one call on hand-made hits, against double-precision host
 // models of mirror reflection, emission, next-event estimation and roulette,
 // with the random numbers taken from rng.h on the host.
-#include "cl_test_util.hpp"
+#include "support/kernel_test_util.hpp"
 #include "render/device_scene.hpp"
 #include "rng.h"
 

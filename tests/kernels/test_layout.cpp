@@ -1,7 +1,7 @@
 // The structs of wp_shared.h have the same layout on the device as on the host,
 // a WpFrame passed by value arrives field for field, and the RNG of rng.h gives
 // the same bits on both sides.
-#include "cl_test_util.hpp"
+#include "support/kernel_test_util.hpp"
 #include "rng.h"
 
 #include <cstddef>
