@@ -1,13 +1,14 @@
 # Writes a C++ file that maps each kernel file's name to its text, so the
 # executable carries its OpenCL sources and runs from any directory.
 # Invoked as: cmake -DOUTPUT=out.cpp -DKERNEL_DIR=kernels -P EmbedKernels.cmake
-file(GLOB INPUTS ${KERNEL_DIR}/*.cl ${KERNEL_DIR}/*.h)
+file(GLOB_RECURSE INPUTS ${KERNEL_DIR}/*.cl ${KERNEL_DIR}/*.h)
 list(SORT INPUTS)
 set(arrays "")
 set(entries "")
 set(index 0)
 foreach(path IN LISTS INPUTS)
-  get_filename_component(name ${path} NAME)
+  # Named by their path inside kernels/, e.g. "shade.cl", "bsdf/diffuse.h".
+  file(RELATIVE_PATH name ${KERNEL_DIR} ${path})
   file(READ ${path} text HEX)
   string(LENGTH "${text}" hexlen)
   math(EXPR len "${hexlen} / 2")

@@ -9,17 +9,13 @@
  * A non-finite sample would poison its pixel forever: it is dropped (counts
  * as zero) and counted, and the count is reported after every render.
  */
-#include "wp_shared.h"
+#include "stage.h"
 
-__kernel void accumulate(WpFrame frame, __global const wp_uint* finished,
-                         wp_uint finished_count, __global const float4* radiance,
-                         __global const wp_uint* path_pixel, __global const wp_uint* path_sample,
-                         __global float4* film_sum, __global float4* film_sum_squares,
-                         __global float4* film_odd_sum, __global wp_uint* counters) {
+__kernel void accumulate(WP_STAGE_PARAMETERS) {
     wp_uint index = get_global_id(0);
-    if (index >= finished_count)
+    if (index >= launch.count)
         return;
-    wp_uint slot = finished[index];
+    wp_uint slot = finished_queue[index];
     float4 value = (float4)(radiance[slot].xyz, 0.0f);
     if (!(isfinite(value.x) && isfinite(value.y) && isfinite(value.z))) {
         atomic_inc(&counters[WP_COUNTER_NONFINITE]);

@@ -7,26 +7,21 @@
  * are done is not queued again.
  *
  * The host hands in every slot at the start of a wave, and, with
- * regeneration, the slots whose paths just finished, so the ray queue stays
- * full while long paths drain.
+ * regeneration, the slots whose paths just finished (launch.from_finished),
+ * so the ray queue stays full while long paths drain.
  *
  * Each ray goes through a uniformly jittered point of its pixel (a one-pixel
  * box filter) and starts with throughput 1, radiance 0, depth 0, and the
  * specular flag set so that an emitter seen directly counts.
  */
 #include "rng.h"
+#include "stage.h"
 
-__kernel void generate(WpFrame frame, __global const wp_uint* slots, wp_uint slot_count,
-                       __global wp_uint* path_task, __global float4* ray_origin,
-                       __global float4* ray_direction, __global float4* throughput,
-                       __global float4* radiance, __global wp_uint* path_pixel,
-                       __global wp_uint* path_sample, __global wp_uint* path_depth,
-                       __global wp_uint* path_flags, __global wp_uint* ray_queue,
-                       __global wp_uint* counters, wp_uint ray_counter) {
+__kernel void generate(WP_STAGE_PARAMETERS) {
     wp_uint index = get_global_id(0);
-    if (index >= slot_count)
+    if (index >= launch.count)
         return;
-    wp_uint slot = slots[index];
+    wp_uint slot = launch.from_finished ? finished_queue[index] : index;
     wp_uint pixel_count = frame.width * frame.height;
     wp_uint owned = (pixel_count - slot + frame.pool_size - 1u) / frame.pool_size;
     wp_uint task = path_task[slot];
@@ -54,5 +49,6 @@ __kernel void generate(WpFrame frame, __global const wp_uint* slots, wp_uint slo
     path_sample[slot] = sample;
     path_depth[slot] = 0u;
     path_flags[slot] = WP_PATH_SPECULAR;
-    ray_queue[atomic_inc(&counters[ray_counter])] = slot;
+    wp_queue_push(wp_ray_queue(ray_queues, frame, launch.ray_queue), counters, launch.ray_queue,
+                  slot);
 }

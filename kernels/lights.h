@@ -9,8 +9,10 @@
 #define WP_LIGHTS_H
 
 #include "estimator.h"
-#include "geometry.h"
+#include "ray_offset.h"
 #include "sampling.h"
+#include "stage.h"
+#include "triangle.h"
 
 /* Shadow rays stop this many offsets short of the light point, so the light
  * itself is never taken for an occluder. */
@@ -31,9 +33,9 @@ static inline wp_uint wp_pick_light(__global const WpLight* lights, wp_uint coun
 
 /* A light sample as seen from a surface point. */
 typedef struct {
-    float3 direction;   /* unit, from the shadow-ray origin towards the light */
-    float length;       /* how far the shadow ray must stay unblocked */
-    float3 irradiance;  /* Le * cos_surface * cos_light / d^2 / pdf: multiply by the BRDF */
+    float3 direction;  /* unit, from the shadow-ray origin towards the light */
+    float length;      /* how far the shadow ray must stay unblocked */
+    float3 irradiance; /* Le * cos_surface * cos_light / d^2 / pdf: multiply by the BRDF */
 } WpLightSample;
 
 /* The shadow ray from `origin` to a light point, stopping just short of it. */
@@ -56,21 +58,20 @@ static inline int wp_aim_shadow_ray(float3 origin, float3 point, const WpTriangl
  * offset origin it biased a light 1e-3 above a floor by 8 % (the offset was
  * 4 % of the gap; docs/stability.md, case 6). Returns 0 when the point faces
  * away, the light faces away (lights are one-sided), or nothing can arrive. */
-static inline int wp_sample_light(WpFrame frame, __global const WpTriangle* triangles,
-                                  __global const WpMaterial* materials,
-                                  __global const WpLight* lights, float3 position, float3 origin,
+static inline int wp_sample_light(const WpSceneView* scene, float3 position, float3 origin,
                                   float3 normal, float u_pick, float u, float v,
                                   WpLightSample* out) {
-    if (frame.light_count == 0u) /* general kernels may meet a scene without lights */
+    if (scene->light_count == 0u) /* general kernels may meet a scene without lights */
         return 0;
-    WpTriangle light = triangles[lights[wp_pick_light(lights, frame.light_count, u_pick)].triangle];
+    WpTriangle light =
+        scene->triangles[scene->lights[wp_pick_light(scene->lights, scene->light_count, u_pick)]
+                             .triangle];
     float3 light_normal = normalize(wp_triangle_normal(&light));
 #if WP_LIGHT_SAMPLING == WP_LIGHT_SOLID_ANGLE
     /* Uniform in the triangle's solid angle Omega: the direction's density is
      * p_pick / Omega, p_pick = area / total area. Lights are one-sided, so a
      * point behind the light's plane gets nothing. */
-    float3 r0 = light.v0.xyz - position, r1 = light.v1.xyz - position,
-           r2 = light.v2.xyz - position;
+    float3 r0 = light.v0.xyz - position, r1 = light.v1.xyz - position, r2 = light.v2.xyz - position;
     float plane_distance = -dot(r0, light_normal); /* > 0 in front of the light */
     float solid_angle = wp_spherical_triangle_area(r0, r1, r2);
     if (plane_distance > 0.0f && solid_angle >= WP_MIN_SPHERICAL_AREA &&
@@ -85,10 +86,10 @@ static inline int wp_sample_light(WpFrame frame, __global const WpTriangle* tria
         float3 point = position + distance * wi;
         if (!wp_aim_shadow_ray(origin, point, &light, out))
             return 0;
-        float triangle_area = 0.5f * length(cross(light.v1.xyz - light.v0.xyz,
-                                                  light.v2.xyz - light.v0.xyz));
-        out->irradiance = materials[light.material].emission.xyz *
-                          (cos_surface * solid_angle * frame.light_area / triangle_area);
+        float triangle_area =
+            0.5f * length(cross(light.v1.xyz - light.v0.xyz, light.v2.xyz - light.v0.xyz));
+        out->irradiance = scene->materials[light.material].emission.xyz *
+                          (cos_surface * solid_angle * scene->light_area / triangle_area);
         return 1;
     }
     /* Too small (or too large) a solid angle for float: area sampling below. */
@@ -102,7 +103,8 @@ static inline int wp_sample_light(WpFrame frame, __global const WpTriangle* tria
     if (!(cos_surface > 0.0f && cos_light > 0.0f) || !wp_aim_shadow_ray(origin, point, &light, out))
         return 0;
     float geometry = cos_surface * cos_light / (distance * distance);
-    out->irradiance = materials[light.material].emission.xyz * (geometry * frame.light_area);
+    out->irradiance =
+        scene->materials[light.material].emission.xyz * (geometry * scene->light_area);
     return 1;
 }
 

@@ -1,178 +1,168 @@
-/* Stage 3, shade: what happens where each queued ray hit.
+/* Stage 3, shade: what happens where each queued ray hit, in four steps.
  *
  *  1. Emission: an emitter's front face adds throughput x radiance, but only
- *     for camera rays and rays after a mirror bounce. After a diffuse bounce
- *     the light was already counted by next-event estimation, and counting it
- *     again would count it twice. (With WP_USE_NEE=0 there is no step 2 and
- *     emitters count after every bounce.)
- *  2. Next-event estimation (diffuse surfaces): sample a point on the lights
- *     (lights.h) and queue one shadow ray carrying the contribution it would
- *     make if nothing blocks it.
- *  3. Scattering: a cosine-weighted direction for Lambertian surfaces
- *     (throughput x reflectance, as cos/pdf cancels against 1/pi), the exact
- *     reflection for mirrors (throughput x reflectance).
+ *     for camera rays and rays after a specular bounce. After a diffuse
+ *     bounce the light was already counted by next-event estimation, and
+ *     counting it again would count it twice. (With WP_USE_NEE=0 there is no
+ *     step 2 and emitters count after every bounce.)
+ *  2. Next-event estimation (surfaces that are not delta BSDFs): sample a
+ *     point on the lights (lights.h) and queue one shadow ray carrying the
+ *     contribution it would make if nothing blocks it.
+ *  3. Scattering: the material's BSDF (bsdf.h) picks the next direction and
+ *     the factor the throughput takes.
  *  4. Russian roulette: survive with probability min(1, max(throughput)) and
  *     divide survivors' throughput by it, which keeps the estimate unbiased.
  *     Past frame.max_depth bounces a path is cut and counted; the cap is a
  *     guard against endless mirror corridors, not part of the estimator.
- *  With WP_DIFFUSE_SAMPLING == WP_DIFFUSE_REPORT, steps 3 and 4 are the
- *  report's estimator instead: uniform (theta, phi) directions weighted by
- *  pi rho cos sin, and its albedo ("angle") roulette (estimator.h).
+ *     With WP_DIFFUSE_SAMPLING == WP_DIFFUSE_REPORT it is the report's albedo
+ *     roulette instead (estimator.h, bsdf/diffuse.h).
  *
- * Survivors go to the next ray queue, finished paths (missed, absorbed, cut)
- * to the finished queue, each with one atomic per item.
+ * Survivors go to the other ray queue, finished paths (missed, absorbed,
+ * cut) to the finished queue.
  */
+#include "bsdf.h"
 #include "estimator.h"
 #include "lights.h"
-#include "material.h"
+#include "primitive.h"
 #include "rng.h"
-#include "sampling.h"
-#include "traverse.h"
+#include "stage.h"
 
-__kernel void shade(WpFrame frame, __global const wp_uint* ray_queue, __global wp_uint* counters,
-                    wp_uint ray_counter, __global wp_uint* next_queue, wp_uint next_counter,
-                    __global wp_uint* finished_queue, __global float4* ray_origin,
-                    __global float4* ray_direction, __global const float* hit_t,
-                    __global const wp_uint* hit_primitive, __global float4* throughput,
-                    __global float4* radiance, __global wp_uint* path_depth,
-                    __global wp_uint* path_flags, __global const wp_uint* path_pixel,
-                    __global const wp_uint* path_sample, __global const WpTriangle* triangles,
-                    __global const WpSphere* spheres, __global const WpMaterial* materials,
-                    __global const WpLight* lights, __global wp_uint* shadow_queue,
-                    __global float4* shadow_origin, __global float4* shadow_direction,
-                    __global float4* shadow_contribution) {
-    wp_uint index = get_global_id(0);
-    if (index >= counters[ray_counter])
-        return;
-    wp_uint slot = ray_queue[index];
-    wp_uint primitive = hit_primitive[slot];
-    if (primitive == WP_NO_HIT) { /* the ray left the scene: the path ends with what it has */
-        finished_queue[atomic_inc(&counters[WP_COUNTER_FINISHED])] = slot;
-        return;
-    }
+/* The random numbers of one bounce of one path. */
+typedef struct {
+    wp_uint seed, pixel, sample, depth;
+} WpPathRandom;
 
-    float3 direction = ray_direction[slot].xyz;
-    float3 position = ray_origin[slot].xyz + hit_t[slot] * direction;
+static inline float wp_path_random(const WpPathRandom* r, wp_uint dimension) {
+    return wp_random(r->seed, r->pixel, r->sample, r->depth, dimension);
+}
 
-    /* Geometric normal, and the hit point reprojected onto the surface: its
-     * error then scales with the surface's coordinates, not with t. */
-    float3 normal;
-    float scale; /* magnitude of the primitive's coordinates, for ray offsets */
-    wp_uint material_index;
-#if WP_HAS_SPHERES
-    if (primitive >= frame.triangle_count) {
-        WpSphere sphere = spheres[primitive - frame.triangle_count];
-        normal = normalize(position - sphere.center_radius.xyz);
-        position = sphere.center_radius.xyz + sphere.center_radius.w * normal;
-        scale = wp_sphere_scale(sphere.center_radius);
-        material_index = sphere.material;
-        if (dot(direction, normal) >= 0.0f) {
-            /* Spheres are opaque solids: a ray meets one from inside only
-             * when an offset origin landed inside it, next to a contact point
-             * (docs/stability.md, case 4). Inside a mirror sphere such a path
-             * would bounce until the depth cap; absorb it instead. */
-            finished_queue[atomic_inc(&counters[WP_COUNTER_FINISHED])] = slot;
-            return;
-        }
-    } else
-#endif
-    {
-        WpTriangle triangle = triangles[primitive];
-        normal = normalize(wp_triangle_normal(&triangle));
-        position -= dot(position - triangle.v0.xyz, normal) * normal;
-        scale = wp_triangle_scale(&triangle);
-        material_index = triangle.material;
-    }
-    WpMaterial material = materials[material_index];
-    int front_face = dot(direction, normal) < 0.0f;
-    float3 facing_normal = front_face ? normal : -normal; /* on the side the ray came from */
+/* Step 1: the emitted radiance the path sees at this surface, if it counts. */
+static inline float3 wp_shade_emission(const WpMaterial* material, const WpSurface* surface,
+                                       wp_uint flags, float3 beta, float3 sum) {
+    if ((!WP_USE_NEE || (flags & WP_PATH_SPECULAR)) && surface->front_face)
+        sum += beta * material->emission.xyz;
+    return sum;
+}
 
-    float3 beta = throughput[slot].xyz;
-    float3 sum = radiance[slot].xyz;
-    wp_uint depth = path_depth[slot];
-    wp_uint flags = path_flags[slot];
-    wp_uint pixel = path_pixel[slot];
-    wp_uint sample = path_sample[slot];
-
-    if ((!WP_USE_NEE || (flags & WP_PATH_SPECULAR)) && front_face)
-        sum += beta * material.emission.xyz;
-    radiance[slot] = (float4)(sum, 0.0f);
-    if (material.kind == WP_MATERIAL_EMITTER) {
-        finished_queue[atomic_inc(&counters[WP_COUNTER_FINISHED])] = slot;
-        return;
-    }
-
-    float3 origin = wp_offset_ray_origin(position, facing_normal, scale);
-    float3 reflectance = material.reflectance.xyz;
-    float3 next_direction;
-    float3 weight = reflectance; /* BRDF x cos / pdf of next_direction */
-#if WP_DIFFUSE_SAMPLING == WP_DIFFUSE_REPORT
-    /* decides the roulette: a fresh number for mirrors, theta's for diffuse */
-    float u_survive = wp_random(frame.seed, pixel, sample, depth, WP_DIM_ROULETTE);
-#endif
-#if WP_HAS_MIRROR
-    if (material.kind == WP_MATERIAL_MIRROR) {
-        next_direction = wp_reflect(direction, facing_normal);
-        flags |= WP_PATH_SPECULAR;
-    } else
-#endif
-    {
+/* Step 2: one shadow ray towards a light point, queued with the contribution
+ * it carries if unblocked. */
+static inline void wp_shade_next_event(const WpSceneView* scene, const WpMaterial* material,
+                                       const WpSurface* surface, float3 wo, float3 normal,
+                                       float3 origin, float3 beta, const WpPathRandom* random,
+                                       wp_uint slot, __global wp_uint* shadow_queue,
+                                       __global wp_uint* counters, __global float4* shadow_origin,
+                                       __global float4* shadow_direction,
+                                       __global float4* shadow_contribution) {
 #if WP_HAS_LIGHTS && WP_USE_NEE
-        WpLightSample light;
-        if (wp_sample_light(frame, triangles, materials, lights, position, origin, facing_normal,
-                            wp_random(frame.seed, pixel, sample, depth, WP_DIM_LIGHT_PICK),
-                            wp_random(frame.seed, pixel, sample, depth, WP_DIM_LIGHT_U),
-                            wp_random(frame.seed, pixel, sample, depth, WP_DIM_LIGHT_V), &light)) {
-            float3 contribution = beta * reflectance * light.irradiance * (1.0f / WP_PI);
-            if (!wp_is_black(contribution)) {
-                shadow_queue[atomic_inc(&counters[WP_COUNTER_SHADOW_RAYS])] = slot;
-                shadow_origin[slot] = (float4)(origin, 0.0f);
-                shadow_direction[slot] = (float4)(light.direction, light.length);
-                shadow_contribution[slot] = (float4)(contribution, 0.0f);
-            }
-        }
-#endif
-        float u1 = wp_random(frame.seed, pixel, sample, depth, WP_DIM_BSDF_U);
-        float u2 = wp_random(frame.seed, pixel, sample, depth, WP_DIM_BSDF_V);
-#if WP_DIFFUSE_SAMPLING == WP_DIFFUSE_REPORT
-        /* theta' = u1 pi/2; the roulette below ends the path when
-         * theta' > sigma pi/2, i.e. u1 >= sigma; survivors go on at
-         * theta = theta' / sigma, uniform in [0, pi/2] (estimator.h). */
-        float sigma = fmin(1.0f, wp_max_component(reflectance));
-        u_survive = u1;
-        float theta = (sigma > 0.0f ? fmin(1.0f, u1 / sigma) : 0.0f) * (0.5f * WP_PI);
-        next_direction = wp_direction_from_angles(facing_normal, theta, 2.0f * WP_PI * u2);
-        weight = reflectance * (WP_PI * cos(theta) * sin(theta));
+    WpLightSample light;
+    if (!wp_sample_light(
+            scene, surface->position, origin, normal, wp_path_random(random, WP_DIM_LIGHT_PICK),
+            wp_path_random(random, WP_DIM_LIGHT_U), wp_path_random(random, WP_DIM_LIGHT_V), &light))
+        return;
+    float3 contribution = beta * wp_bsdf_eval_pi(material, wo, light.direction, normal) *
+                          light.irradiance * (1.0f / WP_PI);
+    if (wp_is_black(contribution))
+        return;
+    wp_queue_push(shadow_queue, counters, WP_COUNTER_SHADOW_RAYS, slot);
+    shadow_origin[slot] = (float4)(origin, 0.0f);
+    shadow_direction[slot] = (float4)(light.direction, light.length);
+    shadow_contribution[slot] = (float4)(contribution, 0.0f);
 #else
-        next_direction = wp_sample_cosine_hemisphere(facing_normal, u1, u2);
+    (void)scene, (void)material, (void)surface, (void)wo, (void)normal, (void)origin, (void)beta;
+    (void)random, (void)slot, (void)shadow_queue, (void)counters, (void)shadow_origin;
+    (void)shadow_direction, (void)shadow_contribution;
 #endif
-        flags &= ~WP_PATH_SPECULAR;
-    }
+}
 
+/* Step 4: whether the path goes on, and the probability it did so with
+ * (survivors' throughput is divided by it). Takes the scattering weight into
+ * *beta. `u_bsdf` is the first number the BSDF sample used: the report's
+ * roulette decides by it (bsdf/diffuse.h). */
+static inline int wp_shade_roulette(const WpMaterial* material, const WpBsdfSample* scattered,
+                                    const WpPathRandom* random, float u_bsdf, float3* beta,
+                                    float* survival) {
 #if WP_DIFFUSE_SAMPLING == WP_DIFFUSE_REPORT
     /* The report's roulette: survive with the surface's albedo sigma, whatever
-     * the path carries; eq. 2.10 divides survivors by it. */
-    float survival = fmin(1.0f, wp_max_component(reflectance));
-    int survives = u_survive < survival;
-    beta *= weight;
+     * the path carries; eq. 2.10 divides survivors by it. Mirrors draw a
+     * number of their own. */
+    float u_survive = scattered->specular ? wp_path_random(random, WP_DIM_ROULETTE) : u_bsdf;
+    *survival = fmin(1.0f, wp_max_component(material->reflectance.xyz));
+    *beta *= scattered->weight;
+    return u_survive < *survival;
 #else
-    beta *= weight;
-    float survival = fmin(1.0f, wp_max_component(beta));
-    float u_roulette = wp_random(frame.seed, pixel, sample, depth, WP_DIM_ROULETTE);
-    int survives = u_roulette < survival;
+    (void)material;
+    (void)u_bsdf;
+    *beta *= scattered->weight;
+    *survival = fmin(1.0f, wp_max_component(*beta));
+    return wp_path_random(random, WP_DIM_ROULETTE) < *survival;
 #endif
+}
+
+__kernel void shade(WP_STAGE_PARAMETERS) {
+    wp_uint index = get_global_id(0);
+    if (index >= counters[launch.ray_queue])
+        return;
+    wp_uint slot = wp_ray_queue(ray_queues, frame, launch.ray_queue)[index];
+    wp_uint primitive = hit_primitive[slot];
+    if (primitive == WP_NO_HIT) { /* the ray left the scene: the path ends with what it has */
+        wp_queue_push(finished_queue, counters, WP_COUNTER_FINISHED, slot);
+        return;
+    }
+
+    WpSceneView scene = WP_SCENE_VIEW();
+    float3 direction = ray_direction[slot].xyz;
+    WpSurface surface =
+        wp_surface_at(&scene, primitive, ray_origin[slot].xyz, direction, hit_t[slot]);
+    if (surface.inside_solid) {
+        /* Inside a mirror sphere such a path would bounce until the depth
+         * cap; absorb it instead. */
+        wp_queue_push(finished_queue, counters, WP_COUNTER_FINISHED, slot);
+        return;
+    }
+    WpMaterial material = materials[surface.material];
+    float3 normal = surface.front_face ? surface.normal : -surface.normal; /* the ray's side */
+
+    float3 beta = throughput[slot].xyz;
+    wp_uint depth = path_depth[slot];
+    wp_uint flags = path_flags[slot];
+    WpPathRandom random = {frame.seed, path_pixel[slot], path_sample[slot], depth};
+
+    radiance[slot] =
+        (float4)(wp_shade_emission(&material, &surface, flags, beta, radiance[slot].xyz), 0.0f);
+    if (wp_bsdf_is_black(&material)) {
+        wp_queue_push(finished_queue, counters, WP_COUNTER_FINISHED, slot);
+        return;
+    }
+
+    float3 origin = wp_offset_ray_origin(surface.position, normal, surface.scale);
+    if (!wp_bsdf_is_delta(&material))
+        wp_shade_next_event(&scene, &material, &surface, direction, normal, origin, beta, &random,
+                            slot, shadow_queue, counters, shadow_origin, shadow_direction,
+                            shadow_contribution);
+
+    float u1 = wp_path_random(&random, WP_DIM_BSDF_U);
+    float u2 = wp_path_random(&random, WP_DIM_BSDF_V);
+    WpBsdfSample scattered = wp_bsdf_sample(&material, direction, normal, u1, u2);
+    if (scattered.specular)
+        flags |= WP_PATH_SPECULAR;
+    else
+        flags &= ~WP_PATH_SPECULAR;
+
+    float survival;
+    int survives = wp_shade_roulette(&material, &scattered, &random, u1, &beta, &survival);
     if (survives && depth + 1u > frame.max_depth) {
         atomic_inc(&counters[WP_COUNTER_CAPPED]);
         survives = 0;
     }
     if (!survives) {
-        finished_queue[atomic_inc(&counters[WP_COUNTER_FINISHED])] = slot;
+        wp_queue_push(finished_queue, counters, WP_COUNTER_FINISHED, slot);
         return;
     }
     throughput[slot] = (float4)(beta / survival, 0.0f);
     ray_origin[slot] = (float4)(origin, 0.0f);
-    ray_direction[slot] = (float4)(next_direction, 0.0f);
+    ray_direction[slot] = (float4)(scattered.direction, 0.0f);
     path_depth[slot] = depth + 1u;
     path_flags[slot] = flags;
-    next_queue[atomic_inc(&counters[next_counter])] = slot;
+    wp_queue_push(wp_ray_queue(ray_queues, frame, 1u - launch.ray_queue), counters,
+                  1u - launch.ray_queue, slot);
 }

@@ -1,49 +1,40 @@
 /* Queries against the whole scene: the closest hit of a ray and whether
- * anything blocks a segment. Primitives are numbered triangles first, then
- * spheres; on an exact tie in t the lower number wins, so results never
- * depend on evaluation order.
+ * anything blocks a segment. The only entry points of ray traversal: the
+ * intersect and shadow stages (and tests) call these two, so an acceleration
+ * structure replaces their bodies and nothing else.
  *
- * The loops run over the frame's primitive counts, or, when the program is
- * specialised for a small scene (-D WP_TRIANGLE_COUNT=n -D WP_SPHERE_COUNT=m,
- * see src/render/device_scene.cpp and docs/specialization.md), over counts
- * fixed at compile time, fully unrolled. Both forms run the same tests of
- * geometry.h in the same order with the same limits, so they give
- * bit-identical results. Past a few hundred primitives a hierarchy would
- * beat any linear loop; docs/specialization.md has the measurements.
+ * On an exact tie in t the lower primitive number wins, so results never
+ * depend on evaluation order. With the counts fixed at compile time
+ * (primitive.h) the loops unroll fully; both forms run the same tests in the
+ * same order with the same limits, so they give bit-identical results. Past
+ * a few hundred primitives a hierarchy would beat any linear loop;
+ * docs/specialization.md has the measurements.
  */
 #ifndef WP_TRAVERSE_H
 #define WP_TRAVERSE_H
 
-#include "scene_features.h"
-#include "geometry.h"
-
-#if defined(WP_TRIANGLE_COUNT) != defined(WP_SPHERE_COUNT)
-#error "WP_TRIANGLE_COUNT and WP_SPHERE_COUNT are defined together or not at all"
-#endif
+#include "primitive.h"
+#include "sphere.h"
+#include "triangle.h"
 
 #ifdef WP_TRIANGLE_COUNT
-#define WP_TRIANGLE_LOOP_COUNT ((wp_uint)(WP_TRIANGLE_COUNT))
-#define WP_SPHERE_LOOP_COUNT ((wp_uint)(WP_SPHERE_COUNT))
 #define WP_TRAVERSE_UNROLL _Pragma("unroll")
 #else
-#define WP_TRIANGLE_LOOP_COUNT frame.triangle_count
-#define WP_SPHERE_LOOP_COUNT frame.sphere_count
 #define WP_TRAVERSE_UNROLL
 #endif
 
 /* Closest hit with 0 < t < t_max. Returns the primitive number or WP_NO_HIT. */
-static inline wp_uint wp_closest_hit(float3 origin, float3 direction, float t_max,
-                                     __global const WpTriangle* triangles,
-                                     __global const WpSphere* spheres, WpFrame frame, float* t_hit) {
+static inline wp_uint wp_closest_hit(const WpSceneView* scene, float3 origin, float3 direction,
+                                     float t_max, float* t_hit) {
     wp_uint hit = WP_NO_HIT;
     float closest = t_max;
 #if WP_HAS_TRIANGLES
     WpShearedRay ray = wp_shear_ray(origin, direction);
     WP_TRAVERSE_UNROLL
-    for (wp_uint i = 0; i < WP_TRIANGLE_LOOP_COUNT; ++i) {
+    for (wp_uint i = 0; i < WP_TRIANGLE_LOOP_COUNT(scene); ++i) {
         float t;
-        if (wp_intersect_triangle(&ray, triangles[i].v0.xyz, triangles[i].v1.xyz,
-                                  triangles[i].v2.xyz, closest, &t)) {
+        if (wp_intersect_triangle(&ray, scene->triangles[i].v0.xyz, scene->triangles[i].v1.xyz,
+                                  scene->triangles[i].v2.xyz, closest, &t)) {
             closest = t;
             hit = i;
         }
@@ -51,42 +42,40 @@ static inline wp_uint wp_closest_hit(float3 origin, float3 direction, float t_ma
 #endif
 #if WP_HAS_SPHERES
     WP_TRAVERSE_UNROLL
-    for (wp_uint i = 0; i < WP_SPHERE_LOOP_COUNT; ++i) {
+    for (wp_uint i = 0; i < WP_SPHERE_LOOP_COUNT(scene); ++i) {
         float t;
-        if (wp_intersect_sphere(origin, direction, spheres[i].center_radius, closest, &t)) {
+        if (wp_intersect_sphere(origin, direction, scene->spheres[i].center_radius, closest, &t)) {
             closest = t;
-            hit = WP_TRIANGLE_LOOP_COUNT + i;
+            hit = wp_sphere_primitive(scene, i);
         }
     }
 #endif
-    (void)frame;
     *t_hit = closest;
     return hit;
 }
 
 /* 1 if any primitive lies on the segment origin + t * direction, 0 < t < t_max. */
-static inline int wp_occluded(float3 origin, float3 direction, float t_max,
-                              __global const WpTriangle* triangles,
-                              __global const WpSphere* spheres, WpFrame frame) {
+static inline int wp_occluded(const WpSceneView* scene, float3 origin, float3 direction,
+                              float t_max) {
 #if WP_HAS_TRIANGLES
     WpShearedRay ray = wp_shear_ray(origin, direction);
     WP_TRAVERSE_UNROLL
-    for (wp_uint i = 0; i < WP_TRIANGLE_LOOP_COUNT; ++i) {
+    for (wp_uint i = 0; i < WP_TRIANGLE_LOOP_COUNT(scene); ++i) {
         float t;
-        if (wp_intersect_triangle(&ray, triangles[i].v0.xyz, triangles[i].v1.xyz,
-                                  triangles[i].v2.xyz, t_max, &t))
+        if (wp_intersect_triangle(&ray, scene->triangles[i].v0.xyz, scene->triangles[i].v1.xyz,
+                                  scene->triangles[i].v2.xyz, t_max, &t))
             return 1;
     }
 #endif
 #if WP_HAS_SPHERES
     WP_TRAVERSE_UNROLL
-    for (wp_uint i = 0; i < WP_SPHERE_LOOP_COUNT; ++i) {
+    for (wp_uint i = 0; i < WP_SPHERE_LOOP_COUNT(scene); ++i) {
         float t;
-        if (wp_intersect_sphere(origin, direction, spheres[i].center_radius, t_max, &t))
+        if (wp_intersect_sphere(origin, direction, scene->spheres[i].center_radius, t_max, &t))
             return 1;
     }
 #endif
-    (void)frame;
+    (void)scene;
     return 0;
 }
 

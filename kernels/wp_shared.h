@@ -38,12 +38,12 @@ typedef cl_float4 wp_float4;
 /* Counters the kernels bump with atomics (one buffer of WP_COUNTER_COUNT
  * uints). The two ray queues swap roles every iteration, so each keeps its
  * length in its own entry and kernels are told which entry is theirs. */
-#define WP_COUNTER_QUEUE_A 0u    /* length of ray queue A */
-#define WP_COUNTER_QUEUE_B 1u    /* length of ray queue B */
+#define WP_COUNTER_QUEUE_A 0u     /* length of ray queue A */
+#define WP_COUNTER_QUEUE_B 1u     /* length of ray queue B */
 #define WP_COUNTER_SHADOW_RAYS 2u /* length of the shadow-ray queue */
-#define WP_COUNTER_FINISHED 3u   /* length of the finished-path queue */
-#define WP_COUNTER_CAPPED 4u     /* paths cut by the safety depth cap */
-#define WP_COUNTER_NONFINITE 5u  /* samples dropped at the film for NaN or Inf */
+#define WP_COUNTER_FINISHED 3u    /* length of the finished-path queue */
+#define WP_COUNTER_CAPPED 4u      /* paths cut by the safety depth cap */
+#define WP_COUNTER_NONFINITE 5u   /* samples dropped at the film for NaN or Inf */
 #define WP_COUNTER_COUNT 8u
 
 /* A triangle: vertices in xyz (w unused). Its front face is the side of
@@ -111,5 +111,67 @@ typedef struct {
     wp_uint max_depth;   /* safety cap on bounces; paths cut are counted */
     wp_uint pad0;
 } WpFrame;
+
+/* What changes from one launch of a stage to the next, passed by value after
+ * the frame. Every stage takes the same arguments (kernels/stage.h), so a
+ * stage reads only the fields that concern it:
+ *   generate    count slots: work-item i takes slot i, or, with
+ *               from_finished, the slot finished_queue[i]; it pushes the new
+ *               camera rays onto ray queue `ray_queue`.
+ *   intersect,  read ray queue `ray_queue` (its length is in
+ *   shade       counters[ray_queue], as generate appended to it after the host
+ *               last looked); shade pushes survivors onto the other queue.
+ *   shadow      count shadow rays.
+ *   accumulate  count finished paths. */
+typedef struct {
+    wp_uint count;
+    wp_uint ray_queue; /* 0 or 1: WP_COUNTER_QUEUE_A or WP_COUNTER_QUEUE_B */
+    wp_uint from_finished;
+    wp_uint pad0;
+} WpLaunch;
+
+/* Every device buffer, declared once. The stage kernels' parameter lists
+ * (kernels/stage.h) and the host's buffers and argument binding
+ * (src/render/device_buffers.hpp) are both generated from these lists, so a
+ * new buffer is one line here (and, for a scene buffer, the DeviceScene
+ * member of the same name that fills it) and cannot shift another argument.
+ *
+ * WP_SCENE_BUFFERS: X(name, element type), read-only, uploaded from the
+ * DeviceScene member `name`.
+ *
+ * WP_PATH_BUFFERS: X(name, element type, per slot, per pixel, fixed): work
+ * buffers of per_slot x pool_size + per_pixel x width x height + fixed
+ * elements. */
+#define WP_SCENE_BUFFERS(X)                                                                        \
+    X(triangles, WpTriangle)                                                                       \
+    X(spheres, WpSphere)                                                                           \
+    X(materials, WpMaterial)                                                                       \
+    X(lights, WpLight)
+
+#define WP_PATH_BUFFERS(X)                                                                         \
+    /* path state, one entry per slot (structure of arrays) */                                     \
+    X(path_task, wp_uint, 1, 0, 0)  /* tasks done by the slot in this render call */               \
+    X(path_pixel, wp_uint, 1, 0, 0) /* the slot's current pixel and sample */                      \
+    X(path_sample, wp_uint, 1, 0, 0)                                                               \
+    X(path_depth, wp_uint, 1, 0, 0)   /* bounces so far */                                         \
+    X(path_flags, wp_uint, 1, 0, 0)   /* WP_PATH_* */                                              \
+    X(ray_origin, wp_float4, 1, 0, 0) /* the ray to trace next (xyz) */                            \
+    X(ray_direction, wp_float4, 1, 0, 0)                                                           \
+    X(throughput, wp_float4, 1, 0, 0)    /* rgb: what the path carries */                          \
+    X(radiance, wp_float4, 1, 0, 0)      /* rgb: what it has gathered */                           \
+    X(hit_t, wp_float, 1, 0, 0)          /* intersect's closest hit */                             \
+    X(hit_primitive, wp_uint, 1, 0, 0)   /* ... and what it hit (WP_NO_HIT) */                     \
+    X(shadow_origin, wp_float4, 1, 0, 0) /* the slot's shadow ray (direction w: length) */         \
+    X(shadow_direction, wp_float4, 1, 0, 0)                                                        \
+    X(shadow_contribution, wp_float4, 1, 0, 0) /* rgb added if unblocked */                        \
+    /* queues of slot indices, pushed with atomics on `counters` */                                \
+    X(ray_queues, wp_uint, 2, 0, 0) /* queues A and B, pool_size entries each */                   \
+    X(shadow_queue, wp_uint, 1, 0, 0)                                                              \
+    X(finished_queue, wp_uint, 1, 0, 0)                                                            \
+    X(counters, wp_uint, 0, 0, WP_COUNTER_COUNT)                                                   \
+    /* the film of the current batch of iterations, per pixel (kernels/accumulate.cl) */           \
+    X(film_sum, wp_float4, 0, 1, 0)                                                                \
+    X(film_sum_squares, wp_float4, 0, 1, 0)                                                        \
+    X(film_odd_sum, wp_float4, 0, 1, 0)
 
 #endif /* WP_SHARED_H */

@@ -8,6 +8,7 @@
 
 #include "cl/embedded_kernels.hpp"
 #include "cl/error.hpp"
+#include "cl/stages.hpp"
 
 namespace wp {
 namespace {
@@ -170,8 +171,13 @@ BuiltProgram build_program(const cl::Context& context, const cl::Device& device,
 
 std::string_view wavefront_program_source() {
     // One translation unit with every stage: the shared headers compile once.
-    return "#include \"generate.cl\"\n#include \"intersect.cl\"\n#include \"shade.cl\"\n"
-           "#include \"shadow.cl\"\n#include \"accumulate.cl\"\n";
+    static const std::string source = [] {
+        std::string text;
+        for (std::string_view stage : kStageKernelNames)
+            text += "#include \"" + std::string(stage) + ".cl\"\n";
+        return text;
+    }();
+    return source;
 }
 
 BuiltProgram build_wavefront_program(const cl::Context& context, const cl::Device& device,

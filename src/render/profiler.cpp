@@ -7,21 +7,10 @@
 namespace wp {
 
 const char* stage_name(Stage stage) {
-    switch (stage) {
-    case Stage::Generate:
-        return "generate";
-    case Stage::Intersect:
-        return "intersect";
-    case Stage::Shade:
-        return "shade";
-    case Stage::Shadow:
-        return "shadow";
-    case Stage::Accumulate:
-        return "accumulate";
-    case Stage::Transfer:
+    if (stage == Stage::Transfer)
         return "transfers";
-    }
-    return "?";
+    // The names are string literals, so their data are terminated.
+    return kStageKernelNames.at(static_cast<std::size_t>(stage)).data();
 }
 
 cl::Event* Profiler::begin(Stage stage, std::uint64_t items) {

@@ -12,11 +12,15 @@
 #include <vector>
 
 #include "cl/cl.hpp"
+#include "cl/stages.hpp"
 
 namespace wp {
 
-enum class Stage { Generate, Intersect, Shade, Shadow, Accumulate, Transfer };
-constexpr int kStageCount = 6;
+// The stage kernels (src/cl/stages.hpp), then host-device transfers.
+#define WP_STAGE_ENUM(enum_name, name) enum_name,
+enum class Stage { WP_STAGE_KERNELS(WP_STAGE_ENUM) Transfer };
+#undef WP_STAGE_ENUM
+constexpr int kStageCount = static_cast<int>(kStageKernelNames.size()) + 1;
 const char* stage_name(Stage stage);
 
 struct LaunchRecord {

@@ -23,25 +23,6 @@ constexpr std::uint64_t kIterationsPerFlush = 32;
 // compiles a kernel anew for every distinct local size it is given.
 constexpr std::uint32_t kWorkGroupSize = 64;
 
-// Device memory per path slot: nine float4 arrays (ray origin and direction,
-// throughput, radiance, the shadow ray's origin, direction and contribution)
-// and eleven 4-byte arrays (task, pixel, sample, depth, flags, hit distance
-// and primitive, the slot list, two ray queues, the finished and shadow
-// queues); per pixel: three float4 film sums.
-constexpr std::uint64_t kBytesPerSlot = 7 * sizeof(cl_float4) + 12 * sizeof(cl_uint);
-constexpr std::uint64_t kBytesPerPixel = 3 * sizeof(cl_float4);
-
-template <typename T> cl::Buffer upload(const cl::Context& context, const std::vector<T>& data) {
-    // OpenCL has no empty buffers; a one-element dummy stands in.
-    std::vector<T> padded = data.empty() ? std::vector<T>(1) : data;
-    return cl::Buffer(context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(T) * padded.size(),
-                      padded.data());
-}
-
-cl::Buffer device_array(const cl::Context& context, std::size_t element_size, std::size_t count) {
-    return cl::Buffer(context, CL_MEM_READ_WRITE, element_size * std::max<std::size_t>(count, 1));
-}
-
 std::string gibibytes(std::uint64_t bytes) {
     char text[32];
     std::snprintf(text, sizeof text, "%.2f GiB", static_cast<double>(bytes) / (1ull << 30));
@@ -53,8 +34,9 @@ std::string gibibytes(std::uint64_t bytes) {
 void check_device_memory(const DeviceInfo& device, int width, int height, std::uint64_t slots) {
     const std::uint64_t pixels =
         static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
-    const std::uint64_t total = pixels * kBytesPerPixel + slots * kBytesPerSlot;
-    const std::uint64_t largest = std::max(pixels, slots) * sizeof(cl_float4);
+    const PathBufferBytes bytes = path_buffer_bytes();
+    const std::uint64_t total = bytes.total(slots, pixels);
+    const std::uint64_t largest = bytes.largest(slots, pixels);
     const std::uint64_t max_alloc = device.device.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
     if (total > device.global_memory_bytes || largest > max_alloc)
         throw std::runtime_error(
@@ -76,24 +58,11 @@ WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const Scene& sce
         options_.pool_size == 0 ? pixel_count_ : std::min(options_.pool_size, pixel_count_);
     check_device_memory(device_.info, scene_.width, scene_.height, pool_size_);
 
-    const cl::Context& ctx = device_.context;
-    SceneFeatures compiled = options_.general_kernels ? SceneFeatures::all() : features_;
-    std::string build_options = compiled.build_options();
-    if (!options_.next_event_estimation)
-        build_options += " -D WP_USE_NEE=0";
-    build_options += options_.diffuse_sampling == DiffuseSampling::Report
-                         ? " -D WP_DIFFUSE_SAMPLING=1"
-                         : " -D WP_DIFFUSE_SAMPLING=0";
-    build_options += options_.light_sampling == LightSampling::SolidAngle
-                         ? " -D WP_LIGHT_SAMPLING=1"
-                         : " -D WP_LIGHT_SAMPLING=0";
-    program_ = build_wavefront_program(ctx, device_.info.device, build_options);
-
-    generate_ = cl::Kernel(program_.program, "generate");
-    intersect_ = cl::Kernel(program_.program, "intersect");
-    shade_ = cl::Kernel(program_.program, "shade");
-    shadow_ = cl::Kernel(program_.program, "shadow");
-    accumulate_ = cl::Kernel(program_.program, "accumulate");
+    const SceneFeatures compiled = options_.general_kernels ? SceneFeatures::all() : features_;
+    program_ = build_wavefront_program(device_.context, device_.info.device,
+                                       kernel_build_options(compiled, options_));
+    for (std::size_t i = 0; i < kStageKernelNames.size(); ++i)
+        kernels_[i] = cl::Kernel(program_.program, std::string(kStageKernelNames[i]).c_str());
 
     frame_.camera = scene_.camera;
     frame_.width = static_cast<wp_uint>(scene_.width);
@@ -106,106 +75,24 @@ WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const Scene& sce
     frame_.light_area = scene_.light_area;
     frame_.max_depth = options_.max_depth;
 
-    triangles_ = upload(ctx, scene_.triangles);
-    spheres_ = upload(ctx, scene_.spheres);
-    materials_ = upload(ctx, scene_.materials);
-    lights_ = upload(ctx, scene_.lights);
-
-    const std::size_t n = pool_size_;
-    const std::size_t f4 = sizeof(cl_float4), u = sizeof(cl_uint);
-    path_task_ = device_array(ctx, u, n);
-    ray_origin_ = device_array(ctx, f4, n);
-    ray_direction_ = device_array(ctx, f4, n);
-    throughput_ = device_array(ctx, f4, n);
-    radiance_ = device_array(ctx, f4, n);
-    path_pixel_ = device_array(ctx, u, n);
-    path_sample_ = device_array(ctx, u, n);
-    path_depth_ = device_array(ctx, u, n);
-    path_flags_ = device_array(ctx, u, n);
-    hit_t_ = device_array(ctx, sizeof(cl_float), n);
-    hit_primitive_ = device_array(ctx, u, n);
-    shadow_origin_ = device_array(ctx, f4, n);
-    shadow_direction_ = device_array(ctx, f4, n);
-    shadow_contribution_ = device_array(ctx, f4, n);
-    std::vector<cl_uint> identity(n);
-    std::iota(identity.begin(), identity.end(), 0u);
-    all_slots_ = upload(ctx, identity);
-    queue_a_ = device_array(ctx, u, n);
-    queue_b_ = device_array(ctx, u, n);
-    finished_queue_ = device_array(ctx, u, n);
-    shadow_queue_ = device_array(ctx, u, n);
-    counters_ = device_array(ctx, u, WP_COUNTER_COUNT);
-    film_sum_ = device_array(ctx, f4, pixel_count_);
-    film_sum_squares_ = device_array(ctx, f4, pixel_count_);
-    film_odd_sum_ = device_array(ctx, f4, pixel_count_);
-
-    const cl_float4 zero4{};
-    for (cl::Buffer* b : {&film_sum_, &film_sum_squares_, &film_odd_sum_})
-        device_.queue.enqueueFillBuffer(*b, zero4, 0, f4 * pixel_count_);
-
-    // Buffer arguments that never change; the frame, queue roles and lengths
-    // are set per launch.
-    generate_.setArg(3, path_task_);
-    generate_.setArg(4, ray_origin_);
-    generate_.setArg(5, ray_direction_);
-    generate_.setArg(6, throughput_);
-    generate_.setArg(7, radiance_);
-    generate_.setArg(8, path_pixel_);
-    generate_.setArg(9, path_sample_);
-    generate_.setArg(10, path_depth_);
-    generate_.setArg(11, path_flags_);
-    generate_.setArg(13, counters_);
-
-    intersect_.setArg(2, counters_);
-    intersect_.setArg(4, ray_origin_);
-    intersect_.setArg(5, ray_direction_);
-    intersect_.setArg(6, triangles_);
-    intersect_.setArg(7, spheres_);
-    intersect_.setArg(8, hit_t_);
-    intersect_.setArg(9, hit_primitive_);
-
-    shade_.setArg(2, counters_);
-    shade_.setArg(6, finished_queue_);
-    shade_.setArg(7, ray_origin_);
-    shade_.setArg(8, ray_direction_);
-    shade_.setArg(9, hit_t_);
-    shade_.setArg(10, hit_primitive_);
-    shade_.setArg(11, throughput_);
-    shade_.setArg(12, radiance_);
-    shade_.setArg(13, path_depth_);
-    shade_.setArg(14, path_flags_);
-    shade_.setArg(15, path_pixel_);
-    shade_.setArg(16, path_sample_);
-    shade_.setArg(17, triangles_);
-    shade_.setArg(18, spheres_);
-    shade_.setArg(19, materials_);
-    shade_.setArg(20, lights_);
-    shade_.setArg(21, shadow_queue_);
-    shade_.setArg(22, shadow_origin_);
-    shade_.setArg(23, shadow_direction_);
-    shade_.setArg(24, shadow_contribution_);
-
-    shadow_.setArg(2, shadow_queue_);
-    shadow_.setArg(3, shadow_origin_);
-    shadow_.setArg(4, shadow_direction_);
-    shadow_.setArg(5, shadow_contribution_);
-    shadow_.setArg(6, triangles_);
-    shadow_.setArg(7, spheres_);
-    shadow_.setArg(8, radiance_);
-
-    accumulate_.setArg(1, finished_queue_);
-    accumulate_.setArg(3, radiance_);
-    accumulate_.setArg(4, path_pixel_);
-    accumulate_.setArg(5, path_sample_);
-    accumulate_.setArg(6, film_sum_);
-    accumulate_.setArg(7, film_sum_squares_);
-    accumulate_.setArg(8, film_odd_sum_);
-    accumulate_.setArg(9, counters_);
+    buffers_ = allocate_device_buffers(device_.context, scene_, pool_size_, pixel_count_);
+    clear_film();
+    for (cl::Kernel& kernel : kernels_)
+        bind_buffers(kernel, buffers_);
 }
 
-void WavefrontIntegrator::launch(cl::Kernel& kernel, std::uint32_t items, Stage stage) {
+void WavefrontIntegrator::clear_film() {
+    const cl_float4 zero4{};
+    for (cl::Buffer* b : {&buffers_.film_sum, &buffers_.film_sum_squares, &buffers_.film_odd_sum})
+        device_.queue.enqueueFillBuffer(*b, zero4, 0, sizeof(cl_float4) * pixel_count_);
+}
+
+void WavefrontIntegrator::launch(Stage stage, const WpLaunch& arguments, std::uint32_t items) {
     if (items == 0)
         return;
+    cl::Kernel& kernel = kernels_[static_cast<std::size_t>(stage)];
+    kernel.setArg(kFrameArgument, frame_);
+    kernel.setArg(kLaunchArgument, arguments);
     std::size_t group = std::min<std::size_t>(kWorkGroupSize, device_.info.max_work_group_size);
     std::size_t global = (items + group - 1) / group * group;
     cl::Event* event = profiler_ ? profiler_->begin(stage, items) : nullptr;
@@ -220,29 +107,13 @@ void WavefrontIntegrator::read(const cl::Buffer& buffer, std::size_t bytes, void
                                     event);
 }
 
-void WavefrontIntegrator::set_queue_arguments(cl::Buffer& in, cl_uint in_counter, cl::Buffer& out,
-                                              cl_uint out_counter) {
-    intersect_.setArg(1, in);
-    intersect_.setArg(3, in_counter);
-    shade_.setArg(1, in);
-    shade_.setArg(3, in_counter);
-    shade_.setArg(4, out);
-    shade_.setArg(5, out_counter);
-    // generate refills into the queue shade fills, so survivors and new
-    // camera rays form the next iteration's input together.
-    generate_.setArg(12, out);
-    generate_.setArg(14, out_counter);
-}
-
 void WavefrontIntegrator::flush_film(Film& film) {
     const std::size_t floats = static_cast<std::size_t>(pixel_count_) * 4;
     std::vector<float> sum(floats), squares(floats), odd_sum(floats);
-    read(film_sum_, floats * sizeof(float), sum.data(), false);
-    read(film_sum_squares_, floats * sizeof(float), squares.data(), false);
-    read(film_odd_sum_, floats * sizeof(float), odd_sum.data(), true);
-    const cl_float4 zero4{};
-    for (cl::Buffer* b : {&film_sum_, &film_sum_squares_, &film_odd_sum_})
-        device_.queue.enqueueFillBuffer(*b, zero4, 0, floats * sizeof(float));
+    read(buffers_.film_sum, floats * sizeof(float), sum.data(), false);
+    read(buffers_.film_sum_squares, floats * sizeof(float), squares.data(), false);
+    read(buffers_.film_odd_sum, floats * sizeof(float), odd_sum.data(), true);
+    clear_film();
     auto start = std::chrono::steady_clock::now();
     film.add_batch(sum, squares, odd_sum);
     stats_.host_seconds +=
@@ -278,21 +149,19 @@ void WavefrontIntegrator::render_range(std::uint32_t first_sample, std::uint32_t
     cl::CommandQueue& q = device_.queue;
     frame_.first_sample = first_sample;
     frame_.sample_count = count;
-    for (cl::Kernel* k : {&generate_, &intersect_, &shade_, &shadow_, &accumulate_})
-        k->setArg(0, frame_);
-    q.enqueueFillBuffer(path_task_, cl_uint{0}, 0, sizeof(cl_uint) * pool_size_);
-    q.enqueueFillBuffer(counters_, cl_uint{0}, 0, sizeof(cl_uint) * WP_COUNTER_COUNT);
+    q.enqueueFillBuffer(buffers_.path_task, cl_uint{0}, 0, sizeof(cl_uint) * pool_size_);
+    q.enqueueFillBuffer(buffers_.counters, cl_uint{0}, 0, sizeof(cl_uint) * WP_COUNTER_COUNT);
 
-    cl::Buffer* in = &queue_a_;
-    cl::Buffer* out = &queue_b_;
-    cl_uint in_counter = WP_COUNTER_QUEUE_A, out_counter = WP_COUNTER_QUEUE_B;
+    // The two ray queues swap roles every iteration: intersect and shade read
+    // queue `in`, shade pushes survivors onto the other one, and generate
+    // refills into that one too, so survivors and new camera rays form the
+    // next iteration's input together. A queue's number is also the index of
+    // its length in the counters.
+    cl_uint in = WP_COUNTER_QUEUE_A;
+    static_assert(WP_COUNTER_QUEUE_A == 0 && WP_COUNTER_QUEUE_B == 1);
 
     // The first wave: every slot gets a camera ray.
-    generate_.setArg(1, all_slots_);
-    generate_.setArg(2, pool_size_);
-    generate_.setArg(12, *in);
-    generate_.setArg(14, in_counter);
-    launch(generate_, pool_size_, Stage::Generate);
+    launch(Stage::Generate, make_launch(pool_size_, in), pool_size_);
     // The profiler record of the last generate launch, whose item count (the
     // slots that really got a sample) is known only at the next sync.
     std::optional<std::size_t> generate_record;
@@ -306,21 +175,21 @@ void WavefrontIntegrator::render_range(std::uint32_t first_sample, std::uint32_t
     const double pixels = static_cast<double>(pixel_count_);
     static const std::array<cl_uint, 2> zeros{0, 0};
     for (std::uint64_t iteration = 0;; ++iteration) {
+        const cl_uint out = 1u - in;
         // Empty the output queue and the shadow and finished queues.
-        q.enqueueWriteBuffer(counters_, CL_FALSE, sizeof(cl_uint) * out_counter, sizeof(cl_uint),
+        q.enqueueWriteBuffer(buffers_.counters, CL_FALSE, sizeof(cl_uint) * out, sizeof(cl_uint),
                              zeros.data());
-        q.enqueueWriteBuffer(counters_, CL_FALSE, sizeof(cl_uint) * WP_COUNTER_SHADOW_RAYS,
+        q.enqueueWriteBuffer(buffers_.counters, CL_FALSE, sizeof(cl_uint) * WP_COUNTER_SHADOW_RAYS,
                              2 * sizeof(cl_uint), zeros.data());
-        set_queue_arguments(*in, in_counter, *out, out_counter);
         const auto bound = static_cast<std::uint32_t>(upper_bound);
-        launch(intersect_, bound, Stage::Intersect);
-        launch(shade_, bound, Stage::Shade);
+        launch(Stage::Intersect, make_launch(0, in), bound);
+        launch(Stage::Shade, make_launch(0, in), bound);
 
         // The one synchronisation per iteration: how long each queue is.
         std::array<cl_uint, 4> counts{};
-        read(counters_, sizeof(counts), counts.data(), true);
-        const std::uint32_t traced = counts[in_counter];
-        const std::uint32_t next = counts[out_counter];
+        read(buffers_.counters, sizeof(counts), counts.data(), true);
+        const std::uint32_t traced = counts[in];
+        const std::uint32_t next = counts[out];
         const std::uint32_t shadows = counts[WP_COUNTER_SHADOW_RAYS];
         const std::uint32_t finished = counts[WP_COUNTER_FINISHED];
         stats_.iterations += 1;
@@ -349,10 +218,8 @@ void WavefrontIntegrator::render_range(std::uint32_t first_sample, std::uint32_t
         if (traced == 0)
             break; // every slot has finished all its samples
 
-        shadow_.setArg(1, shadows);
-        launch(shadow_, shadows, Stage::Shadow);
-        accumulate_.setArg(2, finished);
-        launch(accumulate_, finished, Stage::Accumulate);
+        launch(Stage::Shadow, make_launch(shadows, in), shadows);
+        launch(Stage::Accumulate, make_launch(finished, in), finished);
         finished_total += finished;
         if (on_progress)
             on_progress(static_cast<double>(finished_total) / pixels);
@@ -364,9 +231,7 @@ void WavefrontIntegrator::render_range(std::uint32_t first_sample, std::uint32_t
         const bool refill_all = !options_.regeneration && next == 0;
         if (refill_finished || refill_all) {
             std::uint32_t slots = refill_finished ? finished : pool_size_;
-            generate_.setArg(1, refill_finished ? finished_queue_ : all_slots_);
-            generate_.setArg(2, slots);
-            launch(generate_, slots, Stage::Generate);
+            launch(Stage::Generate, make_launch(slots, out, refill_finished), slots);
             upper_bound += slots;
             if (refill_all)
                 bounce = 0;
@@ -374,15 +239,14 @@ void WavefrontIntegrator::render_range(std::uint32_t first_sample, std::uint32_t
                 generate_record = profiler_->last_record();
         }
         survivors = next;
-        std::swap(in, out);
-        std::swap(in_counter, out_counter);
+        in = out;
         if ((iteration + 1) % kIterationsPerFlush == 0)
             flush_film(film);
     }
     flush_film(film);
 
     std::array<cl_uint, WP_COUNTER_COUNT> counters{};
-    read(counters_, sizeof(counters), counters.data(), true);
+    read(buffers_.counters, sizeof(counters), counters.data(), true);
     stats_.capped_paths += counters[WP_COUNTER_CAPPED];
     stats_.nonfinite_samples += counters[WP_COUNTER_NONFINITE];
     if (profiler_)
@@ -391,50 +255,66 @@ void WavefrontIntegrator::render_range(std::uint32_t first_sample, std::uint32_t
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// Stage benchmarks: rays written straight into the path (or shadow) state of
+// slots 0 .. n-1, which the queue lists in order.
+void WavefrontIntegrator::load_rays(const cl::Buffer& origin_buffer,
+                                    const cl::Buffer& direction_buffer, const cl::Buffer& queue,
+                                    const std::vector<cl_float4>& origins,
+                                    const std::vector<cl_float4>& directions) {
+    if (origins.size() != directions.size() || origins.size() > pool_size_)
+        throw std::invalid_argument("stage benchmark: more rays than path slots");
+    cl::CommandQueue& q = device_.queue;
+    const std::size_t n = origins.size();
+    std::vector<cl_uint> identity(n);
+    std::iota(identity.begin(), identity.end(), 0u);
+    q.enqueueWriteBuffer(origin_buffer, CL_TRUE, 0, sizeof(cl_float4) * n, origins.data());
+    q.enqueueWriteBuffer(direction_buffer, CL_TRUE, 0, sizeof(cl_float4) * n, directions.data());
+    q.enqueueWriteBuffer(queue, CL_TRUE, 0, sizeof(cl_uint) * n, identity.data());
+}
+
 double WavefrontIntegrator::time_intersect(const std::vector<cl_float4>& origins,
                                            const std::vector<cl_float4>& directions,
                                            int repetitions) {
-    if (origins.size() != directions.size() || origins.size() > pool_size_)
-        throw std::invalid_argument("time_intersect: more rays than path slots");
-    cl::CommandQueue& q = device_.queue;
+    load_rays(buffers_.ray_origin, buffers_.ray_direction, buffers_.ray_queues, origins,
+              directions);
     const auto n = static_cast<cl_uint>(origins.size());
-    q.enqueueWriteBuffer(ray_origin_, CL_TRUE, 0, sizeof(cl_float4) * n, origins.data());
-    q.enqueueWriteBuffer(ray_direction_, CL_TRUE, 0, sizeof(cl_float4) * n, directions.data());
-    q.enqueueCopyBuffer(all_slots_, queue_a_, 0, 0, sizeof(cl_uint) * n);
     std::array<cl_uint, 1> count{n};
-    q.enqueueWriteBuffer(counters_, CL_TRUE, sizeof(cl_uint) * WP_COUNTER_QUEUE_A, sizeof(cl_uint),
-                         count.data());
-    intersect_.setArg(0, frame_);
-    intersect_.setArg(1, queue_a_);
-    intersect_.setArg(3, WP_COUNTER_QUEUE_A);
-    return time_launches(intersect_, n, Stage::Intersect, repetitions);
+    device_.queue.enqueueWriteBuffer(buffers_.counters, CL_TRUE,
+                                     sizeof(cl_uint) * WP_COUNTER_QUEUE_A, sizeof(cl_uint),
+                                     count.data());
+    return time_launches(Stage::Intersect, make_launch(0, WP_COUNTER_QUEUE_A), n, repetitions);
 }
 
 double WavefrontIntegrator::time_shadow(const std::vector<cl_float4>& origins,
                                         const std::vector<cl_float4>& directions, int repetitions) {
-    if (origins.size() != directions.size() || origins.size() > pool_size_)
-        throw std::invalid_argument("time_shadow: more rays than path slots");
-    cl::CommandQueue& q = device_.queue;
+    load_rays(buffers_.shadow_origin, buffers_.shadow_direction, buffers_.shadow_queue, origins,
+              directions);
     const auto n = static_cast<cl_uint>(origins.size());
-    q.enqueueWriteBuffer(shadow_origin_, CL_TRUE, 0, sizeof(cl_float4) * n, origins.data());
-    q.enqueueWriteBuffer(shadow_direction_, CL_TRUE, 0, sizeof(cl_float4) * n, directions.data());
-    q.enqueueCopyBuffer(all_slots_, shadow_queue_, 0, 0, sizeof(cl_uint) * n);
-    shadow_.setArg(0, frame_);
-    shadow_.setArg(1, n);
-    return time_launches(shadow_, n, Stage::Shadow, repetitions);
+    return time_launches(Stage::Shadow, make_launch(n, 0), n, repetitions);
 }
 
-double WavefrontIntegrator::time_launches(cl::Kernel& kernel, std::uint32_t items, Stage stage,
-                                          int repetitions) {
+double WavefrontIntegrator::time_launches(Stage stage, const WpLaunch& arguments,
+                                          std::uint32_t items, int repetitions) {
     Profiler local;
     Profiler* saved = profiler_;
     profiler_ = &local;
     for (int r = 0; r < repetitions; ++r)
-        launch(kernel, items, stage);
+        launch(stage, arguments, items);
     device_.queue.finish();
     local.resolve_completed();
     profiler_ = saved;
     return local.device_busy_seconds();
+}
+
+std::string kernel_build_options(const SceneFeatures& features, const IntegratorOptions& options) {
+    std::string text = features.build_options();
+    if (!options.next_event_estimation)
+        text += " -D WP_USE_NEE=0";
+    text += options.diffuse_sampling == DiffuseSampling::Report ? " -D WP_DIFFUSE_SAMPLING=1"
+                                                                : " -D WP_DIFFUSE_SAMPLING=0";
+    text += options.light_sampling == LightSampling::SolidAngle ? " -D WP_LIGHT_SAMPLING=1"
+                                                                : " -D WP_LIGHT_SAMPLING=0";
+    return text;
 }
 
 } // namespace wp

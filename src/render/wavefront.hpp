@@ -10,6 +10,7 @@
 // stays full while long paths drain. See docs/architecture.md.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -17,6 +18,7 @@
 
 #include "cl/context.hpp"
 #include "cl/program.hpp"
+#include "render/device_buffers.hpp"
 #include "render/device_scene.hpp"
 #include "render/film.hpp"
 #include "render/profiler.hpp"
@@ -78,6 +80,10 @@ struct RenderStats {
     double host_seconds = 0.0;   // host work inside it (folding the film)
 };
 
+// The -D options that compile the kernels for `features` and the estimator
+// of `options` (the one place that makes them).
+std::string kernel_build_options(const SceneFeatures& features, const IntegratorOptions& options);
+
 class WavefrontIntegrator {
   public:
     WavefrontIntegrator(DeviceContext& device, const Scene& scene, IntegratorOptions options);
@@ -115,13 +121,17 @@ class WavefrontIntegrator {
   private:
     void render_range(std::uint32_t first_sample, std::uint32_t count, Film& film,
                       const std::function<void(double)>& on_progress);
-    void launch(cl::Kernel& kernel, std::uint32_t items, Stage stage);
-    // Device seconds of `repetitions` launches of an already set-up kernel.
-    double time_launches(cl::Kernel& kernel, std::uint32_t items, Stage stage, int repetitions);
+    // Launches `stage` over `items` work-items (rounded up to whole groups).
+    void launch(Stage stage, const WpLaunch& arguments, std::uint32_t items);
+    // Device seconds of `repetitions` launches of one stage.
+    double time_launches(Stage stage, const WpLaunch& arguments, std::uint32_t items,
+                         int repetitions);
+    void load_rays(const cl::Buffer& origin_buffer, const cl::Buffer& direction_buffer,
+                   const cl::Buffer& queue, const std::vector<cl_float4>& origins,
+                   const std::vector<cl_float4>& directions);
     void read(const cl::Buffer& buffer, std::size_t bytes, void* out, bool blocking);
     void flush_film(Film& film);
-    void set_queue_arguments(cl::Buffer& in, cl_uint in_counter, cl::Buffer& out,
-                             cl_uint out_counter);
+    void clear_film();
 
     DeviceContext& device_;
     DeviceScene scene_;
@@ -133,18 +143,8 @@ class WavefrontIntegrator {
     std::uint32_t pool_size_ = 0;
     Profiler* profiler_ = nullptr;
 
-    cl::Kernel generate_, intersect_, shade_, shadow_, accumulate_;
-
-    // Scene.
-    cl::Buffer triangles_, spheres_, materials_, lights_;
-    // Path state, one entry per slot (structure of arrays).
-    cl::Buffer path_task_, ray_origin_, ray_direction_, throughput_, radiance_;
-    cl::Buffer path_pixel_, path_sample_, path_depth_, path_flags_, hit_t_, hit_primitive_;
-    cl::Buffer shadow_origin_, shadow_direction_, shadow_contribution_;
-    // Queues of slot indices, and the counters the kernels push with.
-    cl::Buffer all_slots_, queue_a_, queue_b_, finished_queue_, shadow_queue_, counters_;
-    // Film for the current batch of iterations (float4 per pixel).
-    cl::Buffer film_sum_, film_sum_squares_, film_odd_sum_;
+    std::array<cl::Kernel, kStageKernelNames.size()> kernels_; // by Stage
+    DeviceBuffers buffers_;
 
     RenderStats stats_;
 };

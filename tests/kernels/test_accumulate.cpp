@@ -9,6 +9,7 @@
 #include <random>
 #include <vector>
 
+using namespace wp;
 using namespace wp::test;
 
 TEST_CASE("accumulate: film sums and sample counts of the finished slots, dropping and counting "
@@ -42,7 +43,11 @@ TEST_CASE("accumulate: film sums and sample counts of the finished slots, droppi
     std::vector<cl_uint> initial_counters = {11u, 22u, 33u, 44u, 55u, 0u, 66u, 77u};
     REQUIRE(initial_counters.size() == WP_COUNTER_COUNT);
     cl::Buffer counters = upload(initial_counters);
-    cl::Kernel kernel = wavefront_kernel("accumulate");
+    DeviceBuffers buffers = stage_buffers(pool, pixels);
+    buffers.film_sum = film_sum;
+    buffers.film_sum_squares = film_squares;
+    buffers.film_odd_sum = film_odd;
+    buffers.counters = counters;
 
     // Each launch finishes the current task of a random subset of the slots
     // that have tasks left, in random order, as the finished queue lists them.
@@ -114,13 +119,12 @@ TEST_CASE("accumulate: film sums and sample counts of the finished slots, droppi
         }
         std::vector<cl_uint> queue = finished;
         queue.insert(queue.end(), others.begin(), others.end());
-        cl::Buffer queue_buffer = upload(queue);
-        cl::Buffer radiance_buffer = upload(radiance);
-        cl::Buffer pixel_buffer = upload(path_pixel);
-        cl::Buffer sample_buffer = upload(path_sample);
-        set_args(kernel, frame, queue_buffer, cl_uint(finished.size()), radiance_buffer,
-                 pixel_buffer, sample_buffer, film_sum, film_squares, film_odd, counters);
-        launch(kernel, queue.size());
+        buffers.finished_queue = upload(queue);
+        buffers.radiance = upload(radiance);
+        buffers.path_pixel = upload(path_pixel);
+        buffers.path_sample = upload(path_sample);
+        run_stage("accumulate", frame, make_launch(cl_uint(finished.size()), 0), buffers,
+                  queue.size());
         ++launches;
     }
     REQUIRE(dropped_nan_even);
@@ -175,10 +179,16 @@ TEST_CASE("accumulate: an empty finished queue adds nothing", "[cl][accumulate]"
     cl::Buffer film_squares = upload(std::vector<cl_float4>(2, start));
     cl::Buffer film_odd = upload(std::vector<cl_float4>(2, start));
     cl::Buffer counters = upload(std::vector<cl_uint>(WP_COUNTER_COUNT, 0u));
-    cl::Kernel kernel = wavefront_kernel("accumulate");
-    set_args(kernel, frame, queue, cl_uint(0), radiance, pixel, sample, film_sum, film_squares,
-             film_odd, counters);
-    launch(kernel, 2);
+    DeviceBuffers buffers = stage_buffers(2, 2);
+    buffers.finished_queue = queue;
+    buffers.radiance = radiance;
+    buffers.path_pixel = pixel;
+    buffers.path_sample = sample;
+    buffers.film_sum = film_sum;
+    buffers.film_sum_squares = film_squares;
+    buffers.film_odd_sum = film_odd;
+    buffers.counters = counters;
+    run_stage("accumulate", frame, make_launch(0, 0), buffers, 2);
     for (const cl::Buffer* film : {&film_sum, &film_squares, &film_odd}) {
         for (const cl_float4& v : download<cl_float4>(*film, 2))
             for (int k = 0; k < 4; ++k)

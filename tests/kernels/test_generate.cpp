@@ -2,9 +2,9 @@
 // from the scene's Camera fields, with the jitter the host draws from rng.h;
 // the slots' task lists (which pixel and sample each call hands out) against
 // a host model built from wp_shared.h's description.
-#include "support/kernel_test_util.hpp"
 #include "render/device_scene.hpp"
 #include "rng.h"
+#include "support/kernel_test_util.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -13,6 +13,7 @@
 #include <set>
 #include <vector>
 
+using namespace wp;
 using namespace wp::test;
 
 namespace {
@@ -46,29 +47,52 @@ class GenerateState {
     }
 
     // One generate call over slots[0, slot_count) (entries of `slots` past
-    // slot_count are in the buffer but must be ignored), appending to a ray
-    // queue whose first `queued_before` entries are already taken (they hold
-    // 1000 + i). counters[ray_counter] starts at queued_before and every other
-    // counter at 100 + its index; the queue has room past all of them, so a
-    // kernel appending at the wrong counter shows in the queue's contents
-    // rather than writing out of bounds. The launch covers every entry of
-    // `slots`.
+    // slot_count are in the buffer but must be ignored), appending to ray
+    // queue `ray_counter` whose first `queued_before` entries are already
+    // taken (they hold 1000 + i). counters[ray_counter] starts at
+    // queued_before and every other counter at 100 + its index; the queues
+    // have room past all of them, so a kernel appending at the wrong counter
+    // or to the wrong queue shows in the contents rather than writing out of
+    // bounds. The launch covers every entry of `slots`. A list 0, 1, 2, ... is
+    // passed as it is at the start of a wave (slot = work-item index), any
+    // other through the finished queue, as regeneration does.
     GenerateResult run(const WpFrame& frame, const std::vector<cl_uint>& slots, cl_uint slot_count,
                        cl_uint ray_counter, cl_uint queued_before) {
-        std::vector<cl_uint> queue(2 * capacity_ + 100 + WP_COUNTER_COUNT, kSentinel);
+        const std::size_t queue_size = frame.pool_size;
+        std::vector<cl_uint> queues(2 * queue_size + 100 + WP_COUNTER_COUNT, kSentinel);
+        const std::size_t base = ray_counter * queue_size;
         for (cl_uint i = 0; i < queued_before; ++i)
-            queue[i] = 1000u + i;
+            queues[base + i] = 1000u + i;
         std::vector<cl_uint> counters(WP_COUNTER_COUNT);
         for (cl_uint i = 0; i < WP_COUNTER_COUNT; ++i)
             counters[i] = i == ray_counter ? queued_before : 100u + i;
-        cl::Buffer slot_buffer = upload(slots);
-        cl::Buffer queue_buffer = upload(queue);
-        cl::Buffer counter_buffer = upload(counters);
-        cl::Kernel kernel = wavefront_kernel("generate");
-        set_args(kernel, frame, slot_buffer, slot_count, task_, origin_, direction_, throughput_,
-                 radiance_, pixel_, sample_, depth_, flags_, queue_buffer, counter_buffer,
-                 ray_counter);
-        launch(kernel, slots.size());
+        bool identity = true;
+        for (std::size_t i = 0; i < slots.size(); ++i)
+            identity = identity && slots[i] == i;
+        DeviceBuffers buffers = stage_buffers(capacity_, 1);
+        buffers.path_task = task_;
+        buffers.ray_origin = origin_;
+        buffers.ray_direction = direction_;
+        buffers.throughput = throughput_;
+        buffers.radiance = radiance_;
+        buffers.path_pixel = pixel_;
+        buffers.path_sample = sample_;
+        buffers.path_depth = depth_;
+        buffers.path_flags = flags_;
+        buffers.finished_queue = upload(slots);
+        buffers.ray_queues = upload(queues);
+        buffers.counters = upload(counters);
+        run_stage("generate", frame, make_launch(slot_count, ray_counter, !identity), buffers,
+                  slots.size());
+        std::vector<cl_uint> all_queues = download<cl_uint>(buffers.ray_queues, queues.size());
+        // Appending to queue B leaves queue A untouched (the test's made-up
+        // survivors can make queue A run past its end, which the integrator's
+        // never do); the queue appended to is read from its start.
+        if (ray_counter == WP_COUNTER_QUEUE_B)
+            for (std::size_t i = 0; i < queue_size; ++i)
+                REQUIRE(all_queues[i] == kSentinel);
+        std::vector<cl_uint> queue(all_queues.begin() + static_cast<std::ptrdiff_t>(base),
+                                   all_queues.end());
         return {download<cl_float4>(origin_, capacity_),
                 download<cl_float4>(direction_, capacity_),
                 download<cl_float4>(throughput_, capacity_),
@@ -78,8 +102,8 @@ class GenerateState {
                 download<cl_uint>(sample_, capacity_),
                 download<cl_uint>(depth_, capacity_),
                 download<cl_uint>(flags_, capacity_),
-                download<cl_uint>(queue_buffer, queue.size()),
-                download<cl_uint>(counter_buffer, WP_COUNTER_COUNT)};
+                queue,
+                download<cl_uint>(buffers.counters, WP_COUNTER_COUNT)};
     }
 
   private:
@@ -459,8 +483,7 @@ TEST_CASE("generate: a pool smaller than the image hands out every (pixel, sampl
 // larger calls; with a pool of 16 on a 4096 x 4096 image, 4096 samples would
 // be exactly 2^32 tasks and wrap to 0, leaving the image black). At the
 // largest call it makes, the first task still starts.
-TEST_CASE("generate: a slot with nearly 2^32 tasks still starts its first task",
-          "[cl][generate]") {
+TEST_CASE("generate: a slot with nearly 2^32 tasks still starts its first task", "[cl][generate]") {
     WpFrame frame{};
     frame.camera = wp::flatten_scene(camera_scene(4096, 4096)).camera;
     frame.width = 4096;

@@ -8,6 +8,7 @@
 #include <random>
 #include <vector>
 
+using namespace wp;
 using namespace wp::test;
 
 namespace {
@@ -132,21 +133,26 @@ IntersectResult run_intersect(const DeviceGeometry& geometry, const std::vector<
     const std::size_t slots = origins.size();
     std::vector<cl_uint> counters(WP_COUNTER_COUNT, cl_uint(queue.size()));
     counters[ray_counter] = ray_count;
-    cl::Buffer queue_buffer = upload(queue);
-    cl::Buffer counter_buffer = upload(counters);
-    cl::Buffer origin_buffer = upload(origins);
-    cl::Buffer direction_buffer = upload(directions);
-    cl::Buffer triangle_buffer = upload(geometry.triangles);
-    cl::Buffer sphere_buffer = upload(geometry.spheres);
-    cl::Buffer t_buffer = upload(std::vector<cl_float>(slots, kSentinelT));
-    cl::Buffer primitive_buffer = upload(std::vector<cl_uint>(slots, kSentinelPrimitive));
-    cl::Kernel kernel = wavefront_kernel("intersect");
-    set_args(kernel, frame, queue_buffer, counter_buffer, ray_counter, origin_buffer,
-             direction_buffer, triangle_buffer, sphere_buffer, t_buffer, primitive_buffer);
-    launch(kernel, queue.size());
+    // The two ray queues, `queue` as queue `ray_counter` and the other full of
+    // slot 0, so that reading the wrong one would leave sentinels behind.
+    frame.pool_size = cl_uint(queue.size());
+    std::vector<cl_uint> queues(2 * queue.size(), 0u);
+    std::copy(queue.begin(), queue.end(),
+              queues.begin() + std::ptrdiff_t(ray_counter * queue.size()));
+    DeviceBuffers buffers = stage_buffers(slots, 1);
+    buffers.ray_queues = upload(queues);
+    buffers.counters = upload(counters);
+    buffers.ray_origin = upload(origins);
+    buffers.ray_direction = upload(directions);
+    buffers.triangles = upload(geometry.triangles);
+    buffers.spheres = upload(geometry.spheres);
+    buffers.hit_t = upload(std::vector<cl_float>(slots, kSentinelT));
+    buffers.hit_primitive = upload(std::vector<cl_uint>(slots, kSentinelPrimitive));
+    run_stage("intersect", frame, make_launch(0, ray_counter), buffers, queue.size());
     // The counters are read, never written.
-    CHECK(download<cl_uint>(counter_buffer, WP_COUNTER_COUNT) == counters);
-    return {download<cl_float>(t_buffer, slots), download<cl_uint>(primitive_buffer, slots)};
+    CHECK(download<cl_uint>(buffers.counters, WP_COUNTER_COUNT) == counters);
+    return {download<cl_float>(buffers.hit_t, slots),
+            download<cl_uint>(buffers.hit_primitive, slots)};
 }
 
 } // namespace

@@ -1,8 +1,8 @@
 // The structs of wp_shared.h have the same layout on the device as on the host,
 // a WpFrame passed by value arrives field for field, and the RNG of rng.h gives
 // the same bits on both sides.
-#include "support/kernel_test_util.hpp"
 #include "rng.h"
+#include "support/kernel_test_util.hpp"
 
 #include <cstddef>
 #include <iterator>
@@ -17,7 +17,7 @@ namespace {
 
 // Every struct of wp_shared.h, and every field of each.
 #define WP_LAYOUT_STRUCTS(X)                                                                       \
-    X(WpTriangle) X(WpSphere) X(WpMaterial) X(WpLight) X(WpCamera) X(WpFrame)
+    X(WpTriangle) X(WpSphere) X(WpMaterial) X(WpLight) X(WpCamera) X(WpFrame) X(WpLaunch)
 
 #define WP_LAYOUT_FIELDS(X)                                                                        \
     X(WpTriangle, v0)                                                                              \
@@ -58,7 +58,11 @@ namespace {
     X(WpFrame, light_count)                                                                        \
     X(WpFrame, light_area)                                                                         \
     X(WpFrame, max_depth)                                                                          \
-    X(WpFrame, pad0)
+    X(WpFrame, pad0)                                                                               \
+    X(WpLaunch, count)                                                                             \
+    X(WpLaunch, ray_queue)                                                                         \
+    X(WpLaunch, from_finished)                                                                     \
+    X(WpLaunch, pad0)
 
 struct Entry {
     std::string what;

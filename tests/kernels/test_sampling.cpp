@@ -1,8 +1,8 @@
 // sampling.h on the device: cosine-weighted hemisphere directions and uniform
 // triangle points, checked against analytic moments (within 5 standard errors
 // taken from the sample variance) and chi-square uniformity tests.
-#include "support/kernel_test_util.hpp"
 #include "rng.h"
+#include "support/kernel_test_util.hpp"
 
 #include <array>
 #include <cmath>

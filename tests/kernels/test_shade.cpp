@@ -1,16 +1,23 @@
 // Stage 3, shade: one call on hand-made hits, against double-precision host
 // models of mirror reflection, emission, next-event estimation and roulette,
 // with the random numbers taken from rng.h on the host.
-#include "support/kernel_test_util.hpp"
 #include "render/device_scene.hpp"
 #include "rng.h"
+#include "support/kernel_test_util.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <set>
 #include <vector>
 
+using namespace wp;
 using namespace wp::test;
+
+namespace {
+std::vector<cl_uint> queues_input_half(const std::vector<cl_uint>& queues, std::size_t n) {
+    return std::vector<cl_uint>(queues.begin(), queues.begin() + std::ptrdiff_t(n));
+}
+} // namespace
 
 namespace {
 
@@ -239,21 +246,32 @@ TEST_CASE("shade: mirrors, emitters, next-event estimation and roulette on hand-
 
     const cl_float4 sentinel4 = float4(-9, -9, -9, -9);
     const cl_uint sentinel = 0xeeeeeeeeu;
-    cl::Buffer queue_buffer = upload(queue);
-    cl::Buffer origin_buffer = upload(origin), direction_buffer = upload(direction);
-    cl::Buffer t_buffer = upload(hit_t), primitive_buffer = upload(primitive);
-    cl::Buffer throughput_buffer = upload(throughput), radiance_buffer = upload(radiance);
-    cl::Buffer depth_buffer = upload(depth), flags_buffer = upload(flags);
-    cl::Buffer pixel_buffer = upload(pixel), sample_buffer = upload(sample);
-    cl::Buffer triangles = upload(flat.triangles), spheres = upload(flat.spheres);
-    cl::Buffer materials = upload(flat.materials), lights = upload(flat.lights);
-    cl::Buffer next_queue = upload(std::vector<cl_uint>(n, sentinel));
-    cl::Buffer finished_queue = upload(std::vector<cl_uint>(n, sentinel));
-    cl::Buffer shadow_queue = upload(std::vector<cl_uint>(n, sentinel));
-    cl::Buffer shadow_origin = upload(std::vector<cl_float4>(n, sentinel4));
-    cl::Buffer shadow_direction = upload(std::vector<cl_float4>(n, sentinel4));
-    cl::Buffer shadow_contribution = upload(std::vector<cl_float4>(n, sentinel4));
-    // The input queue is A (its length in its counter), survivors go to B;
+    // The input queue is A, survivors go to B; both hold the pool's n slots.
+    frame.pool_size = cl_uint(n);
+    REQUIRE(queue.size() <= n);
+    std::vector<cl_uint> queues(2 * n, sentinel);
+    std::copy(queue.begin(), queue.end(), queues.begin());
+    DeviceBuffers buffers = stage_buffers(n, 1);
+    buffers.ray_queues = upload(queues);
+    buffers.ray_origin = upload(origin);
+    buffers.ray_direction = upload(direction);
+    buffers.hit_t = upload(hit_t);
+    buffers.hit_primitive = upload(primitive);
+    buffers.throughput = upload(throughput);
+    buffers.radiance = upload(radiance);
+    buffers.path_depth = upload(depth);
+    buffers.path_flags = upload(flags);
+    buffers.path_pixel = upload(pixel);
+    buffers.path_sample = upload(sample);
+    buffers.triangles = upload(flat.triangles);
+    buffers.spheres = upload(flat.spheres);
+    buffers.materials = upload(flat.materials);
+    buffers.lights = upload(flat.lights);
+    buffers.finished_queue = upload(std::vector<cl_uint>(n, sentinel));
+    buffers.shadow_queue = upload(std::vector<cl_uint>(n, sentinel));
+    buffers.shadow_origin = upload(std::vector<cl_float4>(n, sentinel4));
+    buffers.shadow_direction = upload(std::vector<cl_float4>(n, sentinel4));
+    buffers.shadow_contribution = upload(std::vector<cl_float4>(n, sentinel4));
     // 7 paths were cut before, and the spare entries must stay as they are.
     static_assert(WP_COUNTER_COUNT == 8, "entries 6 and 7 are spare");
     std::vector<cl_uint> initial_counters(WP_COUNTER_COUNT, 0u);
@@ -261,31 +279,29 @@ TEST_CASE("shade: mirrors, emitters, next-event estimation and roulette on hand-
     initial_counters[WP_COUNTER_CAPPED] = 7u;
     initial_counters[6] = 66u;
     initial_counters[7] = 77u;
-    cl::Buffer counters = upload(initial_counters);
+    buffers.counters = upload(initial_counters);
 
-    cl::Kernel kernel = wavefront_kernel("shade");
-    set_args(kernel, frame, queue_buffer, counters, WP_COUNTER_QUEUE_A, next_queue,
-             WP_COUNTER_QUEUE_B, finished_queue, origin_buffer, direction_buffer, t_buffer,
-             primitive_buffer, throughput_buffer, radiance_buffer, depth_buffer, flags_buffer,
-             pixel_buffer, sample_buffer, triangles, spheres, materials, lights, shadow_queue,
-             shadow_origin, shadow_direction, shadow_contribution);
-    // Launched for every entry of the queue buffer, as the host launches for
-    // the most the queue can hold: the one past the queue's length must idle.
-    launch(kernel, queue.size());
+    // Launched for every entry of the queue, as the host launches for the
+    // most the queue can hold: the one past the queue's length must idle.
+    run_stage("shade", frame, make_launch(0, WP_COUNTER_QUEUE_A), buffers, queue.size());
 
-    auto out_origin = download<cl_float4>(origin_buffer, n);
-    auto out_direction = download<cl_float4>(direction_buffer, n);
-    auto out_throughput = download<cl_float4>(throughput_buffer, n);
-    auto out_radiance = download<cl_float4>(radiance_buffer, n);
-    auto out_depth = download<cl_uint>(depth_buffer, n);
-    auto out_flags = download<cl_uint>(flags_buffer, n);
-    auto out_next = download<cl_uint>(next_queue, n);
-    auto out_finished = download<cl_uint>(finished_queue, n);
-    auto out_shadow_queue = download<cl_uint>(shadow_queue, n);
-    auto out_shadow_origin = download<cl_float4>(shadow_origin, n);
-    auto out_shadow_direction = download<cl_float4>(shadow_direction, n);
-    auto out_contribution = download<cl_float4>(shadow_contribution, n);
-    auto out_counters = download<cl_uint>(counters, WP_COUNTER_COUNT);
+    auto out_origin = download<cl_float4>(buffers.ray_origin, n);
+    auto out_direction = download<cl_float4>(buffers.ray_direction, n);
+    auto out_throughput = download<cl_float4>(buffers.throughput, n);
+    auto out_radiance = download<cl_float4>(buffers.radiance, n);
+    auto out_depth = download<cl_uint>(buffers.path_depth, n);
+    auto out_flags = download<cl_uint>(buffers.path_flags, n);
+    auto out_queues = download<cl_uint>(buffers.ray_queues, 2 * n);
+    // Queue A is read, never written.
+    CHECK(std::vector<cl_uint>(out_queues.begin(), out_queues.begin() + std::ptrdiff_t(n)) ==
+          queues_input_half(queues, n));
+    std::vector<cl_uint> out_next(out_queues.begin() + std::ptrdiff_t(n), out_queues.end());
+    auto out_finished = download<cl_uint>(buffers.finished_queue, n);
+    auto out_shadow_queue = download<cl_uint>(buffers.shadow_queue, n);
+    auto out_shadow_origin = download<cl_float4>(buffers.shadow_origin, n);
+    auto out_shadow_direction = download<cl_float4>(buffers.shadow_direction, n);
+    auto out_contribution = download<cl_float4>(buffers.shadow_contribution, n);
+    auto out_counters = download<cl_uint>(buffers.counters, WP_COUNTER_COUNT);
 
     // Which paths continue, which end, and which queue a shadow ray.
     const std::set<cl_uint> continuing = {kMirrorTriangle, kMirrorSphere, kDiffuseToLightA,
@@ -467,28 +483,40 @@ TEST_CASE("shade: a diffuse hit in a scene without lights queues no shadow ray",
     auto one = [](cl_float4 v) { return upload(std::vector<cl_float4>{v}); };
     auto word = [](cl_uint v) { return upload(std::vector<cl_uint>{v}); };
     // Named, so that every buffer outlives the launch.
-    cl::Buffer queue = word(0), origin = one(float4(-1, 1, -1)), direction = one(float4(0, -1, 0));
-    cl::Buffer hit_t = upload(std::vector<cl_float>{1.0f}), primitive = word(0);
-    cl::Buffer throughput = one(float4(1, 1, 1)), radiance = one(float4(0, 0, 0));
-    cl::Buffer depth = word(0), flags = word(WP_PATH_SPECULAR), pixel = word(0), sample = word(0);
-    cl::Buffer triangle_buffer = upload(triangles), spheres = upload(std::vector<WpSphere>(1));
-    cl::Buffer material_buffer = upload(materials), lights = upload(std::vector<WpLight>(1));
-    // Queues with room to spare, so an append at the wrong counter shows.
+    // One slot; queues with room to spare, so an append at the wrong counter
+    // shows. Queue roles swapped against the test above: input B, survivors
+    // to A.
     const cl_uint sentinel = 0xeeeeeeeeu;
+    frame.pool_size = 1;
+    DeviceBuffers buffers = stage_buffers(1, 1);
     auto spare = [&] { return upload(std::vector<cl_uint>(WP_COUNTER_COUNT, sentinel)); };
-    cl::Buffer next_queue = spare(), finished_queue = spare(), shadow_queue = spare();
-    cl::Buffer shadow_origin = one(float4(0, 0, 0)), shadow_direction = one(float4(0, 0, 0));
-    cl::Buffer shadow_contribution = one(float4(0, 0, 0));
-    // Queue roles swapped against the test above: input B, survivors to A.
+    std::vector<cl_uint> queues(WP_COUNTER_COUNT, sentinel);
+    queues[1] = 0u; // queue B (at offset pool_size = 1) holds slot 0
+    buffers.ray_queues = upload(queues);
+    buffers.ray_origin = one(float4(-1, 1, -1));
+    buffers.ray_direction = one(float4(0, -1, 0));
+    buffers.hit_t = upload(std::vector<cl_float>{1.0f});
+    buffers.hit_primitive = word(0);
+    buffers.throughput = one(float4(1, 1, 1));
+    buffers.radiance = one(float4(0, 0, 0));
+    buffers.path_depth = word(0);
+    buffers.path_flags = word(WP_PATH_SPECULAR);
+    buffers.path_pixel = word(0);
+    buffers.path_sample = word(0);
+    buffers.triangles = upload(triangles);
+    buffers.spheres = upload(std::vector<WpSphere>(1));
+    buffers.materials = upload(materials);
+    buffers.lights = upload(std::vector<WpLight>(1));
+    buffers.finished_queue = spare();
+    buffers.shadow_queue = spare();
     std::vector<cl_uint> initial(WP_COUNTER_COUNT, 0u);
     initial[WP_COUNTER_QUEUE_B] = 1u;
-    cl::Buffer counters = upload(initial);
-    cl::Kernel kernel = wavefront_kernel("shade");
-    set_args(kernel, frame, queue, counters, WP_COUNTER_QUEUE_B, next_queue, WP_COUNTER_QUEUE_A,
-             finished_queue, origin, direction, hit_t, primitive, throughput, radiance, depth,
-             flags, pixel, sample, triangle_buffer, spheres, material_buffer, lights, shadow_queue,
-             shadow_origin, shadow_direction, shadow_contribution);
-    launch(kernel, 1);
+    buffers.counters = upload(initial);
+    run_stage("shade", frame, make_launch(0, WP_COUNTER_QUEUE_B), buffers, 1);
+    cl::Buffer& counters = buffers.counters;
+    cl::Buffer& shadow_queue = buffers.shadow_queue;
+    cl::Buffer& finished_queue = buffers.finished_queue;
+    cl::Buffer& depth = buffers.path_depth;
     std::vector<cl_uint> out = download<cl_uint>(counters, WP_COUNTER_COUNT);
     CHECK(out[WP_COUNTER_SHADOW_RAYS] == 0u);
     CHECK(download<cl_uint>(shadow_queue, WP_COUNTER_COUNT) ==
@@ -497,9 +525,9 @@ TEST_CASE("shade: a diffuse hit in a scene without lights queues no shadow ray",
     CHECK(out[WP_COUNTER_QUEUE_A] == 1u);
     CHECK(out[WP_COUNTER_QUEUE_B] == 1u);
     CHECK(out[WP_COUNTER_FINISHED] == 0u);
-    std::vector<cl_uint> expected_next(WP_COUNTER_COUNT, sentinel);
-    expected_next[0] = 0u;
-    CHECK(download<cl_uint>(next_queue, WP_COUNTER_COUNT) == expected_next);
+    std::vector<cl_uint> expected_queues = queues;
+    expected_queues[0] = 0u; // queue A's first entry
+    CHECK(download<cl_uint>(buffers.ray_queues, WP_COUNTER_COUNT) == expected_queues);
     CHECK(download<cl_uint>(finished_queue, WP_COUNTER_COUNT) ==
           std::vector<cl_uint>(WP_COUNTER_COUNT, sentinel));
     CHECK(download<cl_uint>(depth, 1)[0] == 1u);

@@ -4,6 +4,7 @@
 
 #include <vector>
 
+using namespace wp;
 using namespace wp::test;
 
 TEST_CASE("shadow: contributions arrive exactly when nothing blocks the segment", "[cl][shadow]") {
@@ -56,18 +57,16 @@ TEST_CASE("shadow: contributions arrive exactly when nothing blocks the segment"
     WpFrame frame{};
     frame.triangle_count = 2;
     frame.sphere_count = 2;
-    cl::Buffer queue_buffer = upload(queue);
-    cl::Buffer origin_buffer = upload(origins);
-    cl::Buffer direction_buffer = upload(directions);
-    cl::Buffer contribution_buffer = upload(contributions);
-    cl::Buffer triangle_buffer = upload(triangles);
-    cl::Buffer sphere_buffer = upload(spheres);
-    cl::Buffer radiance_buffer = upload(radiance);
-    cl::Kernel kernel = wavefront_kernel("shadow");
-    set_args(kernel, frame, shadow_count, queue_buffer, origin_buffer, direction_buffer,
-             contribution_buffer, triangle_buffer, sphere_buffer, radiance_buffer);
-    launch(kernel, shadow_count);
-    std::vector<cl_float4> got = download<cl_float4>(radiance_buffer, slots);
+    DeviceBuffers buffers = stage_buffers(slots, 1);
+    buffers.shadow_queue = upload(queue);
+    buffers.shadow_origin = upload(origins);
+    buffers.shadow_direction = upload(directions);
+    buffers.shadow_contribution = upload(contributions);
+    buffers.triangles = upload(triangles);
+    buffers.spheres = upload(spheres);
+    buffers.radiance = upload(radiance);
+    run_stage("shadow", frame, make_launch(shadow_count, 0), buffers, shadow_count);
+    std::vector<cl_float4> got = download<cl_float4>(buffers.radiance, slots);
 
     for (std::size_t i = 0; i < slots; ++i) {
         const Segment& s = segments[i];

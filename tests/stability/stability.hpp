@@ -16,6 +16,7 @@
 
 #include "cl/cl.hpp"
 #include "cl/program.hpp"
+#include "naive.hpp"
 #include "scene/load.hpp"
 #include "support/render_helpers.hpp"
 #include "support/scene_builder.hpp"
@@ -303,11 +304,8 @@ inline double sphere_hit(const D3& o, const D3& d, const D3& c, double r) {
 
 // Closest hits of a list of rays against triangles and spheres, through
 // wp_closest_hit of kernels/traverse.h exactly as the intersect stage calls
-// it. Compiled as is, or with -D WP_NAIVE_INTERSECTION=1 for the naive
-// variant of kernels/geometry.h.
-inline const char* kTraceSource = R"CLC(
-#include "traverse.h"
-
+// it, or (-D ST_NAIVE=1) through the naive tests of naive.hpp.
+inline const std::string kTraceSource = std::string(kNaiveTraversalSource) + R"CLC(
 __kernel void trace(wp_uint count, __global const float4* origins,
                     __global const float4* directions, __global const WpTriangle* triangles,
                     wp_uint triangle_count, __global const WpSphere* spheres,
@@ -315,12 +313,9 @@ __kernel void trace(wp_uint count, __global const float4* origins,
     wp_uint i = get_global_id(0);
     if (i >= count)
         return;
-    WpFrame frame;
-    frame.triangle_count = triangle_count;
-    frame.sphere_count = sphere_count;
+    WpSceneView scene = st_scene_view(triangles, triangle_count, spheres, sphere_count);
     float t;
-    hit_out[i] = wp_closest_hit(origins[i].xyz, directions[i].xyz, INFINITY, triangles, spheres,
-                                frame, &t);
+    hit_out[i] = st_closest_hit(&scene, origins[i].xyz, directions[i].xyz, INFINITY, &t);
     t_out[i] = t;
 }
 )CLC";
@@ -335,7 +330,7 @@ inline TraceResult trace(const std::vector<cl_float4>& origins,
                          const std::vector<WpTriangle>& triangles,
                          const std::vector<WpSphere>& spheres, bool naive) {
     const cl::Program& program =
-        test_program(kTraceSource, "stability_trace.cl", naive ? "-D WP_NAIVE_INTERSECTION=1" : "");
+        test_program(kTraceSource, "stability_trace.cl", naive ? "-D ST_NAIVE=1" : "");
     cl::Kernel kernel(program, "trace");
     const std::size_t n = origins.size();
     cl::Buffer o = upload(origins), d = upload(directions), tri = upload(triangles),

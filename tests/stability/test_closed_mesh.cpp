@@ -4,7 +4,7 @@
 // (edge midpoints, and random points along edges, rounded to float), the rest
 // in random directions; origins at the centre, anywhere inside, and just
 // under the surface. The watertight test (kernels/geometry.h) must miss none;
-// Moller-Trumbore (-D WP_NAIVE_INTERSECTION=1) lets some through.
+// Moller-Trumbore (naive.hpp, -D ST_NAIVE=1) lets some through.
 #include "stability.hpp"
 
 #include <cstring>
@@ -26,9 +26,8 @@ namespace {
 // orders them). The second is larger: a ray from just under a face to one of
 // its own edges meets it at a grazing angle, where an error across the plane
 // of a few ulps becomes one along the ray divided by the angle's sine.
-const char* kClosedMeshSource = R"CLC(
+const std::string kClosedMeshSource = std::string(kNaiveTraversalSource) + R"CLC(
 #include "rng.h"
-#include "traverse.h"
 
 static inline float st_unit(wp_uint h) {
     return (float)(h >> 8) * (1.0f / 16777216.0f);
@@ -71,14 +70,12 @@ __kernel void closed_mesh(wp_uint first, wp_uint count, __global const WpTriangl
     if (id & 4u)
         d = normalize(d);
 
-    WpFrame frame;
-    frame.triangle_count = triangle_count;
-    frame.sphere_count = 0u;
+    WpSceneView scene = st_scene_view(triangles, triangle_count, 0, 0u);
     /* One ray in 16 (by hash) takes the closest hit and measures its point;
      * the rest the any-hit query of shadow rays, which stops at the first
      * triangle: a miss is the same event for both (no triangle accepts). */
     if ((h3 & 0xf0u) != 0u) {
-        if (!wp_occluded(o, d, INFINITY, triangles, (__global const WpSphere*)0, frame)) {
+        if (!st_occluded(&scene, o, d, INFINITY)) {
             wp_uint k = atomic_inc(&counters[0]);
             if (k < 16u)
                 first_misses[k] = id;
@@ -86,7 +83,7 @@ __kernel void closed_mesh(wp_uint first, wp_uint count, __global const WpTriangl
         return;
     }
     float t;
-    wp_uint hit = wp_closest_hit(o, d, INFINITY, triangles, (__global const WpSphere*)0, frame, &t);
+    wp_uint hit = st_closest_hit(&scene, o, d, INFINITY, &t);
     if (hit == WP_NO_HIT || !(t > 0.0f)) {
         wp_uint k = atomic_inc(&counters[0]);
         if (k < 16u)
@@ -188,9 +185,9 @@ struct MeshResult {
 };
 
 MeshResult shoot(const MeshRays& m, std::uint64_t rays, bool naive) {
-    const cl::Program& program = test_program(kClosedMeshSource, "stability_closed_mesh.cl",
-                                              std::string("-D WP_HAS_SPHERES=0") +
-                                                  (naive ? " -D WP_NAIVE_INTERSECTION=1" : ""));
+    const cl::Program& program =
+        test_program(kClosedMeshSource, "stability_closed_mesh.cl",
+                     std::string("-D WP_HAS_SPHERES=0") + (naive ? " -D ST_NAIVE=1" : ""));
     cl::Kernel kernel(program, "closed_mesh");
     cl::Buffer tri = upload(m.triangles), org = upload(m.origins), ver = upload(m.vertices),
                edg = upload(m.edges);

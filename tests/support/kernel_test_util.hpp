@@ -13,6 +13,7 @@
 
 #include "cl/cl.hpp"
 #include "cl/program.hpp"
+#include "render/device_buffers.hpp"
 #include "support/test_device.hpp"
 #include "wp_shared.h"
 
@@ -86,6 +87,24 @@ inline const cl::Program& wavefront_program() {
 
 inline cl::Kernel wavefront_kernel(const char* name) {
     return cl::Kernel(wavefront_program(), name);
+}
+
+// Every buffer a stage kernel takes, for `slots` path slots and `pixels`
+// pixels, with an empty scene; contents undefined. A test replaces the
+// buffers it fills or reads (members named as in kernels/wp_shared.h).
+inline DeviceBuffers stage_buffers(std::size_t slots, std::size_t pixels) {
+    return allocate_device_buffers(device().context, DeviceScene{}, slots, pixels);
+}
+
+// Runs stage `name` with `frame` and `arguments` over `items` work-items,
+// bound to `buffers` exactly as the integrator binds them.
+inline void run_stage(const char* name, const WpFrame& frame, const WpLaunch& arguments,
+                      const DeviceBuffers& buffers, std::size_t items) {
+    cl::Kernel kernel = wavefront_kernel(name);
+    bind_buffers(kernel, buffers);
+    kernel.setArg(kFrameArgument, frame);
+    kernel.setArg(kLaunchArgument, arguments);
+    launch(kernel, items);
 }
 
 inline cl_float4 float4(float x, float y, float z, float w = 0.0f) {

@@ -1,0 +1,42 @@
+/* The perfect mirror: a delta BSDF that reflects about the normal and keeps
+ * the reflectance of the throughput. No other direction meets it, so eval
+ * and pdf are 0 and next-event estimation skips mirrors. */
+#ifndef WP_BSDF_MIRROR_H
+#define WP_BSDF_MIRROR_H
+
+#include "bsdf/interface.h"
+
+/* Perfect mirror reflection of d about the unit normal n. */
+static inline float3 wp_reflect(float3 d, float3 n) {
+    return d - 2.0f * dot(d, n) * n;
+}
+
+static inline WpBsdfSample wp_mirror_sample(const WpMaterial* m, float3 wo, float3 n, float u1,
+                                            float u2) {
+    (void)u1;
+    (void)u2;
+    WpBsdfSample s;
+    s.direction = wp_reflect(wo, n);
+    s.weight = m->reflectance.xyz;
+    s.pdf = 0.0f;
+    s.specular = 1;
+    return s;
+}
+
+static inline float3 wp_mirror_eval_pi(const WpMaterial* m, float3 wo, float3 wi, float3 n) {
+    (void)m;
+    (void)wo;
+    (void)wi;
+    (void)n;
+    return (float3)(0.0f);
+}
+
+static inline float wp_mirror_pdf(const WpMaterial* m, float3 wo, float3 wi, float3 n) {
+    (void)m;
+    (void)wo;
+    (void)wi;
+    (void)n;
+    return 0.0f;
+}
+
+#endif /* WP_BSDF_MIRROR_H */

@@ -1,0 +1,24 @@
+// The wavefront stages, in pipeline order: the one table of their names.
+// Stage X(Enum, name) is the kernel `name` of kernels/name.cl; the program
+// (src/cl/program.cpp), the integrator, the profiler and `wavepath info` all
+// take the stages from here.
+#pragma once
+
+#include <array>
+#include <string_view>
+
+#define WP_STAGE_KERNELS(X)                                                                        \
+    X(Generate, generate)                                                                          \
+    X(Intersect, intersect)                                                                        \
+    X(Shade, shade)                                                                                \
+    X(Shadow, shadow)                                                                              \
+    X(Accumulate, accumulate)
+
+namespace wp {
+
+#define WP_STAGE_NAME(enum_name, name) #name,
+inline constexpr std::array<std::string_view, 5> kStageKernelNames = {
+    WP_STAGE_KERNELS(WP_STAGE_NAME)};
+#undef WP_STAGE_NAME
+
+} // namespace wp

@@ -1,0 +1,59 @@
+#include "render/device_buffers.hpp"
+
+#include <algorithm>
+
+namespace wp {
+
+PathBufferBytes path_buffer_bytes() {
+    PathBufferBytes bytes;
+#define WP_ADD_BYTES(name, type, slot_count, pixel_count, fixed_count)                             \
+    bytes.per_slot += sizeof(type) * (slot_count);                                                 \
+    bytes.per_pixel += sizeof(type) * (pixel_count);                                               \
+    bytes.fixed += sizeof(type) * (fixed_count);
+    WP_PATH_BUFFERS(WP_ADD_BYTES)
+#undef WP_ADD_BYTES
+    return bytes;
+}
+
+std::uint64_t PathBufferBytes::largest(std::uint64_t slots, std::uint64_t pixels) const {
+    std::uint64_t most = 0;
+#define WP_LARGEST(name, type, per_slot, per_pixel, fixed)                                         \
+    most = std::max<std::uint64_t>(most, sizeof(type) *                                            \
+                                             ((per_slot)*slots + (per_pixel)*pixels + (fixed)));
+    WP_PATH_BUFFERS(WP_LARGEST)
+#undef WP_LARGEST
+    return most;
+}
+
+DeviceBuffers allocate_device_buffers(const cl::Context& context, const DeviceScene& scene,
+                                      std::uint64_t slots, std::uint64_t pixels) {
+    DeviceBuffers b;
+#define WP_UPLOAD(name, type) b.name = upload_buffer(context, scene.name);
+    WP_SCENE_BUFFERS(WP_UPLOAD)
+#undef WP_UPLOAD
+#define WP_ALLOCATE(name, type, per_slot, per_pixel, fixed)                                        \
+    b.name = cl::Buffer(context, CL_MEM_READ_WRITE,                                                \
+                        sizeof(type) * std::max<std::uint64_t>(                                    \
+                                           1, (per_slot)*slots + (per_pixel)*pixels + (fixed)));
+    WP_PATH_BUFFERS(WP_ALLOCATE)
+#undef WP_ALLOCATE
+    return b;
+}
+
+void bind_buffers(cl::Kernel& kernel, const DeviceBuffers& buffers) {
+    cl_uint index = kLaunchArgument + 1;
+#define WP_BIND(name, ...) kernel.setArg(index++, buffers.name);
+    WP_SCENE_BUFFERS(WP_BIND)
+    WP_PATH_BUFFERS(WP_BIND)
+#undef WP_BIND
+}
+
+WpLaunch make_launch(std::uint32_t count, std::uint32_t ray_queue, bool from_finished) {
+    WpLaunch launch{};
+    launch.count = count;
+    launch.ray_queue = ray_queue;
+    launch.from_finished = from_finished ? 1u : 0u;
+    return launch;
+}
+
+} // namespace wp

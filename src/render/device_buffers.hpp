@@ -1,0 +1,64 @@
+// The device buffers of one render, and the stage kernels' arguments.
+//
+// Both come from the buffer lists in kernels/wp_shared.h (WP_SCENE_BUFFERS,
+// WP_PATH_BUFFERS), from which kernels/stage.h also generates every stage
+// kernel's parameter list: (WpFrame, WpLaunch, then each buffer in list
+// order). A buffer added to a list gets a member here, its allocation and its
+// argument index without another line of host code (a scene buffer also
+// needs the DeviceScene member of the same name that holds its contents).
+#pragma once
+
+#include <cstdint>
+
+#include "cl/cl.hpp"
+#include "render/device_scene.hpp"
+#include "wp_shared.h"
+
+namespace wp {
+
+#define WP_BUFFER_MEMBER(name, ...) cl::Buffer name;
+struct DeviceBuffers {
+    WP_SCENE_BUFFERS(WP_BUFFER_MEMBER)
+    WP_PATH_BUFFERS(WP_BUFFER_MEMBER)
+};
+#undef WP_BUFFER_MEMBER
+
+// Bytes of path buffers per path slot, per pixel, and fixed, from the list.
+struct PathBufferBytes {
+    std::uint64_t per_slot = 0;
+    std::uint64_t per_pixel = 0;
+    std::uint64_t fixed = 0;
+    // The largest single buffer for `slots` path slots and `pixels` pixels.
+    std::uint64_t largest(std::uint64_t slots, std::uint64_t pixels) const;
+    std::uint64_t total(std::uint64_t slots, std::uint64_t pixels) const {
+        return per_slot * slots + per_pixel * pixels + fixed;
+    }
+};
+PathBufferBytes path_buffer_bytes();
+
+// Uploads the scene buffers (read-only) from `scene`, and allocates the path
+// buffers for `slots` path slots and `pixels` pixels (contents undefined).
+DeviceBuffers allocate_device_buffers(const cl::Context& context, const DeviceScene& scene,
+                                      std::uint64_t slots, std::uint64_t pixels);
+
+// A read-only buffer holding `data`; OpenCL has no empty buffers, so an empty
+// vector gets a one-element dummy.
+template <typename T>
+cl::Buffer upload_buffer(const cl::Context& context, const std::vector<T>& data) {
+    std::vector<T> padded = data.empty() ? std::vector<T>(1) : data;
+    return cl::Buffer(context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(T) * padded.size(),
+                      padded.data());
+}
+
+// Argument indices of every stage kernel.
+inline constexpr cl_uint kFrameArgument = 0;
+inline constexpr cl_uint kLaunchArgument = 1;
+
+// Binds every buffer to its argument of a stage kernel (once per kernel; the
+// frame and launch arguments are set per launch).
+void bind_buffers(cl::Kernel& kernel, const DeviceBuffers& buffers);
+
+// A launch of one stage: what goes in WpLaunch.
+WpLaunch make_launch(std::uint32_t count, std::uint32_t ray_queue, bool from_finished = false);
+
+} // namespace wp
