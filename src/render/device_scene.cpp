@@ -20,12 +20,20 @@ std::string flag(const char* name, bool on) {
     return std::string("-D ") + name + (on ? "=1" : "=0");
 }
 
+// The kernels' material constants (wp_shared.h) are the host's MaterialKind
+// values: flatten_scene copies the kind across as it is.
+static_assert(static_cast<wp_uint>(MaterialKind::Diffuse) == WP_MATERIAL_DIFFUSE);
+static_assert(static_cast<wp_uint>(MaterialKind::Mirror) == WP_MATERIAL_MIRROR);
+static_assert(static_cast<wp_uint>(MaterialKind::Emitter) == WP_MATERIAL_EMITTER);
+
 } // namespace
 
 std::string SceneFeatures::build_options() const {
-    std::string options = flag("WP_HAS_TRIANGLES", triangles) + " " +
-                          flag("WP_HAS_SPHERES", spheres) + " " + flag("WP_HAS_DIFFUSE", diffuse) +
-                          " " + flag("WP_HAS_MIRROR", mirror) + " " + flag("WP_HAS_LIGHTS", lights);
+    std::string options;
+#define WP_FEATURE_FLAG(member, kernel_switch)                                                   \
+    options += (options.empty() ? "" : " ") + flag(#kernel_switch, member);
+    WP_SCENE_FEATURES(WP_FEATURE_FLAG)
+#undef WP_FEATURE_FLAG
     if (fixed_counts)
         options += " -D WP_TRIANGLE_COUNT=" + std::to_string(triangle_count) +
                    " -D WP_SPHERE_COUNT=" + std::to_string(sphere_count);
@@ -34,18 +42,11 @@ std::string SceneFeatures::build_options() const {
 
 std::string SceneFeatures::describe() const {
     std::string out;
-    auto add = [&](bool on, const char* name) {
-        if (!on)
-            return;
-        if (!out.empty())
-            out += ' ';
-        out += name;
-    };
-    add(triangles, "triangles");
-    add(spheres, "spheres");
-    add(diffuse, "diffuse");
-    add(mirror, "mirror");
-    add(lights, "lights");
+#define WP_FEATURE_NAME(member, kernel_switch)                                                   \
+    if (member)                                                                                  \
+        out += (out.empty() ? "" : " ") + std::string(#member);
+    WP_SCENE_FEATURES(WP_FEATURE_NAME)
+#undef WP_FEATURE_NAME
     if (fixed_counts)
         out += "; counts " + std::to_string(triangle_count) + "+" + std::to_string(sphere_count);
     return out;

@@ -16,14 +16,23 @@ namespace wp {
 // limit comes from measurement on PoCL: docs/specialization.md.
 inline constexpr std::uint32_t kMaxFixedCountPrimitives = 128;
 
-// Which kinds of primitive, material and light the scene uses. Each is a
-// preprocessor switch in kernels/scene_features.h.
+// The feature switches, one row each: X(member, kernel switch). Each is a
+// preprocessor switch of kernels/scene_features.h that compiles its code in
+// or out; SceneFeatures has a bool per row, and its build options and
+// description follow the rows (a new feature is a row here, its #ifndef in
+// scene_features.h, and its line in analyse_features).
+#define WP_SCENE_FEATURES(X)                                                                     \
+    X(triangles, WP_HAS_TRIANGLES)                                                               \
+    X(spheres, WP_HAS_SPHERES)                                                                   \
+    X(diffuse, WP_HAS_DIFFUSE) /* material kinds in use */                                      \
+    X(mirror, WP_HAS_MIRROR)                                                                     \
+    X(lights, WP_HAS_LIGHTS) /* emissive triangles for next-event estimation */
+
+// Which kinds of primitive, material and light the scene uses.
 struct SceneFeatures {
-    bool triangles = true;
-    bool spheres = true;
-    bool diffuse = true;
-    bool mirror = true;
-    bool lights = true; // emissive triangles for next-event estimation
+#define WP_FEATURE_MEMBER(member, kernel_switch) bool member = true;
+    WP_SCENE_FEATURES(WP_FEATURE_MEMBER)
+#undef WP_FEATURE_MEMBER
     // Small scenes: the primitive counts as compile-time constants
     // (-D WP_TRIANGLE_COUNT=n -D WP_SPHERE_COUNT=m), so the traversal loops of
     // kernels/traverse.h have fixed trip counts and unroll. A program built so

@@ -1,6 +1,6 @@
 // Shared helpers of the stability suite (docs/stability.md): loading the stress
 // scenes, comparing renders within noise, small OpenCL test kernels that call
-// the intersection code of kernels/geometry.h and kernels/traverse.h directly,
+// the intersection code of kernels/triangle.h, sphere.h and traverse.h directly,
 // and double-precision reference intersections.
 #pragma once
 

@@ -3,7 +3,7 @@
 // cube of 12), a quarter aimed exactly at vertices, half at points on edges
 // (edge midpoints, and random points along edges, rounded to float), the rest
 // in random directions; origins at the centre, anywhere inside, and just
-// under the surface. The watertight test (kernels/geometry.h) must miss none;
+// under the surface. The watertight test (kernels/triangle.h) must miss none;
 // Moller-Trumbore (naive.hpp, -D ST_NAIVE=1) lets some through.
 #include "stability.hpp"
 
