@@ -30,7 +30,7 @@ static_assert(static_cast<wp_uint>(MaterialKind::Emitter) == WP_MATERIAL_EMITTER
 
 std::string SceneFeatures::build_options() const {
     std::string options;
-#define WP_FEATURE_FLAG(member, kernel_switch)                                                   \
+#define WP_FEATURE_FLAG(member, kernel_switch)                                                     \
     options += (options.empty() ? "" : " ") + flag(#kernel_switch, member);
     WP_SCENE_FEATURES(WP_FEATURE_FLAG)
 #undef WP_FEATURE_FLAG
@@ -42,8 +42,8 @@ std::string SceneFeatures::build_options() const {
 
 std::string SceneFeatures::describe() const {
     std::string out;
-#define WP_FEATURE_NAME(member, kernel_switch)                                                   \
-    if (member)                                                                                  \
+#define WP_FEATURE_NAME(member, kernel_switch)                                                     \
+    if (member)                                                                                    \
         out += (out.empty() ? "" : " ") + std::string(#member);
     WP_SCENE_FEATURES(WP_FEATURE_NAME)
 #undef WP_FEATURE_NAME

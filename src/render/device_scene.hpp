@@ -21,11 +21,11 @@ inline constexpr std::uint32_t kMaxFixedCountPrimitives = 128;
 // or out; SceneFeatures has a bool per row, and its build options and
 // description follow the rows (a new feature is a row here, its #ifndef in
 // scene_features.h, and its line in analyse_features).
-#define WP_SCENE_FEATURES(X)                                                                     \
-    X(triangles, WP_HAS_TRIANGLES)                                                               \
-    X(spheres, WP_HAS_SPHERES)                                                                   \
-    X(diffuse, WP_HAS_DIFFUSE) /* material kinds in use */                                      \
-    X(mirror, WP_HAS_MIRROR)                                                                     \
+#define WP_SCENE_FEATURES(X)                                                                       \
+    X(triangles, WP_HAS_TRIANGLES)                                                                 \
+    X(spheres, WP_HAS_SPHERES)                                                                     \
+    X(diffuse, WP_HAS_DIFFUSE) /* material kinds in use */                                         \
+    X(mirror, WP_HAS_MIRROR)                                                                       \
     X(lights, WP_HAS_LIGHTS) /* emissive triangles for next-event estimation */
 
 // Which kinds of primitive, material and light the scene uses.
@@ -42,7 +42,9 @@ struct SceneFeatures {
     std::uint32_t sphere_count = 0;
 
     // Every feature and runtime counts: the general kernels, valid for any scene.
-    static SceneFeatures all() { return {}; }
+    static SceneFeatures all() {
+        return {};
+    }
     // The -D options that compile exactly these features, e.g.
     // "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=0 ... -D WP_TRIANGLE_COUNT=26 -D WP_SPHERE_COUNT=0".
     std::string build_options() const;
