@@ -11,9 +11,10 @@
 
 #include <glm/geometric.hpp>
 
+#include "scene/mesh.hpp"
 #include "scene/mesh_normals.hpp"
 #include "scene/polygon_triangulation.hpp"
-#include "scene/transform.hpp"
+#include "support/mesh_test_files.hpp"
 
 namespace {
 
@@ -102,6 +103,22 @@ TEST_CASE("polygons: a polygon on a line gives only degenerate triangles", "[mes
     std::vector<std::array<std::uint32_t, 3>> t;
     wp::triangulate_polygon(polygon, line, t);
     CHECK(t.size() == 2); // the loader then drops them as zero-area
+}
+
+TEST_CASE("smooth normals: an octahedron's vertices point away from its centre",
+          "[mesh][normals]") {
+    const auto path =
+        mesh_test::write_file("octahedron.obj", "v 1 0 0\nv -1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\n"
+                                                "v 0 0 -1\n"
+                                                "f 1 3 5\nf 3 2 5\nf 2 4 5\nf 4 1 5\n"
+                                                "f 3 1 6\nf 2 3 6\nf 4 2 6\nf 1 4 6\n");
+    wp::MeshLoadOptions o;
+    o.normals = wp::NormalSource::Smooth;
+    const wp::TriangleMesh m = wp::load_mesh(path, o);
+    REQUIRE(mesh_test::signed_volume(m) == Approx(4.0 / 3.0)); // outward winding
+    REQUIRE(m.normals.size() == 6);
+    for (std::size_t i = 0; i < 6; ++i)
+        CHECK(glm::dot(m.normals[i], glm::normalize(m.positions[i])) == Approx(1.0));
 }
 
 TEST_CASE("smooth normals: area weighting, cancellation and unused vertices", "[mesh][normals]") {

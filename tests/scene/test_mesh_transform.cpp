@@ -9,7 +9,9 @@
 
 #include <glm/geometric.hpp>
 
+#include "scene/mesh.hpp"
 #include "scene/transform.hpp"
+#include "support/mesh_test_files.hpp"
 
 using wp::Transform;
 
@@ -171,4 +173,48 @@ TEST_CASE("transform: invalid steps are one-line errors", "[mesh][transform]") {
                 "transformed)");
     // Small but honest scales are not "singular".
     CHECK(error_of([] { Transform::scale(1e-6); }) == "<no error>");
+}
+
+TEST_CASE("transform: applied to a loaded mesh", "[mesh][transform]") {
+    const auto cube = mesh_test::data_dir() / "cube.obj";
+    SECTION("non-uniform scale and translation scale area and volume as by hand") {
+        wp::MeshLoadOptions o;
+        const std::vector<Transform> steps{Transform::scale({2, 3, 4}),
+                                           Transform::translate({-10, 0, 10})};
+        o.transform = Transform::compose(steps);
+        const wp::TriangleMesh m = wp::load_mesh(cube, o);
+        CHECK(mesh_test::surface_area(m) == Approx(2 * (2 * 3 + 3 * 4 + 2 * 4)));
+        CHECK(mesh_test::signed_volume(m) == Approx(24.0));
+        check_near(m.positions[6], {-8, 3, 14});
+    }
+    SECTION("a mirror reverses the winding so the cube still faces outwards") {
+        wp::MeshLoadOptions o;
+        o.transform = Transform::scale({-1, 1, 1});
+        const wp::TriangleMesh m = wp::load_mesh(cube, o);
+        CHECK(mesh_test::signed_volume(m) == Approx(1.0));
+        check_near(m.positions[1], {-1, 0, 0});
+    }
+    SECTION("file normals follow the inverse transpose and agree with the winding") {
+        // The crease file: the normal (0, 0.6, 0.8) on the triangle (0,0,0) (1,1,0) (0,1,0).
+        for (const Transform& t : {Transform::scale({1, 4, 0.5}), Transform::scale({1, 1, -1}),
+                                   Transform::rotate(50, {1, 0, 0})}) {
+            wp::MeshLoadOptions o;
+            o.transform = t;
+            const wp::TriangleMesh m = wp::load_mesh(mesh_test::data_dir() / "crease.obj", o);
+            REQUIRE(m.normals.size() == 6);
+            const glm::dvec3 n = m.normals[m.triangles[1][0]];
+            check_near(n, t.apply_to_normal({0, 0.6, 0.8}));
+            CHECK(glm::length(n) == Approx(1.0));
+            // A flat file normal (0, 0, 1) stays the front side of its triangle.
+            const glm::dvec3 flat = m.normals[m.triangles[0][0]];
+            CHECK(glm::dot(flat, mesh_test::face_normal(m, 0)) == Approx(1.0));
+        }
+    }
+    SECTION("a transform that overflows is reported per vertex") {
+        wp::MeshLoadOptions o;
+        o.transform = Transform::scale(1e308);
+        const auto path = mesh_test::write_file("far.obj", "v 0 0 0\nv 10 0 0\nv 0 1 0\nf 1 2 3\n");
+        CHECK(mesh_test::error_of(path, o) ==
+              path.string() + ": vertex 1: coordinate is not finite after the transform");
+    }
 }
