@@ -1,8 +1,10 @@
 #include "scene/mesh.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -60,6 +62,12 @@ std::string lower(std::string s) {
     return s;
 }
 
+std::string format_number(double x) {
+    std::array<char, 32> buf{};
+    const auto end = std::to_chars(buf.data(), buf.data() + buf.size(), x).ptr;
+    return std::string(buf.data(), end);
+}
+
 bool finite(const glm::dvec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
@@ -77,14 +85,21 @@ TriangleMesh finish(const std::filesystem::path& file, PolygonMesh&& poly,
     mesh.warnings = std::move(poly.warnings);
     mesh.positions = std::move(poly.positions);
 
+    // The readers rejected non-finite input; a transform can still overflow, and
+    // the scene's float32 limit applies to the placed mesh.
     const Transform& xf = options.transform;
-    if (!xf.is_identity()) {
-        for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-            mesh.positions[i] = xf.apply_to_point(mesh.positions[i]);
-            if (!finite(mesh.positions[i]))
-                throw MeshError::at_element(file, "vertex", i,
-                                            "coordinate is not finite after the transform");
-        }
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+        glm::dvec3& p = mesh.positions[i];
+        if (!xf.is_identity())
+            p = xf.apply_to_point(p);
+        if (!finite(p))
+            throw MeshError::at_element(file, "vertex", i,
+                                        "coordinate is not finite after the transform");
+        const double largest = std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+        if (largest > scene_limits::max_coordinate)
+            throw MeshError::at_element(file, "vertex", i,
+                                        "coordinate " + format_number(largest) +
+                                            " exceeds the scene limit 1e30");
     }
     if (options.normals == NormalSource::File && !poly.normals.empty()) {
         mesh.normals = std::move(poly.normals);

@@ -79,7 +79,8 @@ struct TriangleMesh {
 // Reads the mesh file, choosing the format by extension (.obj or .ply, any case).
 // Throws MeshError for a missing or unreadable file, an unknown extension, and
 // every problem listed in docs/meshes.md (bad indices, faces with fewer than three
-// vertices, non-finite coordinates, truncated binary data, no faces left).
+// vertices, non-finite coordinates, coordinates beyond scene_limits::max_coordinate
+// once transformed, truncated binary data, no faces left).
 TriangleMesh load_mesh(const std::filesystem::path& path, const MeshLoadOptions& options = {});
 
 // Maps each triangle's material name to an index into `materials` (by

@@ -210,11 +210,14 @@ TEST_CASE("transform: applied to a loaded mesh", "[mesh][transform]") {
             CHECK(glm::dot(flat, mesh_test::face_normal(m, 0)) == Approx(1.0));
         }
     }
-    SECTION("a transform that overflows is reported per vertex") {
+    SECTION("a transform that overflows or leaves the scene limits is reported per vertex") {
         wp::MeshLoadOptions o;
         o.transform = Transform::scale(1e308);
         const auto path = mesh_test::write_file("far.obj", "v 0 0 0\nv 10 0 0\nv 0 1 0\nf 1 2 3\n");
         CHECK(mesh_test::error_of(path, o) ==
               path.string() + ": vertex 1: coordinate is not finite after the transform");
+        o.transform = Transform::scale(1e30);
+        CHECK(mesh_test::error_of(path, o) ==
+              path.string() + ": vertex 1: coordinate 1e+31 exceeds the scene limit 1e30");
     }
 }
