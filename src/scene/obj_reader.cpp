@@ -11,6 +11,7 @@
 // Only then does tinyobjloader read the file, and its output is walked with the
 // counts from the check. .mtl files are not read: `usemtl` names are matched
 // against scene materials later (resolve_materials in mesh.hpp).
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <istream>
