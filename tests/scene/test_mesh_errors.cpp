@@ -4,7 +4,10 @@
 #include <catch2/catch.hpp>
 
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <limits>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -236,4 +239,59 @@ TEST_CASE("mesh errors: NaN in a binary PLY", "[mesh][errors][ply]") {
     std::memcpy(bytes.data() + body + 12 + 4, &nan, 4); // vertex 1, y (host order is LE)
     const auto path = write_file("nan_binary.ply", bytes);
     CHECK(error_of(path) == path.string() + ": vertex 1: coordinate is not finite");
+}
+
+TEST_CASE("mesh errors: mutated files give a mesh or a MeshError, nothing else", "[mesh][errors]") {
+    // Random byte changes, insertions and cuts of valid files: whatever the result,
+    // it must be a loaded mesh or one MeshError line, never another exception.
+    struct Seed {
+        const char* name;
+        std::string bytes;
+    };
+    std::ifstream obj_file(mesh_test::data_dir() / "cube.obj", std::ios::binary);
+    std::ifstream ply_file(mesh_test::data_dir() / "cube_ascii.ply", std::ios::binary);
+    const std::vector<Seed> seeds{
+        {"fuzz.obj", std::string(std::istreambuf_iterator<char>(obj_file), {})},
+        {"fuzz.ply", std::string(std::istreambuf_iterator<char>(ply_file), {})},
+        {"fuzz_binary.ply", binary_triangle()},
+    };
+    const char alphabet[] = "0123456789-+./ \nfvnxyz#e\xff";
+    std::mt19937 rng(5);
+    std::size_t loaded = 0, rejected = 0;
+    for (const Seed& seed : seeds) {
+        for (int trial = 0; trial < 400; ++trial) {
+            std::string bytes = seed.bytes;
+            const int edits = 1 + trial % 4;
+            for (int e = 0; e < edits && !bytes.empty(); ++e) {
+                const std::size_t at = rng() % bytes.size();
+                const char c = alphabet[rng() % (sizeof alphabet - 1)];
+                switch (rng() % 4) {
+                case 0:
+                    bytes[at] = c;
+                    break;
+                case 1:
+                    bytes.insert(bytes.begin() + static_cast<std::ptrdiff_t>(at), c);
+                    break;
+                case 2:
+                    bytes.erase(at, 1);
+                    break;
+                default:
+                    bytes.resize(at);
+                }
+            }
+            const auto path = write_file(seed.name, bytes);
+            try {
+                (void)wp::load_mesh(path);
+                ++loaded;
+            } catch (const wp::MeshError& e) {
+                const std::string what = e.what();
+                CHECK(what.rfind(path.string(), 0) == 0);
+                CHECK(what.find('\n') == std::string::npos);
+                ++rejected;
+            }
+        }
+    }
+    // Both outcomes occur, so the loop exercised the error paths and the readers.
+    CHECK(loaded > 50);
+    CHECK(rejected > 50);
 }
