@@ -166,3 +166,14 @@ TEST_CASE("ply: CRLF line ends in header and body", "[mesh][ply]") {
                     "0 0 0\r\n1 0 0\r\n0 1 0\r\n3 0 1 2\r\n");
     CHECK(wp::load_mesh(path).triangles.size() == 1);
 }
+
+TEST_CASE("ply: elements may come in any order", "[mesh][ply]") {
+    const auto path = mesh_test::write_file(
+        "faces_first.ply", "ply\nformat ascii 1.0\nelement face 1\n"
+                           "property list uchar int vertex_indices\nelement vertex 3\n"
+                           "property float x\nproperty float y\nproperty float z\nend_header\n"
+                           "3 0 1 2\n0 0 0\n1 0 0\n0 1 0\n");
+    const wp::TriangleMesh m = wp::load_mesh(path);
+    REQUIRE(m.triangles.size() == 1);
+    CHECK(mesh_test::face_normal(m, 0).z == Approx(1.0));
+}
