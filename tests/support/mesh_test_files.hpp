@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <system_error>
 #include <unistd.h>
 #include <vector>
 
@@ -25,14 +26,29 @@ inline std::filesystem::path data_dir() {
     return std::filesystem::path(WAVEPATH_SOURCE_DIR) / "tests" / "data" / "meshes";
 }
 
-inline std::filesystem::path temp_dir() {
-    static const std::filesystem::path dir = [] {
-        auto d = std::filesystem::temp_directory_path() /
-                 ("wavepath-mesh-tests-" + std::to_string(::getpid()));
-        std::filesystem::create_directories(d);
-        return d;
-    }();
-    return dir;
+// A folder for this test process, removed again when the process ends.
+class TempDir {
+  public:
+    TempDir()
+        : path_(std::filesystem::temp_directory_path() /
+                ("wavepath-mesh-tests-" + std::to_string(::getpid()))) {
+        std::filesystem::create_directories(path_);
+    }
+    ~TempDir() {
+        std::error_code ec; // best effort: never throw from a destructor
+        std::filesystem::remove_all(path_, ec);
+    }
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+    const std::filesystem::path& path() const { return path_; }
+
+  private:
+    std::filesystem::path path_;
+};
+
+inline const std::filesystem::path& temp_dir() {
+    static const TempDir dir;
+    return dir.path();
 }
 
 // Writes `bytes` to a file called `name` in the temporary folder; returns its path.
