@@ -6,6 +6,7 @@ packages=(
   build-essential cmake pkg-config
   pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers clinfo
   libglm-dev libstb-dev catch2 nlohmann-json3-dev libtinyexr-dev libcli11-dev
+  libtinyobjloader-dev
 )
 missing=()
 for p in "${packages[@]}"; do
