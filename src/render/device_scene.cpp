@@ -28,10 +28,16 @@ static_assert(static_cast<wp_uint>(MaterialKind::Emitter) == WP_MATERIAL_EMITTER
 
 } // namespace
 
+// Appends `word` to a space-separated list.
+static void append_word(std::string& list, const std::string& word) {
+    if (!list.empty())
+        list += ' ';
+    list += word;
+}
+
 std::string SceneFeatures::build_options() const {
     std::string options;
-#define WP_FEATURE_FLAG(member, kernel_switch)                                                     \
-    options += (options.empty() ? "" : " ") + flag(#kernel_switch, member);
+#define WP_FEATURE_FLAG(member, kernel_switch) append_word(options, flag(#kernel_switch, member));
     WP_SCENE_FEATURES(WP_FEATURE_FLAG)
 #undef WP_FEATURE_FLAG
     if (fixed_counts)
@@ -44,7 +50,7 @@ std::string SceneFeatures::describe() const {
     std::string out;
 #define WP_FEATURE_NAME(member, kernel_switch)                                                     \
     if (member)                                                                                    \
-        out += (out.empty() ? "" : " ") + std::string(#member);
+        append_word(out, #member);
     WP_SCENE_FEATURES(WP_FEATURE_NAME)
 #undef WP_FEATURE_NAME
     if (fixed_counts)
