@@ -23,39 +23,30 @@ static inline int wp_bsdf_is_black(const WpMaterial* m) {
     return m->kind == WP_MATERIAL_EMITTER;
 }
 
+/* Returns wp_KIND_FUNCTION(...) of the material's kind: the one place that
+ * selects a BSDF. A new kind is one more line here, guarded by its feature
+ * switch (a constant, so the test folds away when the kind is compiled out). */
+#define WP_BSDF_DISPATCH(m, function, ...)                                                         \
+    if (WP_HAS_MIRROR && (m)->kind == WP_MATERIAL_MIRROR)                                          \
+        return wp_mirror_##function(__VA_ARGS__);                                                  \
+    return wp_diffuse_##function(__VA_ARGS__)
+
 /* 1 for a delta BSDF: light can reach it only along its sampled direction. */
 static inline int wp_bsdf_is_delta(const WpMaterial* m) {
-#if WP_HAS_MIRROR
-    if (m->kind == WP_MATERIAL_MIRROR)
-        return 1;
-#endif
-    (void)m;
-    return 0;
+    WP_BSDF_DISPATCH(m, is_delta, );
 }
 
 static inline WpBsdfSample wp_bsdf_sample(const WpMaterial* m, float3 wo, float3 n, float u1,
                                           float u2) {
-#if WP_HAS_MIRROR
-    if (m->kind == WP_MATERIAL_MIRROR)
-        return wp_mirror_sample(m, wo, n, u1, u2);
-#endif
-    return wp_diffuse_sample(m, wo, n, u1, u2);
+    WP_BSDF_DISPATCH(m, sample, m, wo, n, u1, u2);
 }
 
 static inline float3 wp_bsdf_eval_pi(const WpMaterial* m, float3 wo, float3 wi, float3 n) {
-#if WP_HAS_MIRROR
-    if (m->kind == WP_MATERIAL_MIRROR)
-        return wp_mirror_eval_pi(m, wo, wi, n);
-#endif
-    return wp_diffuse_eval_pi(m, wo, wi, n);
+    WP_BSDF_DISPATCH(m, eval_pi, m, wo, wi, n);
 }
 
 static inline float wp_bsdf_pdf(const WpMaterial* m, float3 wo, float3 wi, float3 n) {
-#if WP_HAS_MIRROR
-    if (m->kind == WP_MATERIAL_MIRROR)
-        return wp_mirror_pdf(m, wo, wi, n);
-#endif
-    return wp_diffuse_pdf(m, wo, wi, n);
+    WP_BSDF_DISPATCH(m, pdf, m, wo, wi, n);
 }
 
 #endif /* WP_BSDF_H */

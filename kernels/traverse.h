@@ -23,9 +23,12 @@
 #define WP_TRAVERSE_UNROLL
 #endif
 
-/* Closest hit with 0 < t < t_max. Returns the primitive number or WP_NO_HIT. */
-static inline wp_uint wp_closest_hit(const WpSceneView* scene, float3 origin, float3 direction,
-                                     float t_max, float* t_hit) {
+/* The primitives on the ray origin + t direction, 0 < t < t_max: the closest
+ * one, or with any_hit (a compile-time constant wherever it is called) the
+ * first one found, without shrinking t_max. Returns the primitive number or
+ * WP_NO_HIT, and the hit's t in *t_hit (t_max on a miss). */
+static inline wp_uint wp_trace(const WpSceneView* scene, float3 origin, float3 direction,
+                               float t_max, int any_hit, float* t_hit) {
     wp_uint hit = WP_NO_HIT;
     float closest = t_max;
 #if WP_HAS_TRIANGLES
@@ -37,12 +40,16 @@ static inline wp_uint wp_closest_hit(const WpSceneView* scene, float3 origin, fl
                                   scene->triangles[i].v2.xyz, closest, &t)) {
             closest = t;
             hit = i;
+            if (any_hit)
+                break;
         }
     }
 #endif
 #if WP_HAS_SPHERES
     WP_TRAVERSE_UNROLL
     for (wp_uint i = 0; i < WP_SPHERE_LOOP_COUNT(scene); ++i) {
+        if (any_hit && hit != WP_NO_HIT)
+            break;
         float t;
         if (wp_intersect_sphere(origin, direction, scene->spheres[i].center_radius, closest, &t)) {
             closest = t;
@@ -50,33 +57,22 @@ static inline wp_uint wp_closest_hit(const WpSceneView* scene, float3 origin, fl
         }
     }
 #endif
+    (void)any_hit;
     *t_hit = closest;
     return hit;
+}
+
+/* Closest hit with 0 < t < t_max. Returns the primitive number or WP_NO_HIT. */
+static inline wp_uint wp_closest_hit(const WpSceneView* scene, float3 origin, float3 direction,
+                                     float t_max, float* t_hit) {
+    return wp_trace(scene, origin, direction, t_max, 0, t_hit);
 }
 
 /* 1 if any primitive lies on the segment origin + t * direction, 0 < t < t_max. */
 static inline int wp_occluded(const WpSceneView* scene, float3 origin, float3 direction,
                               float t_max) {
-#if WP_HAS_TRIANGLES
-    WpShearedRay ray = wp_shear_ray(origin, direction);
-    WP_TRAVERSE_UNROLL
-    for (wp_uint i = 0; i < WP_TRIANGLE_LOOP_COUNT(scene); ++i) {
-        float t;
-        if (wp_intersect_triangle(&ray, scene->triangles[i].v0.xyz, scene->triangles[i].v1.xyz,
-                                  scene->triangles[i].v2.xyz, t_max, &t))
-            return 1;
-    }
-#endif
-#if WP_HAS_SPHERES
-    WP_TRAVERSE_UNROLL
-    for (wp_uint i = 0; i < WP_SPHERE_LOOP_COUNT(scene); ++i) {
-        float t;
-        if (wp_intersect_sphere(origin, direction, scene->spheres[i].center_radius, t_max, &t))
-            return 1;
-    }
-#endif
-    (void)scene;
-    return 0;
+    float t;
+    return wp_trace(scene, origin, direction, t_max, 1, &t) != WP_NO_HIT;
 }
 
 #endif /* WP_TRAVERSE_H */

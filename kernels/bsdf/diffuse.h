@@ -59,4 +59,9 @@ static inline float wp_diffuse_pdf(const WpMaterial* m, float3 wo, float3 wi, fl
 #endif
 }
 
+/* Not a delta BSDF: next-event estimation applies. */
+static inline int wp_diffuse_is_delta(void) {
+    return 0;
+}
+
 #endif /* WP_BSDF_DIFFUSE_H */

@@ -8,7 +8,9 @@
  *       pi times the BSDF value f(wo, wi), without the cosine (0 for a
  *       delta BSDF, which no other direction can meet);
  *   float wp_KIND_pdf(const WpMaterial* m, float3 wo, float3 wi, float3 n)
- *       the solid-angle density with which sample() picks wi (0 for a delta).
+ *       the solid-angle density with which sample() picks wi (0 for a delta);
+ *   int wp_KIND_is_delta(void)
+ *       1 for a delta BSDF (a mirror), which next-event estimation skips.
  *
  * Conventions: wo is the direction the ray travelled (towards the surface),
  * wi points away from it, and n is the unit geometric normal on the side the

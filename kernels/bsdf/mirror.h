@@ -39,4 +39,9 @@ static inline float wp_mirror_pdf(const WpMaterial* m, float3 wo, float3 wi, flo
     return 0.0f;
 }
 
+/* A delta BSDF: next-event estimation cannot reach it. */
+static inline int wp_mirror_is_delta(void) {
+    return 1;
+}
+
 #endif /* WP_BSDF_MIRROR_H */

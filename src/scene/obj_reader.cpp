@@ -31,19 +31,6 @@ namespace wp {
 
 namespace {
 
-std::string_view next_token(std::string_view& rest) {
-    const auto begin = rest.find_first_not_of(" \t");
-    if (begin == std::string_view::npos) {
-        rest = {};
-        return {};
-    }
-    rest.remove_prefix(begin);
-    const auto end = std::min(rest.find_first_of(" \t"), rest.size());
-    const std::string_view token = rest.substr(0, end);
-    rest.remove_prefix(end);
-    return token;
-}
-
 std::string_view trim(std::string_view s) {
     const auto begin = s.find_first_not_of(" \t");
     if (begin == std::string_view::npos)

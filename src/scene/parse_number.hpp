@@ -1,10 +1,11 @@
-// Locale-independent parsing of one whole token as a number, shared by the OBJ
-// and ASCII PLY readers. Unlike strtod it never depends on the C locale, and
+// Tokens, and locale-independent parsing of one whole token as a number,
+// shared by the OBJ and ASCII PLY readers. Unlike strtod it never depends on the C locale, and
 // unlike a bare std::from_chars it takes the leading '+' that some exporters
 // write and reports overflow as an infinity, so that "1e999" is caught by the
 // same "not finite" check as "inf" and "nan".
 #pragma once
 
+#include <algorithm>
 #include <charconv>
 #include <cstdint>
 #include <limits>
@@ -12,6 +13,21 @@
 #include <system_error>
 
 namespace wp {
+
+// The next token of `rest` separated by spaces or tabs (empty at the end),
+// which is taken off the front of `rest`.
+inline std::string_view next_token(std::string_view& rest) {
+    const auto begin = rest.find_first_not_of(" \t");
+    if (begin == std::string_view::npos) {
+        rest = {};
+        return {};
+    }
+    rest.remove_prefix(begin);
+    const auto end = std::min(rest.find_first_of(" \t"), rest.size());
+    const std::string_view token = rest.substr(0, end);
+    rest.remove_prefix(end);
+    return token;
+}
 
 // True when all of `token` is a decimal floating-point number, "inf" or "nan".
 inline bool parse_double(std::string_view token, double& out) {

@@ -19,6 +19,7 @@
 #include <cstring>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include "scene/mesh.hpp"
@@ -99,19 +100,6 @@ struct Header {
     std::size_t body_first_line = 0;
 };
 
-std::string_view next_word(std::string_view& rest) {
-    const auto begin = rest.find_first_not_of(" \t");
-    if (begin == std::string_view::npos) {
-        rest = {};
-        return {};
-    }
-    rest.remove_prefix(begin);
-    const auto end = std::min(rest.find_first_of(" \t"), rest.size());
-    const std::string_view word = rest.substr(0, end);
-    rest.remove_prefix(end);
-    return word;
-}
-
 class HeaderParser {
   public:
     HeaderParser(const std::filesystem::path& file, const std::string& bytes)
@@ -132,9 +120,9 @@ class HeaderParser {
             if (!line.empty() && line.back() == '\r')
                 line.remove_suffix(1);
             std::string_view rest = line;
-            const std::string_view keyword = next_word(rest);
+            const std::string_view keyword = next_token(rest);
             if (n == 1) {
-                if (keyword != "ply" || !next_word(rest).empty())
+                if (keyword != "ply" || !next_token(rest).empty())
                     fail(n, "not a PLY file (the first line is not 'ply')");
                 continue;
             }
@@ -148,7 +136,7 @@ class HeaderParser {
             if (keyword == "comment" || keyword == "obj_info" || keyword.empty())
                 continue;
             if (keyword == "format") {
-                const std::string_view f = next_word(rest);
+                const std::string_view f = next_token(rest);
                 if (f == "ascii")
                     header.format = Format::Ascii;
                 else if (f == "binary_little_endian")
@@ -180,10 +168,10 @@ class HeaderParser {
 
     Element element(std::string_view rest, std::size_t n, const std::vector<Element>& previous) {
         Element e;
-        e.name = std::string(next_word(rest));
-        const std::string_view count = next_word(rest);
+        e.name = std::string(next_token(rest));
+        const std::string_view count = next_token(rest);
         std::int64_t c = 0;
-        if (e.name.empty() || !parse_integer(count, c) || c < 0 || !next_word(rest).empty())
+        if (e.name.empty() || !parse_integer(count, c) || c < 0 || !next_token(rest).empty())
             fail(n, "expected 'element <name> <count>'");
         e.count = static_cast<std::uint64_t>(c);
         e.line = n;
@@ -202,17 +190,17 @@ class HeaderParser {
 
     Property property(std::string_view rest, std::size_t n) {
         Property p;
-        std::string_view word = next_word(rest);
+        std::string_view word = next_token(rest);
         if (word == "list") {
             p.is_list = true;
-            p.count_type = scalar_type(next_word(rest), n);
+            p.count_type = scalar_type(next_token(rest), n);
             if (!is_integer(p.count_type))
                 fail(n, "list length type must be an integer type");
-            word = next_word(rest);
+            word = next_token(rest);
         }
         p.type = scalar_type(word, n);
-        p.name = std::string(next_word(rest));
-        if (p.name.empty() || !next_word(rest).empty())
+        p.name = std::string(next_token(rest));
+        if (p.name.empty() || !next_token(rest).empty())
             fail(n, "expected 'property <type> <name>' or 'property list <type> <type> <name>'");
         return p;
     }
@@ -286,7 +274,9 @@ class BinarySource {
     static std::size_t min_size(ScalarType t) { return size_of(t); }
 
     // False at the end of the data.
-    bool real(ScalarType t, double& out) {
+    // One value stored as type t, into a double or an int64 (for which the
+    // header checks have excluded float types). False at the end of the data.
+    template <typename Out> bool value(ScalarType t, Out& out) {
         switch (t) {
         case ScalarType::Int8:
             return get<std::int8_t>(out);
@@ -301,31 +291,16 @@ class BinarySource {
         case ScalarType::UInt32:
             return get<std::uint32_t>(out);
         case ScalarType::Float32:
-            return get<float>(out);
         case ScalarType::Float64:
-            return get<double>(out);
+            if constexpr (std::is_integral_v<Out>)
+                throw BodyProblem{"integer expected"};
+            else
+                return t == ScalarType::Float32 ? get<float>(out) : get<double>(out);
         }
         return false;
     }
-
-    bool integer(ScalarType t, std::int64_t& out) {
-        switch (t) {
-        case ScalarType::Int8:
-            return get<std::int8_t>(out);
-        case ScalarType::UInt8:
-            return get<std::uint8_t>(out);
-        case ScalarType::Int16:
-            return get<std::int16_t>(out);
-        case ScalarType::UInt16:
-            return get<std::uint16_t>(out);
-        case ScalarType::Int32:
-            return get<std::int32_t>(out);
-        case ScalarType::UInt32:
-            return get<std::uint32_t>(out);
-        default:
-            throw BodyProblem{"integer expected"}; // excluded by the header checks
-        }
-    }
+    bool real(ScalarType t, double& out) { return value(t, out); }
+    bool integer(ScalarType t, std::int64_t& out) { return value(t, out); }
 
     bool skip(ScalarType t, std::uint64_t n) {
         const std::uint64_t bytes = n * size_of(t);
