@@ -87,7 +87,8 @@ WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const Scene& sce
     build_options += options_.light_sampling == LightSampling::SolidAngle
                          ? " -D WP_LIGHT_SAMPLING=1"
                          : " -D WP_LIGHT_SAMPLING=0";
-    program_ = build_wavefront_program(ctx, device_.info.device, build_options);
+    program_ =
+        build_wavefront_program(ctx, device_.info.device, build_options, options_.program_cache);
 
     generate_ = cl::Kernel(program_.program, "generate");
     intersect_ = cl::Kernel(program_.program, "intersect");
