@@ -1,6 +1,6 @@
 #include "app/commands.hpp"
 
-#include <cctype>
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -15,30 +15,24 @@
 #include "render/profile_report.hpp"
 #include "render/wavefront.hpp"
 #include "scene/load.hpp"
+#include "util/file.hpp"
 
 namespace wp {
-namespace {
-
-// Fails before rendering, not after, if an output cannot be written.
-void check_output_path(const std::string& path, bool image = true) {
+void check_output(const std::string& path, const std::vector<std::string>& extensions) {
     if (path.empty())
         return;
-    std::filesystem::path p(path);
-    std::filesystem::path dir = p.has_parent_path() ? p.parent_path() : ".";
-    if (!std::filesystem::is_directory(dir))
-        throw ImageError("cannot write '" + path + "': directory '" + dir.string() +
-                         "' does not exist");
-    if (!image)
+    check_parent_directory(path);
+    const std::string extension = lower_extension(path);
+    if (extensions.empty() ||
+        std::find(extensions.begin(), extensions.end(), extension) != extensions.end())
         return;
-    std::string extension = p.extension().string();
-    for (char& c : extension)
-        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    if (extension != ".exr" && extension != ".pfm" && extension != ".png")
-        throw ImageError("cannot write '" + path + "': unsupported image extension '" +
-                         p.extension().string() + "' (use .exr, .pfm or .png)");
+    std::string list;
+    for (const std::string& e : extensions)
+        list += (list.empty() ? "" : e == extensions.back() ? " or " : ", ") + e;
+    throw FileError("cannot write '" + path + "'",
+                    "unsupported extension '" + std::filesystem::path(path).extension().string() +
+                        "' (use " + list + ")");
 }
-
-} // namespace
 
 CLI::App* add_render_subcommand(CLI::App& app, RenderCommand& command) {
     CLI::App* r = app.add_subcommand("render", "Render a scene to an image");
@@ -101,10 +95,10 @@ int run_devices() {
 }
 
 int run_render(const RenderCommand& command) {
-    check_output_path(command.out);
-    check_output_path(command.png);
-    check_output_path(command.profile_json, false);
-    check_output_path(command.trace, false);
+    check_output(command.out, kImageExtensions);
+    check_output(command.png, kImageExtensions);
+    check_output(command.profile_json);
+    check_output(command.trace);
 
     Scene scene = load_scene_for_render(command.scene, command.width, command.height);
 

@@ -83,6 +83,14 @@ struct InfoCommand {
 CLI::App* add_info_subcommand(CLI::App& app, InfoCommand& command);
 int run_info(const InfoCommand& command);
 
+// The extensions write_image knows.
+inline const std::vector<std::string> kImageExtensions = {".exr", ".pfm", ".png"};
+
+// Fails before rendering, not after, if an output cannot be written: throws
+// FileError unless the directory of `path` exists and, when `extensions` is
+// not empty, its extension (in any case) is one of them. "" (no output) passes.
+void check_output(const std::string& path, const std::vector<std::string>& extensions = {});
+
 // Loads a scene, prints its warnings, and applies --width/--height (0 keeps
 // the scene's resolution).
 Scene load_scene_for_render(const std::string& path, int width, int height);

@@ -1,5 +1,4 @@
 // `wavepath converge`: error against render time (docs/convergence.md).
-#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -17,33 +16,6 @@
 
 namespace wp {
 namespace {
-
-std::string lower_extension(const std::string& path) {
-    std::string extension = std::filesystem::path(path).extension().string();
-    for (char& c : extension)
-        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return extension;
-}
-
-// Fails before rendering, not after, if an output cannot be written.
-void check_output(const std::string& path, const std::vector<std::string>& extensions) {
-    if (path.empty())
-        return;
-    std::filesystem::path p(path);
-    std::filesystem::path dir = p.has_parent_path() ? p.parent_path() : ".";
-    if (!std::filesystem::is_directory(dir))
-        throw std::runtime_error("cannot write '" + path + "': directory '" + dir.string() +
-                                 "' does not exist");
-    const std::string extension = lower_extension(path);
-    for (const std::string& e : extensions)
-        if (extension == e)
-            return;
-    std::string list;
-    for (const std::string& e : extensions)
-        list += (list.empty() ? "" : ", ") + e;
-    throw std::runtime_error("cannot write '" + path + "': unsupported extension '" +
-                             p.extension().string() + "' (use " + list + ")");
-}
 
 std::string format(const char* pattern, double value) {
     char text[64];
@@ -86,7 +58,7 @@ CLI::App* add_converge_subcommand(CLI::App& app, ConvergeCommand& command) {
 int run_converge(const ConvergeCommand& command) {
     check_output(command.csv, {".csv"});
     check_output(command.plot, {".svg"});
-    check_output(command.out, {".exr", ".pfm", ".png"});
+    check_output(command.out, kImageExtensions);
     // Overlays are read first, so a bad one fails before the render.
     std::vector<ConvergenceRun> runs(1);
     for (const std::string& path : command.overlays)

@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "image/atomic_file.hpp"
+#include "util/file.hpp"
 
 namespace wp {
 namespace {

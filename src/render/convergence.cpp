@@ -2,13 +2,12 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <fstream>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
 
-#include "image/atomic_file.hpp"
 #include "image/metrics.hpp"
+#include "util/file.hpp"
 
 namespace wp {
 namespace {
@@ -163,9 +162,7 @@ void write_convergence_csv(const std::filesystem::path& path, const ConvergenceR
 }
 
 ConvergenceRun read_convergence_csv(const std::filesystem::path& path) {
-    std::ifstream in(path);
-    if (!in)
-        throw std::runtime_error("cannot open '" + path.string() + "'");
+    std::istringstream in(read_file_text(path));
     std::string line;
     if (!std::getline(in, line) || line != kCsvHeader)
         throw std::runtime_error("'" + path.string() +

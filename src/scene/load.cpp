@@ -2,12 +2,8 @@
 
 #include <algorithm>
 #include <array>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
-#include <cstdio>
-#include <cstring>
-#include <memory>
 #include <string>
 #include <unordered_map>
 #include <unordered_set>
@@ -18,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "scene/validate.hpp"
+#include "util/file.hpp"
 
 namespace wp {
 
@@ -623,10 +620,6 @@ std::pair<std::size_t, std::size_t> line_column(std::string_view text, std::size
     return {line, at - line_start + 1};
 }
 
-struct FileCloser {
-    void operator()(std::FILE* f) const { std::fclose(f); }
-};
-
 } // namespace
 
 Scene parse_scene(std::string_view json_text, const std::string& source_name) {
@@ -651,26 +644,11 @@ Scene parse_scene(std::string_view json_text, const std::string& source_name) {
 
 Scene load_scene(const std::filesystem::path& path) {
     const std::string name = path.string();
-    errno = 0;
-    const std::unique_ptr<std::FILE, FileCloser> file(std::fopen(name.c_str(), "rb"));
-    if (!file) {
-        const int err = errno;
-        throw SceneError(one_line("cannot open scene '" + name +
-                                  "': " + (err ? std::strerror(err) : "unknown error")));
-    }
     std::string text;
-    std::array<char, 1 << 16> buf{};
-    for (;;) {
-        const std::size_t n = std::fread(buf.data(), 1, buf.size(), file.get());
-        text.append(buf.data(), n);
-        if (n < buf.size()) {
-            if (std::ferror(file.get())) {
-                const int err = errno;
-                throw SceneError(one_line("cannot open scene '" + name + "': read failed: " +
-                                          (err ? std::strerror(err) : "unknown error")));
-            }
-            break;
-        }
+    try {
+        text = read_file_text(path);
+    } catch (const FileError& e) {
+        throw SceneError(one_line("cannot open scene '" + name + "': " + e.reason()));
     }
     return parse_scene(text, name);
 }
