@@ -12,7 +12,7 @@
 #include "app/cli_options.hpp"
 #include "app/commands.hpp"
 #include "cl/context.hpp"
-#include "render/profile_report.hpp"
+#include "report/profile_report.hpp"
 #include "render/wavefront.hpp"
 #include "scene/load.hpp"
 

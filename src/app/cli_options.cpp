@@ -1,6 +1,7 @@
 #include "app/cli_options.hpp"
 
 #include <map>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -9,30 +10,22 @@
 namespace wp {
 namespace {
 
-const std::map<std::string, DiffuseSampling> kDiffuseNames = {{"cosine", DiffuseSampling::Cosine},
-                                                              {"report", DiffuseSampling::Report}};
-const std::map<std::string, LightSampling> kLightNames = {
-    {"area", LightSampling::Area}, {"solid-angle", LightSampling::SolidAngle}};
-
-template <typename Enum> std::string name_of(const std::map<std::string, Enum>& names, Enum value) {
-    for (const auto& [name, v] : names)
-        if (v == value)
-            return name;
-    return "?";
-}
-
-// An option that picks one of `names`, stored in `value` as its enum.
+// An option that picks one of `choices` by its name (to_string), stored in
+// `value`; its default is value's.
 template <typename Enum>
 void add_choice(CLI::App& command, const std::string& flag, Enum& value,
-                const std::map<std::string, Enum>& names, const std::string& help) {
-    std::vector<std::string> choices;
-    for (const auto& [name, v] : names)
-        choices.push_back(name);
+                const std::vector<Enum>& choices, const std::string& help) {
+    std::map<std::string, Enum> names;
+    for (Enum choice : choices)
+        names.emplace(to_string(choice), choice);
+    std::vector<std::string> allowed;
+    for (const auto& [name, choice] : names)
+        allowed.push_back(name);
     command
         .add_option_function<std::string>(
-            flag, [&value, &names](const std::string& name) { value = names.at(name); }, help)
-        ->default_str(name_of(names, value))
-        ->check(CLI::IsMember(choices));
+            flag, [&value, names](const std::string& name) { value = names.at(name); }, help)
+        ->default_str(to_string(value))
+        ->check(CLI::IsMember(allowed));
 }
 
 } // namespace
@@ -48,10 +41,12 @@ void add_integrator_options(CLI::App& command, IntegratorOptions& options) {
         ->check(CLI::Range(1u, cli_limits::max_depth));
     command.add_flag("!--no-nee", options.next_event_estimation,
                      "Next-event estimation off: light only from paths that hit an emitter");
-    add_choice(command, "--diffuse", options.diffuse_sampling, kDiffuseNames,
+    add_choice(command, "--diffuse", options.diffuse_sampling,
+               {DiffuseSampling::Cosine, DiffuseSampling::Report},
                "Lambertian sampling: 'cosine' (cosine-weighted, throughput roulette) or "
                "'report' (the seed report's uniform angles and albedo roulette, made unbiased)");
-    add_choice(command, "--light-sampling", options.light_sampling, kLightNames,
+    add_choice(command, "--light-sampling", options.light_sampling,
+               {LightSampling::Area, LightSampling::SolidAngle},
                "Next-event estimation: 'area' (uniform on the light) or 'solid-angle' (uniform "
                "in the light's spherical triangles)");
     command.add_flag("--general", options.general_kernels,

@@ -12,12 +12,13 @@
 #include "cl/context.hpp"
 #include "cl/device.hpp"
 #include "image/image_io.hpp"
-#include "render/profile_report.hpp"
+#include "report/profile_report.hpp"
 #include "render/wavefront.hpp"
 #include "scene/load.hpp"
 #include "util/file.hpp"
 
 namespace wp {
+
 void check_output(const std::string& path, const std::vector<std::string>& extensions) {
     if (path.empty())
         return;

@@ -10,7 +10,7 @@
 #include "cl/context.hpp"
 #include "cl/device.hpp"
 #include "image/image_io.hpp"
-#include "render/convergence.hpp"
+#include "report/convergence.hpp"
 #include "render/wavefront.hpp"
 #include "scene/load.hpp"
 

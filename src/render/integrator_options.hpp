@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 
 #include "cl/program_cache.hpp"
 
@@ -52,5 +53,14 @@ struct IntegratorOptions {
     // instead of changing the environment of the whole process.
     CachePolicy program_cache = CachePolicy::from_environment();
 };
+
+// The variants' names, as the command line takes them and reports print
+// them: "cosine" and "report"; "area" and "solid-angle".
+std::string to_string(DiffuseSampling sampling);
+std::string to_string(LightSampling sampling);
+
+// A short name for an estimator, e.g. "cosine+nee+solid-angle", "report+no-nee".
+// (Light sampling is left out without next-event estimation: it does not apply.)
+std::string describe_estimator(const IntegratorOptions& options);
 
 } // namespace wp

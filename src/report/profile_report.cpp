@@ -1,4 +1,4 @@
-#include "render/profile_report.hpp"
+#include "report/profile_report.hpp"
 
 #include <algorithm>
 #include <cstdio>

@@ -1,4 +1,4 @@
-#include "image/svg_plot.hpp"
+#include "report/svg_plot.hpp"
 
 #include <algorithm>
 #include <array>

@@ -1,4 +1,4 @@
-#include "render/convergence.hpp"
+#include "report/convergence.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -38,15 +38,6 @@ const char* const kCsvHeader =
     "efficiency,rel_efficiency,mse_halves,rel_mse_halves";
 
 } // namespace
-
-std::string describe_estimator(const IntegratorOptions& options) {
-    std::string name = options.diffuse_sampling == DiffuseSampling::Report ? "report" : "cosine";
-    if (!options.next_event_estimation)
-        return name + "+no-nee";
-    name += "+nee+";
-    name += options.light_sampling == LightSampling::SolidAngle ? "solid-angle" : "area";
-    return name;
-}
 
 Checkpoint measure_checkpoint(const Film& film, std::uint32_t spp, double seconds,
                               const Image* reference, std::uint32_t first_sample) {
