@@ -12,8 +12,8 @@
 #include "app/cli_options.hpp"
 #include "app/commands.hpp"
 #include "cl/context.hpp"
-#include "report/profile_report.hpp"
 #include "render/wavefront.hpp"
+#include "report/profile_report.hpp"
 #include "scene/load.hpp"
 
 namespace wp {

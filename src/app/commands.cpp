@@ -12,8 +12,8 @@
 #include "cl/context.hpp"
 #include "cl/device.hpp"
 #include "image/image_io.hpp"
-#include "report/profile_report.hpp"
 #include "render/wavefront.hpp"
+#include "report/profile_report.hpp"
 #include "scene/load.hpp"
 #include "util/file.hpp"
 

@@ -10,8 +10,8 @@
 #include "cl/context.hpp"
 #include "cl/device.hpp"
 #include "image/image_io.hpp"
-#include "report/convergence.hpp"
 #include "render/wavefront.hpp"
+#include "report/convergence.hpp"
 #include "scene/load.hpp"
 
 namespace wp {
