@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages wavepath needs, when any is missing. Idempotent:
 # on a machine that has them all it does nothing and needs no network.
+# --ci adds what CI checks with beyond the build (.ci/run): clang-format 14.
 set -euo pipefail
 packages=(
   build-essential cmake pkg-config
@@ -8,6 +9,9 @@ packages=(
   libglm-dev libstb-dev catch2 nlohmann-json3-dev libtinyexr-dev libcli11-dev
   libtinyobjloader-dev
 )
+if [[ "${1:-}" == "--ci" ]]; then
+  packages+=(clang-format-14)
+fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -5,13 +5,15 @@
 #include <cstdio>
 #include <random>
 
+#include <CLI/CLI.hpp>
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include "app/cli_options.hpp"
 #include "app/commands.hpp"
 #include "cl/context.hpp"
-#include "render/profile_report.hpp"
 #include "render/wavefront.hpp"
+#include "report/profile_report.hpp"
 #include "scene/load.hpp"
 
 namespace wp {
@@ -46,8 +48,7 @@ void random_rays(const Scene& scene, std::size_t count, std::uint32_t seed,
 }
 
 void render_workload(DeviceContext& device, const Scene& scene, std::uint32_t spp,
-                     bool regeneration, const std::string& name) {
-    IntegratorOptions options;
+                     IntegratorOptions options, bool regeneration, const std::string& name) {
     options.regeneration = regeneration;
     WavefrontIntegrator integrator(device, scene, options);
     Profiler profiler;
@@ -69,6 +70,27 @@ void render_workload(DeviceContext& device, const Scene& scene, std::uint32_t sp
 
 } // namespace
 
+CLI::App* add_bench_subcommand(CLI::App& app, BenchCommand& command) {
+    CLI::App* b = app.add_subcommand(
+        "bench", "Print throughput figures for fixed workloads: a render of the scene with and "
+                 "without path regeneration, and each tracing stage alone on 2^20 random rays");
+    b->add_option("scene", command.scene, "Scene file")->capture_default_str();
+    add_device_option(*b, command.device);
+    b->add_option("--size", command.size, "Rendered workload: size x size pixels")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 4096));
+    b->add_option("--spp", command.spp, "Rendered workload: samples per pixel")
+        ->capture_default_str()
+        ->check(CLI::Range(1u, 4096u));
+    b->add_option("--repetitions", command.repetitions, "Launches per stage-alone workload")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 1000));
+    add_integrator_options(*b, command.integrator);
+    // The workload is rendered both ways, so a choice would be ignored.
+    b->remove_option(b->get_option("--regeneration"));
+    return b;
+}
+
 int run_bench(const BenchCommand& command) {
     DeviceContext device(select_device(command.device), true);
     Scene scene = load_scene(command.scene);
@@ -77,12 +99,15 @@ int run_bench(const BenchCommand& command) {
 
     scene.camera.width = scene.camera.height = command.size;
     for (bool regeneration : {true, false})
-        render_workload(device, scene, command.spp, regeneration, command.scene);
+        render_workload(device, scene, command.spp, command.integrator, regeneration,
+                        command.scene);
 
     // Each tracing stage alone on a full synthetic queue.
     const std::size_t rays = std::size_t{1} << 20;
     scene.camera.width = scene.camera.height = 1024; // a pool of 2^20 slots
-    WavefrontIntegrator integrator(device, scene, IntegratorOptions{});
+    IntegratorOptions stage_alone = command.integrator;
+    stage_alone.pool_size = 0; // one slot per ray
+    WavefrontIntegrator integrator(device, scene, stage_alone);
     std::vector<cl_float4> origins, directions;
     random_rays(scene, rays, 1, origins, directions);
     const int repetitions = command.repetitions;

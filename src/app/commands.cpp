@@ -1,41 +1,77 @@
 #include "app/commands.hpp"
 
-#include <cctype>
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 
+#include <CLI/CLI.hpp>
+
+#include "app/cli_options.hpp"
 #include "app/progress.hpp"
 #include "cl/context.hpp"
 #include "cl/device.hpp"
 #include "image/image_io.hpp"
-#include "render/profile_report.hpp"
 #include "render/wavefront.hpp"
+#include "report/profile_report.hpp"
 #include "scene/load.hpp"
+#include "util/file.hpp"
 
 namespace wp {
-namespace {
 
-// Fails before rendering, not after, if an output cannot be written.
-void check_output_path(const std::string& path, bool image = true) {
+void check_output(const std::string& path, const std::vector<std::string>& extensions) {
     if (path.empty())
         return;
-    std::filesystem::path p(path);
-    std::filesystem::path dir = p.has_parent_path() ? p.parent_path() : ".";
-    if (!std::filesystem::is_directory(dir))
-        throw ImageError("cannot write '" + path + "': directory '" + dir.string() +
-                         "' does not exist");
-    if (!image)
+    check_parent_directory(path);
+    const std::string extension = lower_extension(path);
+    if (extensions.empty() ||
+        std::find(extensions.begin(), extensions.end(), extension) != extensions.end())
         return;
-    std::string extension = p.extension().string();
-    for (char& c : extension)
-        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    if (extension != ".exr" && extension != ".pfm" && extension != ".png")
-        throw ImageError("cannot write '" + path + "': unsupported image extension '" +
-                         p.extension().string() + "' (use .exr, .pfm or .png)");
+    std::string list;
+    for (const std::string& e : extensions)
+        list += (list.empty() ? "" : e == extensions.back() ? " or " : ", ") + e;
+    throw FileError("cannot write '" + path + "'",
+                    "unsupported extension '" + std::filesystem::path(path).extension().string() +
+                        "' (use " + list + ")");
 }
 
-} // namespace
+CLI::App* add_render_subcommand(CLI::App& app, RenderCommand& command) {
+    CLI::App* r = app.add_subcommand("render", "Render a scene to an image");
+    r->add_option("scene", command.scene, "Scene file (JSON, see docs/scene-format.md)")
+        ->required();
+    r->add_option("--out,-o", command.out,
+                  "Output image; its extension picks the format: .exr or .pfm (linear HDR), "
+                  ".png (view)")
+        ->capture_default_str();
+    r->add_option("--png", command.png, "Also write a PNG view of the image");
+    r->add_option("--spp,-s", command.spp, "Samples per pixel")
+        ->capture_default_str()
+        ->check(CLI::Range(1u, cli_limits::max_samples_per_pixel));
+    add_device_option(*r, command.device);
+    add_image_size_options(*r, command.width, command.height);
+    add_integrator_options(*r, command.integrator);
+    r->add_option_function<std::string>(
+         "--tonemap",
+         [&command](const std::string& name) {
+             command.view.tonemap = name == "seed" ? ToneMap::Seed : ToneMap::Srgb;
+         },
+         "PNG view: 'srgb' (exposure, then the sRGB curve) or 'seed' (the report's: sqrt, "
+         "divided by the image maximum, times 255.99)")
+        ->default_str("srgb")
+        ->check(CLI::IsMember({"srgb", "seed"}));
+    r->add_option("--exposure", command.view.exposure_stops, "PNG exposure in stops (srgb view)")
+        ->capture_default_str();
+    r->add_flag(
+        "--profile", command.profile,
+        "Print per-stage device times, items and rates at the end (OpenCL event profiling)");
+    r->add_option(
+        "--profile-json", command.profile_json,
+        "Write the profile as JSON, with device, scene, resolution, spp and build options");
+    r->add_option("--trace", command.trace,
+                  "Write every kernel launch and transfer as a Chrome trace (Perfetto, "
+                  "chrome://tracing)");
+    return r;
+}
 
 Scene load_scene_for_render(const std::string& path, int width, int height) {
     Scene scene = load_scene(path);
@@ -60,22 +96,17 @@ int run_devices() {
 }
 
 int run_render(const RenderCommand& command) {
-    check_output_path(command.out);
-    check_output_path(command.png);
-    check_output_path(command.profile_json, false);
-    check_output_path(command.trace, false);
+    check_output(command.out, kImageExtensions);
+    check_output(command.png, kImageExtensions);
+    check_output(command.profile_json);
+    check_output(command.trace);
 
     Scene scene = load_scene_for_render(command.scene, command.width, command.height);
 
     const bool profiling =
         command.profile || !command.profile_json.empty() || !command.trace.empty();
     DeviceContext device(select_device(command.device), profiling);
-    IntegratorOptions options;
-    options.seed = command.seed;
-    options.max_depth = command.max_depth;
-    options.general_kernels = command.general;
-    options.regeneration = command.regeneration;
-    options.pool_size = command.pool;
+    const IntegratorOptions& options = command.integrator;
     WavefrontIntegrator integrator(device, scene, options);
     Profiler profiler;
     if (profiling)
@@ -109,7 +140,7 @@ int run_render(const RenderCommand& command) {
                 samples / seconds, rays / seconds / 1e6, static_cast<double>(stats.camera_rays),
                 static_cast<double>(stats.bounce_rays), static_cast<double>(stats.shadow_rays));
     std::printf("paths cut by the depth cap (%u): %llu; NaN/Inf samples dropped: %llu\n",
-                command.max_depth, static_cast<unsigned long long>(stats.capped_paths),
+                options.max_depth, static_cast<unsigned long long>(stats.capped_paths),
                 static_cast<unsigned long long>(stats.nonfinite_samples));
     if (profiling) {
         ProfileContext context;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "image/tonemap.hpp"
+#include "render/integrator_options.hpp"
 #include "scene/scene.hpp"
 
 namespace CLI {
@@ -20,14 +21,10 @@ struct RenderCommand {
     std::string png;                // optional extra PNG view
     std::string device;             // selector; empty picks the default
     std::uint32_t spp = 16;
-    std::uint32_t seed = 0;
     int width = 0; // 0 keeps the scene's resolution
     int height = 0;
-    std::uint32_t max_depth = 1024;
-    bool general = false;
-    bool regeneration = false;
-    std::uint32_t pool = 0; // path slots; 0: one per pixel
-    bool profile = false;   // print the per-stage table
+    IntegratorOptions integrator;
+    bool profile = false; // print the per-stage table
     std::string profile_json;
     std::string trace;
     ViewOptions view;
@@ -39,6 +36,8 @@ struct BenchCommand {
     int size = 512; // the rendered workload is size x size
     std::uint32_t spp = 8;
     int repetitions = 5; // launches of each stage-alone workload
+    // The rendered workload runs with regeneration on and off, whatever this says.
+    IntegratorOptions integrator;
 };
 
 // Convergence reports (docs/convergence.md): converge.cpp and compare.cpp.
@@ -54,13 +53,9 @@ struct ConvergeCommand {
     std::string device;
     std::uint32_t max_spp = 0; // with max_time 0 too: 256
     double max_time = 0.0;     // seconds of render time
-    std::uint32_t seed = 0;
     int width = 0;
     int height = 0;
-    std::uint32_t max_depth = 1024;
-    std::string diffuse; // "cosine" or "report"
-    std::string light;   // "area" or "solid-angle"
-    bool nee = true;
+    IntegratorOptions integrator;
 };
 
 struct CompareCommand {
@@ -69,7 +64,10 @@ struct CompareCommand {
     std::string diff; // optional: .png false colour, .exr/.pfm the raw map
 };
 
-// Register the subcommands' options (in converge.cpp and compare.cpp).
+// Register the subcommands' options (each in its command's file; the options
+// of every command that renders come from cli_options.hpp).
+CLI::App* add_render_subcommand(CLI::App& app, RenderCommand& command);
+CLI::App* add_bench_subcommand(CLI::App& app, BenchCommand& command);
 CLI::App* add_converge_subcommand(CLI::App& app, ConvergeCommand& command);
 CLI::App* add_compare_subcommand(CLI::App& app, CompareCommand& command);
 int run_converge(const ConvergeCommand& command);
@@ -80,12 +78,18 @@ int run_compare(const CompareCommand& command);
 struct InfoCommand {
     std::string scene;
     std::string device;
-    bool general = false;
+    IntegratorOptions integrator; // the build options follow the estimator
 };
 CLI::App* add_info_subcommand(CLI::App& app, InfoCommand& command);
 int run_info(const InfoCommand& command);
-// Adds --no-cache to a subcommand: it sets WAVEPATH_NO_CACHE=1 (info.cpp).
-void add_no_cache_flag(CLI::App* subcommand);
+
+// The extensions write_image knows.
+inline const std::vector<std::string> kImageExtensions = {".exr", ".pfm", ".png"};
+
+// Fails before rendering, not after, if an output cannot be written: throws
+// FileError unless the directory of `path` exists and, when `extensions` is
+// not empty, its extension (in any case) is one of them. "" (no output) passes.
+void check_output(const std::string& path, const std::vector<std::string>& extensions = {});
 
 // Loads a scene, prints its warnings, and applies --width/--height (0 keeps
 // the scene's resolution).

@@ -2,16 +2,15 @@
 // false-colour map of where the error is (docs/convergence.md).
 #include <algorithm>
 #include <array>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 
 #include <CLI/CLI.hpp>
 
 #include "app/commands.hpp"
 #include "image/image_io.hpp"
 #include "image/metrics.hpp"
+#include "util/file.hpp"
 
 namespace wp {
 namespace {
@@ -64,13 +63,7 @@ CLI::App* add_compare_subcommand(CLI::App& app, CompareCommand& command) {
 }
 
 int run_compare(const CompareCommand& command) {
-    if (!command.diff.empty()) {
-        std::filesystem::path p(command.diff);
-        std::filesystem::path dir = p.has_parent_path() ? p.parent_path() : ".";
-        if (!std::filesystem::is_directory(dir))
-            throw ImageError("cannot write '" + command.diff + "': directory '" + dir.string() +
-                             "' does not exist");
-    }
+    check_output(command.diff, kImageExtensions);
     const Image image = read_image(command.image);
     const Image reference = read_image(command.reference);
     if (image.width != reference.width || image.height != reference.height)
@@ -90,10 +83,7 @@ int run_compare(const CompareCommand& command) {
 
     if (!command.diff.empty()) {
         const Image map = rel_error_map(image, reference);
-        std::string extension = std::filesystem::path(command.diff).extension().string();
-        for (char& ch : extension)
-            ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-        if (extension == ".png") {
+        if (lower_extension(command.diff) == ".png") {
             write_image(command.diff, false_colour(map));
             std::printf("wrote %s: log10 relative squared error, %g (black) to %g (yellow); "
                         "magenta: NaN/Inf\n",

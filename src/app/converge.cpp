@@ -1,61 +1,21 @@
 // `wavepath converge`: error against render time (docs/convergence.md).
-#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
-#include <map>
 
 #include <CLI/CLI.hpp>
 
+#include "app/cli_options.hpp"
 #include "app/commands.hpp"
 #include "cl/context.hpp"
 #include "cl/device.hpp"
 #include "image/image_io.hpp"
-#include "render/convergence.hpp"
 #include "render/wavefront.hpp"
+#include "report/convergence.hpp"
 #include "scene/load.hpp"
 
 namespace wp {
 namespace {
-
-const std::map<std::string, DiffuseSampling> kDiffuse = {{"cosine", DiffuseSampling::Cosine},
-                                                         {"report", DiffuseSampling::Report}};
-const std::map<std::string, LightSampling> kLight = {{"area", LightSampling::Area},
-                                                     {"solid-angle", LightSampling::SolidAngle}};
-
-template <typename Enum> std::string name_of(const std::map<std::string, Enum>& names, Enum value) {
-    for (const auto& [name, v] : names)
-        if (v == value)
-            return name;
-    return "?";
-}
-
-std::string lower_extension(const std::string& path) {
-    std::string extension = std::filesystem::path(path).extension().string();
-    for (char& c : extension)
-        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return extension;
-}
-
-// Fails before rendering, not after, if an output cannot be written.
-void check_output(const std::string& path, const std::vector<std::string>& extensions) {
-    if (path.empty())
-        return;
-    std::filesystem::path p(path);
-    std::filesystem::path dir = p.has_parent_path() ? p.parent_path() : ".";
-    if (!std::filesystem::is_directory(dir))
-        throw std::runtime_error("cannot write '" + path + "': directory '" + dir.string() +
-                                 "' does not exist");
-    const std::string extension = lower_extension(path);
-    for (const std::string& e : extensions)
-        if (extension == e)
-            return;
-    std::string list;
-    for (const std::string& e : extensions)
-        list += (list.empty() ? "" : ", ") + e;
-    throw std::runtime_error("cannot write '" + path + "': unsupported extension '" +
-                             p.extension().string() + "' (use " + list + ")");
-}
 
 std::string format(const char* pattern, double value) {
     char text[64];
@@ -66,10 +26,6 @@ std::string format(const char* pattern, double value) {
 } // namespace
 
 CLI::App* add_converge_subcommand(CLI::App& app, ConvergeCommand& command) {
-    const IntegratorOptions defaults;
-    command.diffuse = name_of(kDiffuse, defaults.diffuse_sampling);
-    command.light = name_of(kLight, defaults.light_sampling);
-    command.nee = defaults.next_event_estimation;
     CLI::App* c = app.add_subcommand(
         "converge", "Render progressively and report the error against render time at 1, 2, "
                     "4, ... samples per pixel (CSV, SVG plot); see docs/convergence.md");
@@ -79,7 +35,7 @@ CLI::App* add_converge_subcommand(CLI::App& app, ConvergeCommand& command) {
                   "Without one the error is estimated from the even/odd half images");
     auto* spp = c->add_option("--max-spp", command.max_spp,
                               "Last checkpoint, in samples per pixel (default 256)")
-                    ->check(CLI::Range(1u, 1u << 24));
+                    ->check(CLI::Range(1u, cli_limits::max_samples_per_pixel));
     auto* time = c->add_option("--max-time", command.max_time,
                                "Render for this many seconds (render time, kernel build "
                                "excluded); the last batch is cut to fit")
@@ -93,35 +49,16 @@ CLI::App* add_converge_subcommand(CLI::App& app, ConvergeCommand& command) {
                 "Render nothing: draw --plot from the --overlay CSVs alone");
     c->add_option("--out,-o", command.out, "Write the final image (.exr, .pfm or .png)");
     c->add_option("--title", command.title, "The plot's title (default: scene, size, device)");
-    c->add_option("--device,-d", command.device, "OpenCL device (as for render)");
-    c->add_option("--seed", command.seed, "Random seed")->capture_default_str();
-    c->add_option("--width", command.width, "Image width (default: the scene's)")
-        ->check(CLI::Range(1, 16384));
-    c->add_option("--height", command.height, "Image height (default: the scene's)")
-        ->check(CLI::Range(1, 16384));
-    c->add_option("--max-depth", command.max_depth, "Safety cap on bounces")
-        ->capture_default_str()
-        ->check(CLI::Range(1u, 1u << 20));
-    c->add_option("--diffuse", command.diffuse,
-                  "Lambertian sampling: 'cosine' (cosine-weighted, throughput roulette) or "
-                  "'report' (the seed report's uniform angles and albedo roulette, made "
-                  "unbiased)")
-        ->capture_default_str()
-        ->check(CLI::IsMember({"cosine", "report"}));
-    c->add_option("--light-sampling", command.light,
-                  "Next-event estimation: 'area' (uniform on the light) or 'solid-angle' "
-                  "(uniform in the light's spherical triangles)")
-        ->capture_default_str()
-        ->check(CLI::IsMember({"area", "solid-angle"}));
-    c->add_flag("!--no-nee", command.nee,
-                "Next-event estimation off: light only from paths that hit an emitter");
+    add_device_option(*c, command.device);
+    add_image_size_options(*c, command.width, command.height);
+    add_integrator_options(*c, command.integrator);
     return c;
 }
 
 int run_converge(const ConvergeCommand& command) {
     check_output(command.csv, {".csv"});
     check_output(command.plot, {".svg"});
-    check_output(command.out, {".exr", ".pfm", ".png"});
+    check_output(command.out, kImageExtensions);
     // Overlays are read first, so a bad one fails before the render.
     std::vector<ConvergenceRun> runs(1);
     for (const std::string& path : command.overlays)
@@ -153,12 +90,7 @@ int run_converge(const ConvergeCommand& command) {
                 " (use --width/--height)");
     }
 
-    IntegratorOptions options;
-    options.seed = command.seed;
-    options.max_depth = command.max_depth;
-    options.next_event_estimation = command.nee;
-    options.diffuse_sampling = kDiffuse.at(command.diffuse);
-    options.light_sampling = kLight.at(command.light);
+    const IntegratorOptions& options = command.integrator;
     DeviceContext device(select_device(command.device), false);
     WavefrontIntegrator integrator(device, scene, options);
 

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
 #include <random>
 #include <string>
 #include <vector>
@@ -11,6 +10,7 @@
 #include <CLI/CLI.hpp>
 #include <glm/geometric.hpp>
 
+#include "app/cli_options.hpp"
 #include "app/commands.hpp"
 #include "cl/context.hpp"
 #include "cl/device.hpp"
@@ -190,22 +190,14 @@ void print_scene(const std::string& path, const Scene& scene) {
 
 } // namespace
 
-void add_no_cache_flag(CLI::App* subcommand) {
-    subcommand->add_flag_callback(
-        "--no-cache", [] { setenv("WAVEPATH_NO_CACHE", "1", 1); },
-        "Build the kernels from source; neither read nor write the program cache "
-        "(~/.cache/wavepath; same as WAVEPATH_NO_CACHE=1)");
-}
-
 CLI::App* add_info_subcommand(CLI::App& app, InfoCommand& command) {
     CLI::App* i = app.add_subcommand(
         "info", "Print a scene's counts, its kernel features and build options, each build's "
                 "time cold and cached, and what the driver reports of each kernel");
     i->add_option("scene", command.scene, "Scene file (JSON)")->required();
-    i->add_option("--device,-d", command.device, "OpenCL device (as for render)");
-    i->add_flag("--general", command.general,
-                "Report the all-features kernels instead of the scene's specialised ones");
-    add_no_cache_flag(i);
+    add_device_option(*i, command.device);
+    // All of them, since the estimator's options are build options too.
+    add_integrator_options(*i, command.integrator);
     return i;
 }
 
@@ -233,14 +225,13 @@ int run_info(const InfoCommand& command) {
     // The program exactly as a render builds it (a tiny image: the options do
     // not depend on the resolution), through the cache unless it is off.
     scene.camera.width = scene.camera.height = 8;
-    IntegratorOptions options;
-    options.general_kernels = command.general;
-    WavefrontIntegrator integrator(device, scene, options);
+    WavefrontIntegrator integrator(device, scene, command.integrator);
     const BuiltProgram& built = integrator.program();
-    std::printf("kernels: %s\n", command.general ? "general (--general)" : "specialised");
+    std::printf("kernels: %s\n",
+                command.integrator.general_kernels ? "general (--general)" : "specialised");
     std::printf("build options: %s\n", built.options.c_str());
 
-    const CachePolicy cache = CachePolicy::from_environment();
+    const CachePolicy& cache = command.integrator.program_cache;
     std::printf("program build (the five kernels are one program):\n");
     std::printf("  compiler start-up (a trivial first build in this process): %s\n",
                 format_seconds(warm_up.build_seconds).c_str());

@@ -1,16 +1,11 @@
 #include "cl/program_cache.hpp"
 
-#include <atomic>
-#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <system_error>
 
-#include <fcntl.h>
-#include <unistd.h>
+#include "util/file.hpp"
 
 namespace wp {
 namespace {
@@ -56,49 +51,6 @@ std::string hex(std::uint64_t value) {
     char text[17];
     std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(value));
     return text;
-}
-
-std::string errno_text(int err) {
-    return std::error_code(err, std::generic_category()).message();
-}
-
-// Writes `bytes` to a fresh temporary file next to `path` and renames it over
-// `path`. The temporary name holds the pid and a counter, and O_EXCL keeps two
-// writers from sharing one.
-std::string write_atomically(const fs::path& path, const std::vector<unsigned char>& bytes) {
-    static std::atomic<unsigned long> counter{0};
-    int fd = -1;
-    fs::path temp;
-    for (int attempt = 0; attempt < 100 && fd < 0; ++attempt) {
-        temp = path;
-        temp += ".tmp-" + std::to_string(getpid()) + "-" + std::to_string(counter++);
-        fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
-        if (fd < 0 && errno != EEXIST)
-            return "cannot create '" + temp.string() + "': " + errno_text(errno);
-    }
-    if (fd < 0)
-        return "cannot create a temporary file next to '" + path.string() + "'";
-    std::size_t done = 0;
-    while (done < bytes.size()) {
-        ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-        if (n < 0 && errno == EINTR)
-            continue;
-        if (n <= 0) {
-            int err = errno;
-            ::close(fd);
-            ::unlink(temp.c_str());
-            return "cannot write '" + temp.string() + "': " + errno_text(err);
-        }
-        done += static_cast<std::size_t>(n);
-    }
-    // No fsync: after a crash an entry may be empty or partial, which load()
-    // detects (size and checksum) and replaces.
-    if (::close(fd) != 0 || std::rename(temp.c_str(), path.c_str()) != 0) {
-        int err = errno;
-        ::unlink(temp.c_str());
-        return "cannot store '" + path.string() + "': " + errno_text(err);
-    }
-    return "";
 }
 
 } // namespace
@@ -218,17 +170,15 @@ CacheLookup ProgramCache::load(std::uint64_t key) const {
     if (directory_.empty())
         return result;
     const fs::path path = entry_path(key);
-    std::ifstream in(path, std::ios::binary);
-    if (!in)
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec))
         return result; // a plain miss
-    std::vector<unsigned char> bytes{std::istreambuf_iterator<char>(in),
-                                     std::istreambuf_iterator<char>()};
-    if (in.bad()) {
-        result.rejected = "read error";
-    } else {
-        result.binary = decode(key, bytes, result.rejected);
+    try {
+        result.binary = decode(key, read_file_bytes(path), result.rejected);
         if (result.binary)
             return result;
+    } catch (const FileError& e) {
+        result.rejected = "read error: " + e.reason();
     }
     remove(key);
     return result;
@@ -241,7 +191,15 @@ std::string ProgramCache::store(std::uint64_t key, const std::vector<unsigned ch
     fs::create_directories(directory_, ec);
     if (ec)
         return "cannot create '" + directory_.string() + "': " + ec.message();
-    return write_atomically(entry_path(key), encode(key, binary));
+    // Unsynced: after a crash an entry may be empty or partial, which load()
+    // detects (size and checksum) and replaces.
+    const std::vector<unsigned char> bytes = encode(key, binary);
+    try {
+        write_bytes_atomically(entry_path(key), bytes.data(), bytes.size(), Durability::Unsynced);
+    } catch (const FileError& e) {
+        return e.what();
+    }
+    return "";
 }
 
 void ProgramCache::remove(std::uint64_t key) const {

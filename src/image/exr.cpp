@@ -1,7 +1,6 @@
 #include "image/exr.hpp"
 
-#include "image/atomic_file.hpp"
-#include "image/read_file.hpp"
+#include "util/file.hpp"
 
 #include <tinyexr.h>
 

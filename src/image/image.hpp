@@ -8,8 +8,9 @@
 
 namespace wp {
 
-// Thrown for unreadable, unwritable or malformed image files; one-line message
-// naming the file and the problem.
+// Thrown for malformed image files and images that cannot be encoded; one-line
+// message naming the file and the problem. A file that cannot be opened, read
+// or written throws FileError (util/file.hpp).
 class ImageError : public std::runtime_error {
   public:
     using std::runtime_error::runtime_error;

@@ -4,21 +4,11 @@
 #include "image/pfm.hpp"
 #include "image/png.hpp"
 
-#include <cctype>
 #include <string>
 
+#include "util/file.hpp"
+
 namespace wp {
-namespace {
-
-std::string lower_extension(const std::filesystem::path& path) {
-    std::string ext = path.extension().string();
-    for (char& c : ext) {
-        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    }
-    return ext;
-}
-
-} // namespace
 
 void write_image(const std::filesystem::path& path, const Image& img, const ViewOptions& view) {
     const std::string ext = lower_extension(path);

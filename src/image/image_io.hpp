@@ -13,8 +13,9 @@ namespace wp {
 // "... unsupported image extension '.xyz' (use .exr, .pfm or .png)". Atomic.
 void write_image(const std::filesystem::path& path, const Image& img, const ViewOptions& view = {});
 
-// Reads .exr or .pfm (case-insensitive). A missing file throws ImageError
-// "cannot open '<path>': No such file or directory".
+// Reads .exr or .pfm (case-insensitive). A missing file throws FileError
+// "cannot open '<path>': No such file or directory" (util/file.hpp); a
+// malformed one ImageError.
 Image read_image(const std::filesystem::path& path);
 
 } // namespace wp

@@ -1,6 +1,6 @@
 #include "image/png.hpp"
 
-#include "image/atomic_file.hpp"
+#include "util/file.hpp"
 
 #include <stb_image_write.h>
 

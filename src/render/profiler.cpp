@@ -2,7 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "image/atomic_file.hpp"
+#include "util/file.hpp"
 
 namespace wp {
 

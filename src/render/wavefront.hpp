@@ -21,48 +21,11 @@
 #include "render/device_buffers.hpp"
 #include "render/device_scene.hpp"
 #include "render/film.hpp"
+#include "render/integrator_options.hpp"
 #include "render/profiler.hpp"
 #include "scene/scene.hpp"
 
 namespace wp {
-
-// Estimator variants (kernels/estimator.h; compared in docs/convergence.md).
-// How a Lambertian bounce picks its next direction, and how paths end:
-enum class DiffuseSampling {
-    Cosine, // cosine-weighted directions, throughput roulette
-    Report, // the student report's: uniform (theta, phi), albedo roulette
-};
-// How next-event estimation picks a point on a light triangle:
-enum class LightSampling {
-    Area,       // uniform by area
-    SolidAngle, // uniform in the subtended solid angle (spherical triangles)
-};
-
-struct IntegratorOptions {
-    std::uint32_t seed = 0;
-    // Safety cap on bounces. Russian roulette ends paths long before it in
-    // any scene with absorption; it exists for lossless mirror corridors. The
-    // number of paths it cuts is counted in RenderStats::capped_paths.
-    std::uint32_t max_depth = 1024;
-    bool general_kernels = false; // compile every feature, not just the scene's
-    // Next-event estimation: one shadow ray to a light per diffuse hit. Off,
-    // light is found only by paths that hit emitters.
-    bool next_event_estimation = true;
-    // The defaults are the most efficient variant measured on the hexroom
-    // (docs/convergence.md); solid-angle light sampling wins by an order of
-    // magnitude where surfaces come close to a light.
-    DiffuseSampling diffuse_sampling = DiffuseSampling::Cosine;
-    LightSampling light_sampling = LightSampling::Area;
-    // Refill finished slots with new samples at once, instead of waiting for
-    // the whole pool to finish (a "wave") before generating again. Off by
-    // default: on PoCL's CPU device it was measured 30-40 % slower (camera
-    // rays of scattered pixels lose the coherence SIMD lanes rely on; see
-    // docs/profiling.md). It keeps launches full, which is what a GPU needs.
-    bool regeneration = false;
-    // Path slots; 0 means one per pixel. Fewer save device memory (about 180
-    // bytes each) at some cost in parallelism.
-    std::uint32_t pool_size = 0;
-};
 
 struct RenderStats {
     std::uint64_t camera_rays = 0;

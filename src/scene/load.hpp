@@ -14,7 +14,7 @@
 
 namespace wp {
 
-// Reads and parses the file. Throws SceneError("cannot open scene '<path>': <strerror>")
+// Reads and parses the file. Throws SceneError("cannot open scene '<path>': <reason>")
 // when the file cannot be opened or read, and whatever parse_scene throws otherwise.
 // Scene::source is the path as given.
 Scene load_scene(const std::filesystem::path& path);

@@ -2,6 +2,7 @@
 // on stderr and a non-zero exit, and never a crash or a half-written file.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -43,9 +44,12 @@ struct Scratch {
     }
 };
 
-Run wavepath(const std::string& arguments, const Scratch& scratch) {
+// Runs the executable; `environment` (e.g. "WAVEPATH_CACHE_DIR='/tmp/x'") is
+// prefixed to the shell command.
+Run wavepath(const std::string& arguments, const Scratch& scratch,
+             const std::string& environment = "") {
     fs::path out = scratch.dir / "stdout.txt", err = scratch.dir / "stderr.txt";
-    std::string command = std::string("'") + WAVEPATH_EXE + "' " + arguments + " >'" +
+    std::string command = environment + " '" + WAVEPATH_EXE + "' " + arguments + " >'" +
                           out.string() + "' 2>'" + err.string() + "'";
     int status = std::system(command.c_str());
     Run run;
@@ -166,4 +170,60 @@ TEST_CASE("cli: an existing output survives a failed render") {
     Run run = wavepath("render '" + bad.string() + "' --out '" + out.string() + "'", s);
     CHECK(run.exit_code != 0);
     CHECK(slurp(out) == "previous contents");
+}
+
+TEST_CASE("cli: render takes the estimator flags and each changes the image but not its mean") {
+    Scratch s;
+    const std::string size = " --spp 16 --width 24 --height 24 --device 0:0 --out ";
+    auto render = [&](const std::string& name, const std::string& flags) {
+        const fs::path path = s.dir / (name + ".pfm");
+        Run run = wavepath("render " + kHexroom + size + "'" + path.string() + "'" + flags, s);
+        INFO(run.err);
+        REQUIRE(run.exit_code == 0);
+        return wp::read_image(path);
+    };
+    const wp::Image standard = render("default", "");
+    CHECK(render("again", "").rgb == standard.rgb); // so a difference below is the flag's
+    for (const std::string flags :
+         {" --no-nee", " --diffuse report", " --light-sampling solid-angle", " --seed 7"}) {
+        INFO("flags:" << flags);
+        const wp::Image other = render("other", flags);
+        REQUIRE(other.rgb.size() == standard.rgb.size());
+        CHECK(other.rgb != standard.rgb);
+        // Both estimators are unbiased and independent, so every pixel's
+        // difference has mean zero; its square estimates its variance, and
+        // the mean difference must lie within 5 of its standard errors.
+        for (std::size_t channel = 0; channel < 3; ++channel) {
+            double sum = 0.0, sum_squares = 0.0, pixels = 0.0;
+            for (std::size_t i = channel; i < standard.rgb.size(); i += 3) {
+                const double d = static_cast<double>(other.rgb[i]) - standard.rgb[i];
+                sum += d;
+                sum_squares += d * d;
+                pixels += 1.0;
+            }
+            INFO("channel " << channel);
+            CHECK(sum_squares > 0.0);
+            CHECK(std::abs(sum / pixels) <= 5.0 * std::sqrt(sum_squares) / pixels);
+        }
+    }
+}
+
+TEST_CASE("cli: --no-cache leaves the program cache directory alone") {
+    Scratch s;
+    const fs::path cache = s.dir / "cache";
+    const std::string environment = "WAVEPATH_CACHE_DIR='" + cache.string() + "'";
+    const std::string arguments = "render " + kHexroom +
+                                  " --spp 1 --width 8 --height 8 --device 0:0 --seed 11 --out '" +
+                                  (s.dir / "x.pfm").string() + "'";
+    Run off = wavepath(arguments + " --no-cache", s, environment);
+    INFO(off.err);
+    REQUIRE(off.exit_code == 0);
+    CHECK_FALSE(fs::exists(cache));
+    // The same render without the flag stores its program there, so the
+    // check above could fail.
+    Run on = wavepath(arguments, s, environment);
+    INFO(on.err);
+    REQUIRE(on.exit_code == 0);
+    REQUIRE(fs::is_directory(cache));
+    CHECK_FALSE(fs::is_empty(cache));
 }

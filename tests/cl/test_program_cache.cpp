@@ -13,7 +13,7 @@
 
 #include "cl/program.hpp"
 #include "cl/program_cache.hpp"
-#include "image/temp_dir.hpp"
+#include "support/temp_dir.hpp"
 #include "support/test_device.hpp"
 
 using namespace wp;

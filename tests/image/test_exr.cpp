@@ -2,7 +2,7 @@
 // input, and rejection of truncated or non-RGB files.
 #include "image/exr.hpp"
 
-#include "temp_dir.hpp"
+#include "support/temp_dir.hpp"
 #include "test_images.hpp"
 
 #include <catch2/catch.hpp>

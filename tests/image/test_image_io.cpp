@@ -1,7 +1,7 @@
 // write_image / read_image: format chosen by extension, clear errors otherwise.
 #include "image/image_io.hpp"
 
-#include "temp_dir.hpp"
+#include "support/temp_dir.hpp"
 #include "test_images.hpp"
 
 #include <catch2/catch.hpp>

@@ -1,7 +1,7 @@
 // PFM: bit-exact round trips, the exact byte layout, and strict rejection of bad files.
 #include "image/pfm.hpp"
 
-#include "temp_dir.hpp"
+#include "support/temp_dir.hpp"
 #include "test_images.hpp"
 
 #include <catch2/catch.hpp>

@@ -1,7 +1,7 @@
 // PNG output: decodes (with stb_image, independently of the writer) to the tone-mapped bytes.
 #include "image/png.hpp"
 
-#include "temp_dir.hpp"
+#include "support/temp_dir.hpp"
 #include "test_images.hpp"
 
 #include <catch2/catch.hpp>

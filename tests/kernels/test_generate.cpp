@@ -169,10 +169,10 @@ struct Pinhole {
 // A freshly generated path in `slot`: the camera ray and the initial state.
 void check_fresh_path(const GenerateResult& r, std::size_t slot, const Pinhole& camera,
                       cl_uint seed, const Task& task) {
-    D3 got(r.direction[slot]);
+    D3 got = from_float4(r.direction[slot]);
     CHECK(max_abs(got - camera.direction(seed, task.pixel, task.sample)) < 1e-6);
     CHECK(r.direction[slot].s[3] == 0.0f);
-    CHECK(max_abs(D3(r.origin[slot]) - camera.eye) <= 1e-6 * max_abs(camera.eye));
+    CHECK(max_abs(from_float4(r.origin[slot]) - camera.eye) <= 1e-6 * max_abs(camera.eye));
     CHECK(r.origin[slot].s[3] == 0.0f);
     for (int k = 0; k < 3; ++k) {
         CHECK(r.throughput[slot].s[k] == 1.0f);
@@ -242,7 +242,7 @@ TEST_CASE("generate: camera rays match a double-precision pinhole model", "[cl][
                     INFO("pixel " << x << ", " << y << " sample " << first_sample << " seed "
                                   << seed);
                     D3 expected = camera.direction(seed, pixel, first_sample);
-                    D3 got(r.direction[pixel]);
+                    D3 got = from_float4(r.direction[pixel]);
                     double error = max_abs(got - expected);
                     worst_direction = std::max(worst_direction, error);
                     CHECK(error < 1e-6);
@@ -318,7 +318,7 @@ TEST_CASE("generate: each ray passes through its own pixel, jittered per sample"
         for (int y = 0; y < 3; ++y) {
             for (int x = 0; x < 4; ++x) {
                 const cl_uint slot = cl_uint(y * 4 + x);
-                D3 d(r.direction[slot]);
+                D3 d = from_float4(r.direction[slot]);
                 double sx = -d.x / d.z / aspect, sy = -d.y / d.z;
                 // Film x in [-1, 1] maps to columns left to right, y to rows top to bottom.
                 double column = (sx + 1.0) / 2.0 * 4.0, row = (1.0 - sy) / 2.0 * 3.0;
@@ -338,8 +338,8 @@ TEST_CASE("generate: each ray passes through its own pixel, jittered per sample"
     // Different samples jitter differently.
     for (std::size_t pixel = 0; pixel < 12; ++pixel) {
         INFO("pixel " << pixel);
-        CHECK(D3(waves[0][pixel]).x != D3(waves[1][pixel]).x);
-        CHECK(D3(waves[2][pixel]).y != D3(waves[3][pixel]).y);
+        CHECK(from_float4(waves[0][pixel]).x != from_float4(waves[1][pixel]).x);
+        CHECK(from_float4(waves[2][pixel]).y != from_float4(waves[3][pixel]).y);
     }
 
     // A fifth call: every slot has given its four samples, so none is queued

@@ -99,13 +99,13 @@ struct DeviceGeometry {
         t.v1 = to_float4(b);
         t.v2 = to_float4(c);
         triangles.push_back(t);
-        reference.triangles.push_back({D3(t.v0), D3(t.v1), D3(t.v2)});
+        reference.triangles.push_back({from_float4(t.v0), from_float4(t.v1), from_float4(t.v2)});
     }
     void add_sphere(const D3& center, double radius) {
         WpSphere s{};
         s.center_radius = to_float4(center, radius);
         spheres.push_back(s);
-        reference.spheres.push_back({D3(s.center_radius), double(s.center_radius.s[3])});
+        reference.spheres.push_back({from_float4(s.center_radius), double(s.center_radius.s[3])});
     }
 };
 
@@ -174,15 +174,15 @@ TEST_CASE("intersect: hand-made rays find the closest primitive and its distance
         cl_uint expected;
     };
     const Case cases[] = {
-        {"triangle only", {0, 0, 0}, normalize({-1, -3, -5}), 0},
-        {"sphere only", {0, 0, 0}, normalize({0, 5, -5}), 4},
+        {"triangle only", {0, 0, 0}, normalize(D3(-1, -3, -5)), 0},
+        {"sphere only", {0, 0, 0}, normalize(D3(0, 5, -5)), 4},
         {"sphere in front of a triangle", {0, 0, 0}, {0, 0, -1}, 5},
-        {"triangle in front of a sphere", {0, 0, 0}, normalize({2, -2, -8}), 0},
+        {"triangle in front of a sphere", {0, 0, 0}, normalize(D3(2, -2, -8)), 0},
         {"miss, parallel to the wall", {0, 0, 0}, {0, 1, 0}, WP_NO_HIT},
         {"miss, everything behind", {0, 0, 0}, {0, 0, 1}, WP_NO_HIT},
         {"from inside a sphere", {0, 5.3, -5}, {1, 0, 0}, 4},
-        {"exact tie of coincident triangles", {0, 0, 0}, normalize({10, 0, -0.3}), 1},
-        {"back face of a triangle", {0, 0, 0}, normalize({-1, 0, -0.03}), 3},
+        {"exact tie of coincident triangles", {0, 0, 0}, normalize(D3(10, 0, -0.3)), 1},
+        {"back face of a triangle", {0, 0, 0}, normalize(D3(-1, 0, -0.03)), 3},
         {"direction of length 2", {0, 0, 0}, {0, 0, -2}, 5},
         {"sphere behind the origin", {0, 0, -3.6}, {0, 0, -1}, 0},
         {"passing just outside a sphere", {0, 0.6, 0}, {0, 0, -1}, 0},
@@ -207,7 +207,7 @@ TEST_CASE("intersect: hand-made rays find the closest primitive and its distance
     for (std::size_t i = 0; i < n; ++i) {
         const Case& c = cases[i];
         INFO(c.what);
-        D3 o(origins[i]), d(directions[i]);
+        D3 o = from_float4(origins[i]), d = from_float4(directions[i]);
         RefHit ref = reference_hit(g.reference, o, d);
         REQUIRE(ref.primitive == c.expected); // the reference agrees with the hand-made answer
         CHECK(r.primitive[i] == c.expected);
@@ -269,7 +269,7 @@ TEST_CASE("intersect: random rays agree with the double-precision reference", "[
     std::size_t hits = 0, near_ties = 0, mismatches = 0, t_errors = 0;
     double worst_t = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
-        D3 o(origins[i]), d(directions[i]);
+        D3 o = from_float4(origins[i]), d = from_float4(directions[i]);
         RefHit ref = reference_hit(g.reference, o, d);
         if (ref.primitive != WP_NO_HIT)
             ++hits;
@@ -312,7 +312,7 @@ TEST_CASE("intersect: rays through the shared edges and vertex of a fan never sl
           "[cl][intersect]") {
     // Six triangles around a shared centre vertex, on a tilted plane.
     const D3 centre(0.1, 0.2, -3.0);
-    const D3 u = normalize({1.0, 0.1, 0.3}), v = normalize(cross({0.2, 0.1, 1.0}, u));
+    const D3 u = normalize(D3(1.0, 0.1, 0.3)), v = normalize(cross(D3(0.2, 0.1, 1.0), u));
     std::vector<D3> rim;
     for (int i = 0; i < 6; ++i) {
         double angle = 2.0 * M_PI * i / 6.0 + 0.3 * std::sin(i); // uneven spokes
@@ -321,10 +321,10 @@ TEST_CASE("intersect: rays through the shared edges and vertex of a fan never sl
     DeviceGeometry g;
     for (int i = 0; i < 6; ++i)
         g.add_triangle(centre, rim[i], rim[(i + 1) % 6]);
-    const D3 centre_f(g.triangles[0].v0); // the shared vertex as stored
+    const D3 centre_f = from_float4(g.triangles[0].v0); // the shared vertex as stored
     std::vector<D3> rim_f;
     for (const WpTriangle& t : g.triangles)
-        rim_f.push_back(D3(t.v1));
+        rim_f.push_back(from_float4(t.v1));
 
     // Rays from random origins towards points on the spokes (each shared by two
     // triangles) and towards the centre vertex (shared by all six).
@@ -351,7 +351,7 @@ TEST_CASE("intersect: rays through the shared edges and vertex of a fan never sl
             continue;
         }
         // The hit lies on the fan's plane, near the aimed-at point.
-        D3 hit = D3(origins[i]) + double(r.t[i]) * D3(directions[i]);
+        D3 hit = from_float4(origins[i]) + double(r.t[i]) * from_float4(directions[i]);
         bad_t += std::fabs(dot(hit - centre_f, normalize(cross(u, v)))) > 1e-5;
     }
     CHECK(misses == 0);

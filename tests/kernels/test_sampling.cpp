@@ -91,15 +91,15 @@ TEST_CASE("wp_sample_cosine_hemisphere has the moments of the cosine distributio
         {0, 0, -1},
         {1, 0, 0},
         {0, -1, 0},
-        normalize({1, 2, -3}),
-        normalize({-0.3, 0.2, 0.93}),
-        normalize({1e-3, 0, -1}),
+        normalize(D3(1, 2, -3)),
+        normalize(D3(-0.3, 0.2, 0.93)),
+        normalize(D3(1e-3, 0, -1)),
     };
     cl::Kernel kernel(program(kSamplingSource, "sampling_test.cl"), "cosine_samples");
     cl_uint seed = 5;
     for (const D3& requested : normals) {
         cl_float4 n_float = to_float4(requested);
-        D3 n(n_float); // the normal exactly as the kernel gets it
+        D3 n = from_float4(n_float); // the normal exactly as the kernel gets it
         INFO("normal " << n.x << ", " << n.y << ", " << n.z);
         set_args(kernel, n_float, seed++, kSamples);
         std::vector<cl_float4> samples = run_samples(kernel);
@@ -114,7 +114,7 @@ TEST_CASE("wp_sample_cosine_hemisphere has the moments of the cosine distributio
         std::vector<std::size_t> histogram(bins * bins);
         std::size_t bad_length = 0, below = 0;
         for (const cl_float4& s : samples) {
-            D3 d(s);
+            D3 d = from_float4(s);
             double c = dot(d, n);
             cosine.add(c);
             cosine_squared.add(c * c);
@@ -154,7 +154,7 @@ TEST_CASE("wp_sample_triangle gives uniform points inside the triangle", "[cl][s
     for (const std::array<D3, 3>& requested : triangles) {
         std::array<cl_float4, 3> p_float{to_float4(requested[0]), to_float4(requested[1]),
                                          to_float4(requested[2])};
-        D3 p0(p_float[0]), p1(p_float[1]), p2(p_float[2]);
+        D3 p0 = from_float4(p_float[0]), p1 = from_float4(p_float[1]), p2 = from_float4(p_float[2]);
         INFO("triangle " << p0.x << ", " << p0.y << ", " << p0.z << " ...");
         set_args(kernel, p_float[0], p_float[1], p_float[2], seed++, kSamples);
         std::vector<cl_float4> samples = run_samples(kernel);
@@ -170,7 +170,7 @@ TEST_CASE("wp_sample_triangle gives uniform points inside the triangle", "[cl][s
         std::vector<std::size_t> cells(k * k);
         std::size_t outside = 0, off_plane = 0;
         for (const cl_float4& s : samples) {
-            D3 p(s);
+            D3 p = from_float4(s);
             D3 r = p - p0;
             double r1 = dot(r, e1), r2 = dot(r, e2);
             double b1 = (g22 * r1 - g12 * r2) / det, b2 = (g11 * r2 - g12 * r1) / det;

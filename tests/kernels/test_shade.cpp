@@ -60,7 +60,7 @@ wp::Scene shade_scene() {
 }
 
 D3 vertex(const WpTriangle& t, int i) {
-    return D3(i == 0 ? t.v0 : (i == 1 ? t.v1 : t.v2));
+    return from_float4(i == 0 ? t.v0 : (i == 1 ? t.v1 : t.v2));
 }
 
 D3 unit_normal(const WpTriangle& t) {
@@ -351,12 +351,12 @@ TEST_CASE("shade: mirrors, emitters, next-event estimation and roulette on hand-
         INFO("slot " << slot << " (pixel " << in[slot].pixel << ", sample " << in[slot].sample
                      << ")");
         const PathIn& p = in[slot];
-        const D3 d = D3(direction[slot]);
+        const D3 d = from_float4(direction[slot]);
         const bool queued = slot != kNotQueued && slot != kPastRayCount;
         const bool hit = queued && p.primitive != WP_NO_HIT;
 
         // Radiance: emission only on an emitter's front face, seen specularly.
-        D3 expected_radiance = D3(radiance[slot]);
+        D3 expected_radiance = from_float4(radiance[slot]);
         if (slot == kEmitterSpecular)
             expected_radiance = expected_radiance + p.throughput * D3(4, 3, 2);
         for (int k = 0; k < 3; ++k)
@@ -386,11 +386,11 @@ TEST_CASE("shade: mirrors, emitters, next-event estimation and roulette on hand-
             CHECK(out_depth[slot] == p.depth + 1);
 
             // The new ray leaves from the hit point, on the side the ray came from.
-            D3 new_origin(out_origin[slot]);
+            D3 new_origin = from_float4(out_origin[slot]);
             CHECK(distance(new_origin, p.hit_point) < 1e-4);
             CHECK(dot(new_origin - p.hit_point, facing) > 0.0);
 
-            D3 next(out_direction[slot]);
+            D3 next = from_float4(out_direction[slot]);
             CHECK(std::fabs(length(next) - 1.0) < 1e-6);
             if (m.kind == wp::MaterialKind::Mirror) {
                 D3 reflected = d - 2.0 * dot(d, facing) * facing;
@@ -441,9 +441,9 @@ TEST_CASE("shade: mirrors, emitters, next-event estimation and roulette on hand-
                                 << expected[k]);
                 CHECK(std::fabs(out_contribution[slot].s[k] - expected[k]) <= 1e-4 * expected[k]);
             }
-            CHECK(distance(D3(out_shadow_origin[slot]), p.hit_point) < 1e-4);
-            CHECK(dot(D3(out_shadow_origin[slot]) - p.hit_point, facing) > 0.0);
-            CHECK(max_abs(D3(out_shadow_direction[slot]) - wi) < 1e-5);
+            CHECK(distance(from_float4(out_shadow_origin[slot]), p.hit_point) < 1e-4);
+            CHECK(dot(from_float4(out_shadow_origin[slot]) - p.hit_point, facing) > 0.0);
+            CHECK(max_abs(from_float4(out_shadow_direction[slot]) - wi) < 1e-5);
             // The segment stops just short of the light point.
             double segment = out_shadow_direction[slot].s[3];
             CHECK(segment < dist);

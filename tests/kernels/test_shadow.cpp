@@ -34,7 +34,7 @@ TEST_CASE("shadow: contributions arrive exactly when nothing blocks the segment"
         {"from inside the sphere", {0, 5, 2}, {1, 0, 0}, 3.0, true},
         {"ends before the floor", {0, 0, 5}, {0, -1, 0}, 2.0, false},
         {"ends just past the wall", {0, 0, 0}, {1, 0, 0}, 2.01, true},
-        {"oblique through the wall", {0, 0, 0}, normalize({2, 0.2, 0.2}), 3.0, true},
+        {"oblique through the wall", {0, 0, 0}, normalize(D3(2, 0.2, 0.2)), 3.0, true},
         {"not queued", {0, 0, 0}, {0, 0, 1}, 1.0, false},
         {"queued past shadow_count", {0, 0, 0}, {0, 0, 1}, 1.0, false},
         {"starts on the wall", {2, 0, 0}, {1, 0, 0}, 3.0, false},

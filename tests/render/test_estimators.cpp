@@ -12,7 +12,7 @@
 
 #include "cl/program.hpp"
 #include "image/image_io.hpp"
-#include "render/convergence.hpp"
+#include "render/integrator_options.hpp"
 #include "scene/load.hpp"
 #include "support/render_helpers.hpp"
 #include "support/scene_builder.hpp"

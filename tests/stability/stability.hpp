@@ -18,6 +18,7 @@
 #include "cl/program.hpp"
 #include "naive.hpp"
 #include "scene/load.hpp"
+#include "support/double_vector.hpp"
 #include "support/render_helpers.hpp"
 #include "support/scene_builder.hpp"
 #include "support/test_device.hpp"
@@ -194,52 +195,11 @@ template <typename... Args> void set_args(cl::Kernel& kernel, const Args&... arg
 
 // ---------------------------------------------------------------- double references
 
-struct D3 {
-    double x = 0.0, y = 0.0, z = 0.0;
-    D3() = default;
-    D3(double x_, double y_, double z_) : x(x_), y(y_), z(z_) {}
-    explicit D3(const cl_float4& v) : x(v.s[0]), y(v.s[1]), z(v.s[2]) {}
-    D3 operator+(const D3& o) const { return {x + o.x, y + o.y, z + o.z}; }
-    D3 operator-(const D3& o) const { return {x - o.x, y - o.y, z - o.z}; }
-    D3 operator*(double s) const { return {x * s, y * s, z * s}; }
-    D3 operator/(double s) const { return {x / s, y / s, z / s}; }
-    double operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
-};
-inline D3 operator*(double s, const D3& v) {
-    return v * s;
-}
-inline double dot(const D3& a, const D3& b) {
-    return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-inline D3 cross(const D3& a, const D3& b) {
-    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-inline double length(const D3& v) {
-    return std::sqrt(dot(v, v));
-}
-inline D3 normalize(const D3& v) {
-    return v / length(v);
-}
-inline double max_abs(const D3& v) {
-    return std::max(std::fabs(v.x), std::max(std::fabs(v.y), std::fabs(v.z)));
-}
-inline D3 from_glm(const glm::dvec3& v) {
-    return {v.x, v.y, v.z};
-}
-
-inline cl_float4 to_float4(const D3& v, double w = 0.0) {
-    cl_float4 r;
-    r.s[0] = static_cast<float>(v.x);
-    r.s[1] = static_cast<float>(v.y);
-    r.s[2] = static_cast<float>(v.z);
-    r.s[3] = static_cast<float>(w);
-    return r;
-}
-
-// The value a double vector takes once rounded to float, back in double.
-inline D3 rounded(const D3& v) {
-    return D3(to_float4(v));
-}
+using test::D3;
+using test::from_float4;
+using test::max_abs;
+using test::rounded;
+using test::to_float4;
 
 // Ray/triangle in double, both faces: the ray parameter t where the line
 // meets the plane, and the barycentric coordinates (b0, b1, b2) of that point

@@ -126,9 +126,10 @@ MeshRays mesh_of(const Scene& scene) {
     };
     std::set<std::pair<cl_uint, cl_uint>> edges;
     for (const Triangle& t : scene.triangles) {
-        WpTriangle w = make_triangle(from_glm(t.v[0]), from_glm(t.v[1]), from_glm(t.v[2]));
+        WpTriangle w = make_triangle(t.v[0], t.v[1], t.v[2]);
         m.triangles.push_back(w);
-        cl_uint i[3] = {index_of(D3(w.v0)), index_of(D3(w.v1)), index_of(D3(w.v2))};
+        cl_uint i[3] = {index_of(from_float4(w.v0)), index_of(from_float4(w.v1)),
+                        index_of(from_float4(w.v2))};
         for (int k = 0; k < 3; ++k) {
             cl_uint a = i[k], b = i[(k + 1) % 3];
             edges.insert({std::min(a, b), std::max(a, b)});
@@ -149,14 +150,15 @@ MeshRays mesh_of(const Scene& scene) {
 // towards the centroid by up to 0.9 of the inradius), and points just under
 // the surface (0.999 of the way to a face's plane from the centroid).
 void add_origins(MeshRays& m) {
-    D3 centre;
+    D3 centre(0.0);
     for (const cl_float4& v : m.vertices)
-        centre = centre + D3(v);
+        centre = centre + from_float4(v);
     centre = centre / static_cast<double>(m.vertices.size());
     double inradius = INFINITY;
     for (const WpTriangle& t : m.triangles) {
-        D3 n = normalize(cross(D3(t.v1) - D3(t.v0), D3(t.v2) - D3(t.v0)));
-        inradius = std::min(inradius, std::abs(dot(D3(t.v0) - centre, n)));
+        D3 n = normalize(
+            cross(from_float4(t.v1) - from_float4(t.v0), from_float4(t.v2) - from_float4(t.v0)));
+        inradius = std::min(inradius, std::abs(dot(from_float4(t.v0) - centre, n)));
     }
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -169,7 +171,7 @@ void add_origins(MeshRays& m) {
     }
     for (std::size_t i = 0; i < 16; ++i) {
         const WpTriangle& t = m.triangles[(i * 7) % m.triangles.size()];
-        D3 c = (D3(t.v0) + D3(t.v1) + D3(t.v2)) / 3.0;
+        D3 c = (from_float4(t.v0) + from_float4(t.v1) + from_float4(t.v2)) / 3.0;
         m.origins.push_back(
             to_float4(centre + (c - centre) * 0.999 * (inradius / length(c - centre))));
     }

@@ -18,9 +18,9 @@ enum Seen { kFront = 0, kBack = 1, kWall = 2, kBackdrop = 3, kMixed = 4 };
 std::vector<int> classify(const Scene& scene) {
     const Camera& cam = scene.camera;
     const int w = cam.width, h = cam.height, n = 16;
-    D3 eye = from_glm(cam.eye);
-    D3 forward = normalize(from_glm(cam.look_at) - eye);
-    D3 right = normalize(cross(forward, from_glm(cam.up)));
+    D3 eye = cam.eye;
+    D3 forward = normalize(cam.look_at - eye);
+    D3 right = normalize(cross(forward, cam.up));
     D3 up = cross(right, forward);
     double ty = std::tan(cam.vertical_fov_degrees * M_PI / 360.0), tx = ty * w / h;
     auto first_hit = [&](const D3& d) {

@@ -27,7 +27,7 @@ Tri grazing_triangle() {
     Scene scene = stress_scene("grazing");
     REQUIRE(scene.triangles.size() >= 1);
     const Triangle& t = scene.triangles[0];
-    return {rounded(from_glm(t.v[0])), rounded(from_glm(t.v[1])), rounded(from_glm(t.v[2]))};
+    return {rounded(t.v[0]), rounded(t.v[1]), rounded(t.v[2])};
 }
 
 // Distance from p to the triangle (in double): to its plane if p projects
@@ -138,7 +138,7 @@ Tally tally(const Tri& tri, const Rays& rays, bool naive) {
     D3 n = normalize(cross(tri.v1 - tri.v0, tri.v2 - tri.v0));
     Tally s;
     for (std::size_t i = 0; i < rays.origins.size(); ++i) {
-        D3 o(rays.origins[i]), d(rays.directions[i]);
+        D3 o = from_float4(rays.origins[i]), d = from_float4(rays.directions[i]);
         ++s.rays;
         if (r.hit[i] == WP_NO_HIT)
             continue;
@@ -228,7 +228,7 @@ Row triangle_row(const std::string& category, const Tri& tri, const Rays& rays, 
     row.category = category;
     const double size = triangle_size(tri);
     for (std::size_t i = 0; i < rays.origins.size(); ++i) {
-        D3 o(rays.origins[i]), d(rays.directions[i]);
+        D3 o = from_float4(rays.origins[i]), d = from_float4(rays.directions[i]);
         ++row.rays;
         bool hit = r.hit[i] != WP_NO_HIT;
         row.hits += hit;

@@ -49,9 +49,9 @@ struct Exact {
 Exact exact_image(const Scene& scene, double rho, double le, double h, double half_side) {
     const Camera& cam = scene.camera;
     const int w = cam.width, hgt = cam.height, n = 48;
-    D3 eye = from_glm(cam.eye);
-    D3 forward = normalize(from_glm(cam.look_at) - eye);
-    D3 right = normalize(cross(forward, from_glm(cam.up)));
+    D3 eye = cam.eye;
+    D3 forward = normalize(cam.look_at - eye);
+    D3 right = normalize(cross(forward, cam.up));
     D3 up = cross(right, forward);
     double ty = std::tan(cam.vertical_fov_degrees * M_PI / 360.0);
     double tx = ty * w / hgt;

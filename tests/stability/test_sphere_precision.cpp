@@ -39,10 +39,10 @@ SphereErrors measure(const std::vector<cl_float4>& origins, const std::vector<cl
                      const WpSphere& sphere, bool naive, double outline_margin) {
     TraceResult r = trace(origins, dirs, {}, {sphere}, naive);
     SphereErrors e;
-    D3 c(sphere.center_radius);
+    D3 c = from_float4(sphere.center_radius);
     double radius = sphere.center_radius.s[3];
     for (std::size_t i = 0; i < origins.size(); ++i) {
-        D3 o(origins[i]), d(dirs[i]);
+        D3 o = from_float4(origins[i]), d = from_float4(dirs[i]);
         double t_ref = sphere_hit(o, d, c, radius);
         bool hit = r.hit[i] != WP_NO_HIT;
         double l = impact(o, d, c, radius);
@@ -116,9 +116,9 @@ TEST_CASE("sphere precision: radius 1e-3 at distance 1e3 matches the long-double
           "[stability][sphere]") {
     Scene scene = stress_scene("sphere-far-small");
     REQUIRE(scene.spheres.size() == 1);
-    const D3 eye = from_glm(scene.camera.eye);
-    const WpSphere sphere = make_sphere(from_glm(scene.spheres[0].center), scene.spheres[0].radius);
-    const D3 centre(sphere.center_radius);
+    const D3 eye = scene.camera.eye;
+    const WpSphere sphere = make_sphere(scene.spheres[0].center, scene.spheres[0].radius);
+    const D3 centre = from_float4(sphere.center_radius);
     const double radius = sphere.center_radius.s[3];
     // Plus a second, off-axis view with no round coordinates.
     const D3 eye2(0.37, -0.21, 0.13);
@@ -156,8 +156,8 @@ TEST_CASE("sphere precision: a radius-1e4 ground matches the long-double referen
           "[stability][sphere]") {
     Scene scene = stress_scene("sphere-ground");
     REQUIRE(scene.spheres.size() == 1);
-    const D3 eye = from_glm(scene.camera.eye);
-    const WpSphere ground = make_sphere(from_glm(scene.spheres[0].center), scene.spheres[0].radius);
+    const D3 eye = scene.camera.eye;
+    const WpSphere ground = make_sphere(scene.spheres[0].center, scene.spheres[0].radius);
     std::vector<cl_float4> o, d;
     rays_at_ground(eye, scene.spheres[0].radius, 100.0, 40000, o, d);
     SphereErrors ours = measure(o, d, ground, false, 1e-6);

@@ -14,6 +14,7 @@
 #include "cl/cl.hpp"
 #include "cl/program.hpp"
 #include "render/device_buffers.hpp"
+#include "support/double_vector.hpp"
 #include "support/test_device.hpp"
 #include "wp_shared.h"
 
@@ -120,55 +121,6 @@ inline std::uint32_t float_bits(float f) {
     std::uint32_t bits;
     std::memcpy(&bits, &f, sizeof bits);
     return bits;
-}
-
-// A small double-precision 3-vector for the host reference models.
-struct D3 {
-    double x = 0.0, y = 0.0, z = 0.0;
-
-    D3() = default;
-    D3(double x_, double y_, double z_) : x(x_), y(y_), z(z_) {}
-    explicit D3(const cl_float4& v) : x(v.s[0]), y(v.s[1]), z(v.s[2]) {}
-
-    D3 operator+(const D3& o) const { return {x + o.x, y + o.y, z + o.z}; }
-    D3 operator-(const D3& o) const { return {x - o.x, y - o.y, z - o.z}; }
-    D3 operator-() const { return {-x, -y, -z}; }
-    D3 operator*(double s) const { return {x * s, y * s, z * s}; }
-    D3 operator*(const D3& o) const { return {x * o.x, y * o.y, z * o.z}; }
-    D3 operator/(double s) const { return {x / s, y / s, z / s}; }
-    double operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
-};
-
-inline D3 operator*(double s, const D3& v) {
-    return v * s;
-}
-inline double dot(const D3& a, const D3& b) {
-    return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-inline D3 cross(const D3& a, const D3& b) {
-    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-inline double length(const D3& v) {
-    return std::sqrt(dot(v, v));
-}
-inline D3 normalize(const D3& v) {
-    return v / length(v);
-}
-inline double max_abs(const D3& v) {
-    return std::max(std::fabs(v.x), std::max(std::fabs(v.y), std::fabs(v.z)));
-}
-inline double distance(const D3& a, const D3& b) {
-    return length(a - b);
-}
-
-inline cl_float4 to_float4(const D3& v, double w = 0.0) {
-    return float4(static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z),
-                  static_cast<float>(w));
-}
-
-// The value a double takes once rounded to float, back in double.
-inline D3 rounded(const D3& v) {
-    return D3(to_float4(v));
 }
 
 // One (pixel, sample) pair a path slot computes.

@@ -4,7 +4,9 @@
 #include <cmath>
 
 #include "render/film.hpp"
+#include "render/profiler.hpp"
 #include "render/wavefront.hpp"
+#include "scene/load.hpp"
 #include "support/test_device.hpp"
 
 namespace wp::test {
@@ -20,6 +22,41 @@ inline Rendered render(const Scene& scene, std::uint32_t spp, std::uint32_t seed
     WavefrontIntegrator integrator(device(), scene, options);
     Rendered out{Film(scene.camera.width, scene.camera.height), {}};
     integrator.render(first_sample, spp, out.film);
+    out.stats = integrator.stats();
+    return out;
+}
+
+// The reference scene at another resolution.
+inline Scene hexroom(int width, int height) {
+    Scene scene = load_scene(WAVEPATH_SOURCE_DIR "/scenes/hexroom.json");
+    scene.camera.width = width;
+    scene.camera.height = height;
+    return scene;
+}
+
+// The test device with OpenCL event profiling on, and a render (seed 5)
+// recorded by a Profiler.
+inline DeviceContext& profiling_device() {
+    static DeviceContext context(device().info, true);
+    return context;
+}
+
+struct ProfiledRender {
+    Profiler profiler;
+    RenderStats stats;
+    Film film;
+};
+
+inline ProfiledRender profiled_render(const Scene& scene, std::uint32_t spp, bool regeneration,
+                                      std::uint32_t pool = 0) {
+    IntegratorOptions options;
+    options.seed = 5;
+    options.regeneration = regeneration;
+    options.pool_size = pool;
+    WavefrontIntegrator integrator(profiling_device(), scene, options);
+    ProfiledRender out{{}, {}, Film(scene.camera.width, scene.camera.height)};
+    integrator.set_profiler(&out.profiler);
+    integrator.render(0, spp, out.film);
     out.stats = integrator.stats();
     return out;
 }

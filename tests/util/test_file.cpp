@@ -1,17 +1,18 @@
-// write_file_atomically: the old file survives a failed write and no temp files remain.
-#include "image/atomic_file.hpp"
+// The file utilities: whole-file reads, atomic replacement (the old file
+// survives a failed write and no temp files remain), errno text, extensions.
+#include "util/file.hpp"
 
-#include "image/image.hpp"
-#include "temp_dir.hpp"
+#include "support/temp_dir.hpp"
 
 #include <catch2/catch.hpp>
 
+#include <cerrno>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
-using wp::ImageError;
+using wp::FileError;
 using wp::test::TempDir;
 namespace fs = std::filesystem;
 
@@ -58,8 +59,7 @@ TEST_CASE("a throwing writer leaves the previous file intact and no temp files",
 
     // Without a previous file, nothing is created.
     const auto fresh = dir / "fresh.exr";
-    CHECK_THROWS_AS(wp::write_file_atomically(fresh, [](const fs::path&) { throw 42; }),
-                    ImageError);
+    CHECK_THROWS_AS(wp::write_file_atomically(fresh, [](const fs::path&) { throw 42; }), FileError);
     CHECK(!fs::exists(fresh));
     CHECK(dir.entries() == std::vector<std::string>{"image.exr"});
 }
@@ -88,4 +88,49 @@ TEST_CASE("a failed rename removes the temp file and leaves the target alone", "
                       Catch::StartsWith("cannot write '" + path.string() + "': cannot rename"));
     CHECK(wp::test::read_text(path / "inside") == "keep");
     CHECK(dir.entries() == std::vector<std::string>{"taken"});
+}
+
+TEST_CASE("an unsynced write replaces the file as atomically as a synced one", "[atomic]") {
+    TempDir dir;
+    const auto path = dir / "entry.bin";
+    wp::test::write_text(path, "old");
+    wp::write_bytes_atomically(path, "new", 3, wp::Durability::Unsynced);
+    CHECK(wp::test::read_text(path) == "new");
+    CHECK(dir.entries() == std::vector<std::string>{"entry.bin"});
+}
+
+TEST_CASE("read_file_bytes returns exactly the bytes and names the reason it cannot", "[file]") {
+    TempDir dir;
+    const std::vector<unsigned char> bytes = {0, 1, 255, '\n', 0, 'x'};
+    wp::test::write_bytes(dir / "b.bin", bytes);
+    CHECK(wp::read_file_bytes(dir / "b.bin") == bytes);
+    CHECK(wp::read_file_text(dir / "b.bin") == std::string(bytes.begin(), bytes.end()));
+    wp::test::write_bytes(dir / "empty", {});
+    CHECK(wp::read_file_bytes(dir / "empty").empty());
+
+    const auto missing = dir / "missing.txt";
+    CHECK_THROWS_WITH(wp::read_file_bytes(missing),
+                      "cannot open '" + missing.string() + "': No such file or directory");
+    try {
+        wp::read_file_text(dir.path());
+        FAIL("a directory was read");
+    } catch (const FileError& e) {
+        CHECK(e.reason() == "Is a directory");
+        CHECK(std::string(e.what()) == "cannot open '" + dir.path().string() + "': Is a directory");
+    }
+}
+
+TEST_CASE("errno text, extensions and parent directories", "[file]") {
+    CHECK(wp::errno_text(ENOENT) == "No such file or directory");
+    CHECK(wp::lower_extension("a/B.EXR") == ".exr");
+    CHECK(wp::lower_extension("dir.d/noext") == "");
+    CHECK(wp::lower_extension("x.tar.GZ") == ".gz");
+
+    TempDir dir;
+    CHECK_NOTHROW(wp::check_parent_directory(dir / "new.png"));
+    CHECK_THROWS_WITH(wp::check_parent_directory(dir / "no" / "x.png"),
+                      Catch::EndsWith("directory '" + (dir / "no").string() + "' does not exist"));
+    wp::test::write_text(dir / "file", "x");
+    CHECK_THROWS_WITH(wp::check_parent_directory(dir / "file" / "x.png"),
+                      Catch::EndsWith("is not a directory"));
 }

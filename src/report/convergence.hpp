@@ -17,9 +17,9 @@
 #include <vector>
 
 #include "image/image.hpp"
-#include "image/svg_plot.hpp"
 #include "render/film.hpp"
 #include "render/wavefront.hpp"
+#include "report/svg_plot.hpp"
 
 namespace wp {
 
@@ -51,10 +51,6 @@ struct Checkpoint {
     double mse_halves = 0.0;
     double rel_mse_halves = 0.0;
 };
-
-// A short name for an estimator, e.g. "cosine+nee+solid-angle", "report+no-nee".
-// (Light sampling is left out without next-event estimation: it does not apply.)
-std::string describe_estimator(const IntegratorOptions& options);
 
 // The metrics of `film` (samples [first_sample, first_sample + spp) of every
 // pixel) after `seconds`. `reference` may be null; otherwise it must have the

@@ -41,7 +41,7 @@ PlotSeries slope_line(double slope, double x0, double y0, double x_min, double x
 // or a series' x and y differ in length.
 std::string render_svg(const LogLogPlot& plot);
 
-// render_svg written atomically; throws ImageError when the file cannot be written.
+// render_svg written atomically; throws FileError when the file cannot be written.
 void write_svg(const std::filesystem::path& path, const LogLogPlot& plot);
 
 } // namespace wp

@@ -1,11 +1,11 @@
-#include "render/profile_report.hpp"
+#include "report/profile_report.hpp"
 
 #include <algorithm>
 #include <cstdio>
 
 #include <nlohmann/json.hpp>
 
-#include "image/atomic_file.hpp"
+#include "util/file.hpp"
 
 namespace wp {
 namespace {

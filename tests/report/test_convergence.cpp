@@ -15,8 +15,8 @@
 
 #include "image/image_io.hpp"
 #include "image/metrics.hpp"
-#include "image/svg_plot.hpp"
-#include "render/convergence.hpp"
+#include "report/convergence.hpp"
+#include "report/svg_plot.hpp"
 #include "scene/load.hpp"
 #include "support/test_device.hpp"
 

@@ -1,4 +1,4 @@
-#include "image/svg_plot.hpp"
+#include "report/svg_plot.hpp"
 
 #include <algorithm>
 #include <array>
@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "image/atomic_file.hpp"
+#include "util/file.hpp"
 
 namespace wp {
 namespace {

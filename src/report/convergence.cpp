@@ -1,14 +1,13 @@
-#include "render/convergence.hpp"
+#include "report/convergence.hpp"
 
 #include <algorithm>
 #include <cstdio>
-#include <fstream>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
 
-#include "image/atomic_file.hpp"
 #include "image/metrics.hpp"
+#include "util/file.hpp"
 
 namespace wp {
 namespace {
@@ -39,15 +38,6 @@ const char* const kCsvHeader =
     "efficiency,rel_efficiency,mse_halves,rel_mse_halves";
 
 } // namespace
-
-std::string describe_estimator(const IntegratorOptions& options) {
-    std::string name = options.diffuse_sampling == DiffuseSampling::Report ? "report" : "cosine";
-    if (!options.next_event_estimation)
-        return name + "+no-nee";
-    name += "+nee+";
-    name += options.light_sampling == LightSampling::SolidAngle ? "solid-angle" : "area";
-    return name;
-}
 
 Checkpoint measure_checkpoint(const Film& film, std::uint32_t spp, double seconds,
                               const Image* reference, std::uint32_t first_sample) {
@@ -163,9 +153,7 @@ void write_convergence_csv(const std::filesystem::path& path, const ConvergenceR
 }
 
 ConvergenceRun read_convergence_csv(const std::filesystem::path& path) {
-    std::ifstream in(path);
-    if (!in)
-        throw std::runtime_error("cannot open '" + path.string() + "'");
+    std::istringstream in(read_file_text(path));
     std::string line;
     if (!std::getline(in, line) || line != kCsvHeader)
         throw std::runtime_error("'" + path.string() +

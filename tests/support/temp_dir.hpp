@@ -19,7 +19,7 @@ class TempDir {
     TempDir() {
         static std::atomic<unsigned> counter{0};
         // pid + counter + random: unique across tests, parallel ctest runs and leftovers.
-        const std::string name = "wavepath-image-test-" + std::to_string(getpid()) + "-" +
+        const std::string name = "wavepath-test-" + std::to_string(getpid()) + "-" +
                                  std::to_string(counter++) + "-" +
                                  std::to_string(std::random_device{}());
         path_ = std::filesystem::temp_directory_path() / name;

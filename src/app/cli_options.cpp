@@ -1,0 +1,78 @@
+#include "app/cli_options.hpp"
+
+#include <map>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "scene/validate.hpp"
+
+namespace wp {
+namespace {
+
+// An option that picks one of `choices` by its name (to_string), stored in
+// `value`; its default is value's.
+template <typename Enum>
+void add_choice(CLI::App& command, const std::string& flag, Enum& value,
+                const std::vector<Enum>& choices, const std::string& help) {
+    std::map<std::string, Enum> names;
+    for (Enum choice : choices)
+        names.emplace(to_string(choice), choice);
+    std::vector<std::string> allowed;
+    for (const auto& [name, choice] : names)
+        allowed.push_back(name);
+    command
+        .add_option_function<std::string>(
+            flag, [&value, names](const std::string& name) { value = names.at(name); }, help)
+        ->default_str(to_string(value))
+        ->check(CLI::IsMember(allowed));
+}
+
+} // namespace
+
+void add_integrator_options(CLI::App& command, IntegratorOptions& options) {
+    command.add_option("--seed", options.seed, "Random seed; the same seed gives the same image")
+        ->capture_default_str();
+    command
+        .add_option("--max-depth", options.max_depth,
+                    "Safety cap on bounces; Russian roulette ends paths long before it. Paths it "
+                    "cuts are counted and reported")
+        ->capture_default_str()
+        ->check(CLI::Range(1u, cli_limits::max_depth));
+    command.add_flag("!--no-nee", options.next_event_estimation,
+                     "Next-event estimation off: light only from paths that hit an emitter");
+    add_choice(command, "--diffuse", options.diffuse_sampling,
+               {DiffuseSampling::Cosine, DiffuseSampling::Report},
+               "Lambertian sampling: 'cosine' (cosine-weighted, throughput roulette) or "
+               "'report' (the seed report's uniform angles and albedo roulette, made unbiased)");
+    add_choice(command, "--light-sampling", options.light_sampling,
+               {LightSampling::Area, LightSampling::SolidAngle},
+               "Next-event estimation: 'area' (uniform on the light) or 'solid-angle' (uniform "
+               "in the light's spherical triangles)");
+    command.add_flag("--general", options.general_kernels,
+                     "Build the all-features kernels instead of the scene's specialised ones");
+    command.add_flag(
+        "--regeneration,!--no-regeneration", options.regeneration,
+        "Refill the slots of finished paths with new samples at once, keeping queues full "
+        "(default: off, one wave of samples at a time; see docs/profiling.md)");
+    command.add_option("--pool", options.pool_size,
+                       "Path slots on the device (default: one per pixel); fewer use less memory");
+    command.add_flag_callback(
+        "--no-cache", [&options] { options.program_cache = CachePolicy::off(); },
+        "Build the kernels from source; neither read nor write the program cache "
+        "(~/.cache/wavepath; same as WAVEPATH_NO_CACHE=1)");
+}
+
+void add_device_option(CLI::App& command, std::string& device) {
+    command.add_option("--device,-d", device,
+                       "OpenCL device: an index P:D from `wavepath devices`, or part of its name "
+                       "(default: first GPU, else first CPU)");
+}
+
+void add_image_size_options(CLI::App& command, int& width, int& height) {
+    const auto size = CLI::Range(1, scene_limits::max_resolution);
+    command.add_option("--width", width, "Image width (default: the scene's)")->check(size);
+    command.add_option("--height", height, "Image height (default: the scene's)")->check(size);
+}
+
+} // namespace wp

@@ -1,0 +1,36 @@
+// Command-line options shared by the subcommands that render or build
+// kernels (render, converge, bench, info), registered in one place so that
+// every command spells, documents and bounds them the same way.
+#pragma once
+
+#include <string>
+
+#include "render/integrator_options.hpp"
+
+namespace CLI {
+class App;
+}
+
+namespace wp {
+
+// Largest values the commands accept; the resolution's comes from the scene
+// loader (scene_limits::max_resolution), so a size the CLI takes is a size a
+// scene file may hold.
+namespace cli_limits {
+inline constexpr unsigned max_samples_per_pixel = 1u << 24;
+inline constexpr unsigned max_depth = 1u << 20;
+} // namespace cli_limits
+
+// Every field of IntegratorOptions: --seed, --max-depth, --no-nee, --diffuse,
+// --light-sampling, --general, --regeneration, --pool and --no-cache (which
+// turns options.program_cache off). The defaults shown are options' values.
+void add_integrator_options(CLI::App& command, IntegratorOptions& options);
+
+// --device: an index P:D or part of a device's name.
+void add_device_option(CLI::App& command, std::string& device);
+
+// --width and --height, each within the scene loader's resolution limit; 0
+// (not given) keeps the scene's resolution.
+void add_image_size_options(CLI::App& command, int& width, int& height);
+
+} // namespace wp

@@ -1,0 +1,66 @@
+// What a render asks of the wavefront integrator: the seed, the estimator
+// variant, the kernels to build and how, and how paths are scheduled. One
+// struct, so that every command that renders (app/integrator_cli.cpp) and
+// every test sets the same things the same way.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "cl/program_cache.hpp"
+
+namespace wp {
+
+// Estimator variants (kernels/estimator.h; compared in docs/convergence.md).
+// How a Lambertian bounce picks its next direction, and how paths end:
+enum class DiffuseSampling {
+    Cosine, // cosine-weighted directions, throughput roulette
+    Report, // the student report's: uniform (theta, phi), albedo roulette
+};
+// How next-event estimation picks a point on a light triangle:
+enum class LightSampling {
+    Area,       // uniform by area
+    SolidAngle, // uniform in the subtended solid angle (spherical triangles)
+};
+
+struct IntegratorOptions {
+    std::uint32_t seed = 0;
+    // Safety cap on bounces. Russian roulette ends paths long before it in
+    // any scene with absorption; it exists for lossless mirror corridors. The
+    // number of paths it cuts is counted in RenderStats::capped_paths.
+    std::uint32_t max_depth = 1024;
+    bool general_kernels = false; // compile every feature, not just the scene's
+    // Next-event estimation: one shadow ray to a light per diffuse hit. Off,
+    // light is found only by paths that hit emitters.
+    bool next_event_estimation = true;
+    // The defaults are the most efficient variant measured on the hexroom
+    // (docs/convergence.md); solid-angle light sampling wins by an order of
+    // magnitude where surfaces come close to a light.
+    DiffuseSampling diffuse_sampling = DiffuseSampling::Cosine;
+    LightSampling light_sampling = LightSampling::Area;
+    // Refill finished slots with new samples at once, instead of waiting for
+    // the whole pool to finish (a "wave") before generating again. Off by
+    // default: on PoCL's CPU device it was measured 30-40 % slower (camera
+    // rays of scattered pixels lose the coherence SIMD lanes rely on; see
+    // docs/profiling.md). It keeps launches full, which is what a GPU needs.
+    bool regeneration = false;
+    // Path slots; 0 means one per pixel. Fewer save device memory (about 180
+    // bytes each) at some cost in parallelism.
+    std::uint32_t pool_size = 0;
+    // Whether the kernel build reads and writes the on-disk program cache,
+    // and where. The default follows the environment (WAVEPATH_NO_CACHE,
+    // WAVEPATH_CACHE_DIR), as it always has; `--no-cache` sets it off here
+    // instead of changing the environment of the whole process.
+    CachePolicy program_cache = CachePolicy::from_environment();
+};
+
+// The variants' names, as the command line takes them and reports print
+// them: "cosine" and "report"; "area" and "solid-angle".
+std::string to_string(DiffuseSampling sampling);
+std::string to_string(LightSampling sampling);
+
+// A short name for an estimator, e.g. "cosine+nee+solid-angle", "report+no-nee".
+// (Light sampling is left out without next-event estimation: it does not apply.)
+std::string describe_estimator(const IntegratorOptions& options);
+
+} // namespace wp
