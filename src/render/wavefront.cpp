@@ -59,9 +59,9 @@ WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const Scene& sce
     check_device_memory(device_.info, scene_.width, scene_.height, pool_size_);
 
     const SceneFeatures compiled = options_.general_kernels ? SceneFeatures::all() : features_;
-    program_ = build_wavefront_program(device_.context, device_.info.device,
-                                       kernel_build_options(compiled, options_),
-                                       options_.program_cache);
+    program_ =
+        build_wavefront_program(device_.context, device_.info.device,
+                                kernel_build_options(compiled, options_), options_.program_cache);
     for (std::size_t i = 0; i < kStageKernelNames.size(); ++i)
         kernels_[i] = cl::Kernel(program_.program, std::string(kStageKernelNames[i]).c_str());
 
