@@ -11,6 +11,7 @@
 
 #include "ray_offset.h"
 #include "scene_features.h"
+#include "sphere.h"
 #include "stage.h"
 #include "triangle.h"
 
@@ -44,6 +45,27 @@ static inline wp_uint wp_primitive_kind(const WpSceneView* scene, wp_uint primit
     (void)scene;
     (void)primitive;
     return WP_PRIMITIVE_TRIANGLE;
+}
+
+/* The ray test of one primitive: 1 and *t if the ray hits it at
+ * 0 < t < t_max. `sheared` is the triangle test's form of the same ray. */
+static inline int wp_intersect_primitive(const WpSceneView* scene, const WpShearedRay* sheared,
+                                         float3 origin, float3 direction, wp_uint primitive,
+                                         float t_max, float* t) {
+#if WP_HAS_SPHERES
+    if (wp_primitive_kind(scene, primitive) == WP_PRIMITIVE_SPHERE)
+        return wp_intersect_sphere(origin, direction,
+                                   scene->spheres[primitive - scene->triangle_count].center_radius,
+                                   t_max, t);
+#endif
+#if WP_HAS_TRIANGLES
+    __global const WpTriangle* triangle = &scene->triangles[primitive];
+    return wp_intersect_triangle(sheared, triangle->v0.xyz, triangle->v1.xyz, triangle->v2.xyz,
+                                 t_max, t);
+#else
+    (void)sheared, (void)origin, (void)direction, (void)primitive, (void)t_max, (void)t;
+    return 0;
+#endif
 }
 
 /* Where a ray met a surface, as shading needs it. */

@@ -23,6 +23,15 @@
 #define WP_HAS_LIGHTS 1
 #endif
 
+/* Acceleration switch, not a scene feature: traverse a bounding volume
+ * hierarchy (bvh.h) instead of testing every primitive. The host turns it on
+ * for scenes past the fixed-count limit (src/render/device_scene.hpp) and
+ * uploads the hierarchy; left undefined it is off, so that test kernels built
+ * without options need no hierarchy. */
+#ifndef WP_USE_BVH
+#define WP_USE_BVH 0
+#endif
+
 /* Estimator switch, not a scene feature: with next-event estimation off,
  * light is found only by paths that hit an emitter, and emitters count after
  * every bounce. Slower to converge, but with bounded variance (no 1/r^2). */

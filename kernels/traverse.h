@@ -3,16 +3,17 @@
  * intersect and shadow stages (and tests) call these two, so an acceleration
  * structure replaces their bodies and nothing else.
  *
- * On an exact tie in t the lower primitive number wins, so results never
- * depend on evaluation order. With the counts fixed at compile time
- * (primitive.h) the loops unroll fully; both forms run the same tests in the
- * same order with the same limits, so they give bit-identical results. Past
- * a few hundred primitives a hierarchy would beat any linear loop;
- * docs/specialization.md has the measurements.
+ * Without a hierarchy (WP_USE_BVH=0, small scenes) every primitive is tested,
+ * in number order: on an exact tie in t the lower number wins, so results
+ * never depend on evaluation order. With one, bvh.h walks it. With the
+ * counts fixed at compile time (primitive.h) the loops unroll fully; both forms run the same tests
+ * in the same order with the same limits, so they give bit-identical results. Past a few hundred
+ * primitives a hierarchy would beat any linear loop; docs/specialization.md has the measurements.
  */
 #ifndef WP_TRAVERSE_H
 #define WP_TRAVERSE_H
 
+#include "bvh.h"
 #include "primitive.h"
 #include "sphere.h"
 #include "triangle.h"
@@ -27,8 +28,8 @@
  * one, or with any_hit (a compile-time constant wherever it is called) the
  * first one found, without shrinking t_max. Returns the primitive number or
  * WP_NO_HIT, and the hit's t in *t_hit (t_max on a miss). */
-static inline wp_uint wp_trace(const WpSceneView* scene, float3 origin, float3 direction,
-                               float t_max, int any_hit, float* t_hit) {
+static inline wp_uint wp_loop_trace(const WpSceneView* scene, float3 origin, float3 direction,
+                                    float t_max, int any_hit, float* t_hit) {
     wp_uint hit = WP_NO_HIT;
     float closest = t_max;
 #if WP_HAS_TRIANGLES
@@ -60,6 +61,15 @@ static inline wp_uint wp_trace(const WpSceneView* scene, float3 origin, float3 d
     (void)any_hit;
     *t_hit = closest;
     return hit;
+}
+
+static inline wp_uint wp_trace(const WpSceneView* scene, float3 origin, float3 direction,
+                               float t_max, int any_hit, float* t_hit) {
+#if WP_USE_BVH
+    return wp_bvh_trace(scene, origin, direction, t_max, any_hit, t_hit);
+#else
+    return wp_loop_trace(scene, origin, direction, t_max, any_hit, t_hit);
+#endif
 }
 
 /* Closest hit with 0 < t < t_max. Returns the primitive number or WP_NO_HIT. */

@@ -78,6 +78,21 @@ typedef struct {
     wp_uint pad0, pad1;
 } WpLight;
 
+/* A node of the bounding volume hierarchy (src/scene/bvh.hpp), 32 bytes of
+ * scalars. Nodes are stored depth first: an inner node's first child follows
+ * it, its second is at `offset`. A leaf's primitives are bvh_primitives[offset
+ * .. offset + count). Its box holds every primitive below it, with room for
+ * the intersection tests' rounding (src/render/device_scene.cpp). */
+typedef struct {
+    wp_float lower_x, lower_y, lower_z;
+    wp_uint offset;
+    wp_float upper_x, upper_y, upper_z;
+    wp_uint count; /* primitives in a leaf (at least 1); 0 for an inner node */
+} WpBvhNode;
+
+/* The deepest leaf the traversal stack can reach (the host builds no deeper). */
+#define WP_BVH_MAX_DEPTH 48u
+
 /* The pinhole camera: a ray through film position (sx, sy) in [-1, 1]^2
  * (x right, y up) has direction forward + sx * right + sy * up, where right
  * and up are already scaled by the half-extent of the image plane at unit
@@ -146,7 +161,9 @@ typedef struct {
     X(triangles, WpTriangle)                                                                       \
     X(spheres, WpSphere)                                                                           \
     X(materials, WpMaterial)                                                                       \
-    X(lights, WpLight)
+    X(lights, WpLight)                                                                             \
+    X(bvh_nodes, WpBvhNode)    /* with WP_USE_BVH; a dummy without */                              \
+    X(bvh_primitives, wp_uint) /* primitive numbers, leaf by leaf */
 
 #define WP_PATH_BUFFERS(X)                                                                         \
     /* path state, one entry per slot (structure of arrays) */                                     \

@@ -40,13 +40,20 @@ DeviceBuffers allocate_device_buffers(const cl::Context& context, const DeviceSc
     return b;
 }
 
-void bind_buffers(cl::Kernel& kernel, const DeviceBuffers& buffers) {
-    cl_uint index = kLaunchArgument + 1;
 #define WP_BIND(name, ...) kernel.setArg(index++, buffers.name);
+
+cl_uint bind_scene_buffers(cl::Kernel& kernel, cl_uint first, const DeviceBuffers& buffers) {
+    cl_uint index = first;
     WP_SCENE_BUFFERS(WP_BIND)
-    WP_PATH_BUFFERS(WP_BIND)
-#undef WP_BIND
+    return index;
 }
+
+void bind_buffers(cl::Kernel& kernel, const DeviceBuffers& buffers) {
+    cl_uint index = bind_scene_buffers(kernel, kLaunchArgument + 1, buffers);
+    WP_PATH_BUFFERS(WP_BIND)
+}
+
+#undef WP_BIND
 
 WpLaunch make_launch(std::uint32_t count, std::uint32_t ray_queue, bool from_finished) {
     WpLaunch launch{};

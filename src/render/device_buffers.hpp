@@ -58,6 +58,11 @@ inline constexpr cl_uint kLaunchArgument = 1;
 // frame and launch arguments are set per launch).
 void bind_buffers(cl::Kernel& kernel, const DeviceBuffers& buffers);
 
+// Binds the scene buffers, in list order, to arguments first, first + 1, ...
+// of a kernel declared with WP_SCENE_BUFFERS(WP_SCENE_PARAMETER) there (test
+// kernels); returns the index after them.
+cl_uint bind_scene_buffers(cl::Kernel& kernel, cl_uint first, const DeviceBuffers& buffers);
+
 // A launch of one stage: what goes in WpLaunch.
 WpLaunch make_launch(std::uint32_t count, std::uint32_t ray_queue, bool from_finished = false);
 

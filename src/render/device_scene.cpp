@@ -1,6 +1,8 @@
 #include "render/device_scene.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include <glm/geometric.hpp>
 
@@ -26,14 +28,52 @@ static_assert(static_cast<wp_uint>(MaterialKind::Diffuse) == WP_MATERIAL_DIFFUSE
 static_assert(static_cast<wp_uint>(MaterialKind::Mirror) == WP_MATERIAL_MIRROR);
 static_assert(static_cast<wp_uint>(MaterialKind::Emitter) == WP_MATERIAL_EMITTER);
 
-} // namespace
-
 // Appends `word` to a space-separated list.
-static void append_word(std::string& list, const std::string& word) {
+void append_word(std::string& list, const std::string& word) {
     if (!list.empty())
         list += ' ';
     list += word;
 }
+
+// A box grown by a few float ulps of its magnitude. The triangle and sphere
+// tests round, and may report a hit a few ulps outside the exact primitive
+// (a ray through a shared edge must hit one of the two triangles, whichever
+// side the rounding favours); the float bounds of a sphere rounded from
+// double may also lose half an ulp. 2^-21 of the magnitude is 8 ulps.
+Bounds3f widened(const Bounds3f& b) {
+    const float magnitude =
+        std::max({std::fabs(b.lower.x), std::fabs(b.lower.y), std::fabs(b.lower.z),
+                  std::fabs(b.upper.x), std::fabs(b.upper.y), std::fabs(b.upper.z)});
+    const float slack = magnitude * 0x1p-21f + 1e-30f;
+    Bounds3f out;
+    out.lower = b.lower - glm::vec3(slack);
+    out.upper = b.upper + glm::vec3(slack);
+    return out;
+}
+
+// The hierarchy over every primitive, as the kernels store it (WpBvhNode).
+void build_hierarchy(DeviceScene& scene) {
+    Bvh bvh = build_bvh(primitive_boxes(scene));
+    if (bvh.stats.depth > WP_BVH_MAX_DEPTH)
+        throw std::logic_error("BVH deeper than the traversal stack");
+    scene.bvh_nodes.reserve(bvh.nodes.size());
+    for (const BvhNode& node : bvh.nodes) {
+        WpBvhNode n{};
+        n.lower_x = node.bounds.lower.x;
+        n.lower_y = node.bounds.lower.y;
+        n.lower_z = node.bounds.lower.z;
+        n.upper_x = node.bounds.upper.x;
+        n.upper_y = node.bounds.upper.y;
+        n.upper_z = node.bounds.upper.z;
+        n.offset = node.is_leaf() ? node.first_primitive : node.second_child;
+        n.count = node.primitive_count;
+        scene.bvh_nodes.push_back(n);
+    }
+    scene.bvh_primitives = std::move(bvh.primitives);
+    scene.bvh_stats = bvh.stats;
+}
+
+} // namespace
 
 std::string SceneFeatures::build_options() const {
     std::string options;
@@ -43,6 +83,8 @@ std::string SceneFeatures::build_options() const {
     if (fixed_counts)
         options += " -D WP_TRIANGLE_COUNT=" + std::to_string(triangle_count) +
                    " -D WP_SPHERE_COUNT=" + std::to_string(sphere_count);
+    if (bvh)
+        options += " -D WP_USE_BVH=1";
     return options;
 }
 
@@ -55,6 +97,8 @@ std::string SceneFeatures::describe() const {
 #undef WP_FEATURE_NAME
     if (fixed_counts)
         out += "; counts " + std::to_string(triangle_count) + "+" + std::to_string(sphere_count);
+    if (bvh)
+        out += "; bvh";
     return out;
 }
 
@@ -77,7 +121,8 @@ SceneFeatures analyse_features(const Scene& scene, std::uint32_t max_fixed_count
     for (const Triangle& t : scene.triangles)
         f.lights = f.lights || scene.materials[t.material].is_emissive();
     const std::size_t primitives = scene.triangles.size() + scene.spheres.size();
-    f.fixed_counts = primitives <= max_fixed_count_primitives;
+    f.bvh = primitives >= kMinBvhPrimitives;
+    f.fixed_counts = !f.bvh && primitives <= max_fixed_count_primitives;
     if (f.fixed_counts) {
         f.triangle_count = static_cast<std::uint32_t>(scene.triangles.size());
         f.sphere_count = static_cast<std::uint32_t>(scene.spheres.size());
@@ -85,7 +130,7 @@ SceneFeatures analyse_features(const Scene& scene, std::uint32_t max_fixed_count
     return f;
 }
 
-DeviceScene flatten_scene(const Scene& scene) {
+DeviceScene flatten_scene(const Scene& scene, bool hierarchy) {
     DeviceScene out;
     out.width = scene.camera.width;
     out.height = scene.camera.height;
@@ -143,7 +188,30 @@ DeviceScene flatten_scene(const Scene& scene) {
     out.camera.forward = to_float4(forward);
     out.camera.right = to_float4(right * (half_height * aspect));
     out.camera.up = to_float4(up * half_height);
+
+    if (hierarchy)
+        build_hierarchy(out);
     return out;
+}
+
+std::vector<Bounds3f> primitive_boxes(const DeviceScene& scene) {
+    std::vector<Bounds3f> boxes;
+    boxes.reserve(scene.triangles.size() + scene.spheres.size());
+    for (const WpTriangle& t : scene.triangles) {
+        Bounds3f b;
+        for (const wp_float4* v : {&t.v0, &t.v1, &t.v2})
+            b.extend(glm::vec3(v->s[0], v->s[1], v->s[2]));
+        boxes.push_back(widened(b));
+    }
+    for (const WpSphere& s : scene.spheres) {
+        const glm::dvec3 c(s.center_radius.s[0], s.center_radius.s[1], s.center_radius.s[2]);
+        const double r = s.center_radius.s[3];
+        Bounds3f b;
+        b.extend(glm::vec3(c - glm::dvec3(r)));
+        b.extend(glm::vec3(c + glm::dvec3(r)));
+        boxes.push_back(widened(b));
+    }
+    return boxes;
 }
 
 } // namespace wp

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "scene/bvh.hpp"
 #include "scene/scene.hpp"
 #include "wp_shared.h"
 
@@ -15,6 +16,9 @@ namespace wp {
 // kernels with the counts compiled in (see SceneFeatures::fixed_counts). The
 // limit comes from measurement on PoCL: docs/specialization.md.
 inline constexpr std::uint32_t kMaxFixedCountPrimitives = 128;
+// Scenes with more primitives than this are traversed through a bounding
+// volume hierarchy (SceneFeatures::bvh), fewer by testing every primitive.
+inline constexpr std::uint32_t kMinBvhPrimitives = kMaxFixedCountPrimitives + 1;
 
 // The feature switches, one row each: X(member, kernel switch). Each is a
 // preprocessor switch of kernels/scene_features.h that compiles its code in
@@ -40,15 +44,28 @@ struct SceneFeatures {
     bool fixed_counts = false;
     std::uint32_t triangle_count = 0;
     std::uint32_t sphere_count = 0;
+    // Large scenes: traversal through a bounding volume hierarchy
+    // (-D WP_USE_BVH=1, kernels/bvh.h). Like fixed counts an acceleration,
+    // not a feature: the images are the same either way, up to which of two
+    // primitives at exactly the same distance is reported.
+    bool bvh = false;
 
-    // Every feature and runtime counts: the general kernels, valid for any scene.
+    // Every feature and runtime counts, no hierarchy: valid for any scene.
     static SceneFeatures all() {
         return {};
+    }
+    // The general kernels for a scene: every feature, runtime counts, and the
+    // scene's hierarchy if it has one (a large scene stays fast).
+    static SceneFeatures general_for(const SceneFeatures& scene) {
+        SceneFeatures f = all();
+        f.bvh = scene.bvh;
+        return f;
     }
     // The -D options that compile exactly these features, e.g.
     // "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=0 ... -D WP_TRIANGLE_COUNT=26 -D WP_SPHERE_COUNT=0".
     std::string build_options() const;
-    // "triangles spheres diffuse mirror lights", then "; counts 26+2" with fixed counts.
+    // "triangles spheres diffuse mirror lights", then "; counts 26+2" with
+    // fixed counts or "; bvh" with a hierarchy.
     std::string describe() const;
 };
 
@@ -57,19 +74,30 @@ struct SceneFeatures {
 SceneFeatures analyse_features(const Scene& scene,
                                std::uint32_t max_fixed_count_primitives = kMaxFixedCountPrimitives);
 
+// The scene buffers' contents: one member per row of WP_SCENE_BUFFERS
+// (kernels/wp_shared.h), of the same name.
 struct DeviceScene {
     std::vector<WpTriangle> triangles;
     std::vector<WpSphere> spheres;
     std::vector<WpMaterial> materials;
-    std::vector<WpLight> lights; // emissive triangles with their area CDF
-    float light_area = 0.0f;     // total emissive area
+    std::vector<WpLight> lights;      // emissive triangles with their area CDF
+    std::vector<WpBvhNode> bvh_nodes; // empty without a hierarchy
+    std::vector<wp_uint> bvh_primitives;
+    BvhStats bvh_stats;
+    float light_area = 0.0f; // total emissive area
     WpCamera camera{};
     int width = 0;
     int height = 0;
 };
 
-// Converts to float32 and builds the light table; the camera basis is scaled
-// so that film coordinates in [-1, 1] span the field of view.
-DeviceScene flatten_scene(const Scene& scene);
+// Converts to float32 and builds the light table, and with `hierarchy` the
+// bounding volume hierarchy over triangles and spheres; the camera basis is
+// scaled so that film coordinates in [-1, 1] span the field of view.
+DeviceScene flatten_scene(const Scene& scene, bool hierarchy = false);
+
+// The box the hierarchy gives each primitive (the triangles' first): the
+// primitive's float32 bounds, widened so that every hit the device's
+// intersection tests report lies inside (see device_scene.cpp).
+std::vector<Bounds3f> primitive_boxes(const DeviceScene& scene);
 
 } // namespace wp

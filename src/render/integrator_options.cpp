@@ -22,6 +22,18 @@ std::string to_string(LightSampling sampling) {
     return "?";
 }
 
+std::string to_string(Traversal traversal) {
+    switch (traversal) {
+    case Traversal::Auto:
+        return "auto";
+    case Traversal::Hierarchy:
+        return "bvh";
+    case Traversal::Loop:
+        return "loop";
+    }
+    return "?";
+}
+
 std::string describe_estimator(const IntegratorOptions& options) {
     const std::string diffuse = to_string(options.diffuse_sampling);
     if (!options.next_event_estimation)

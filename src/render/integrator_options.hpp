@@ -23,6 +23,13 @@ enum class LightSampling {
     SolidAngle, // uniform in the subtended solid angle (spherical triangles)
 };
 
+// How rays find what they hit:
+enum class Traversal {
+    Auto,      // a bounding volume hierarchy past kMinBvhPrimitives, else every primitive
+    Hierarchy, // always the hierarchy
+    Loop,      // always every primitive (the images agree; only the speed differs)
+};
+
 struct IntegratorOptions {
     std::uint32_t seed = 0;
     // Safety cap on bounces. Russian roulette ends paths long before it in
@@ -30,6 +37,7 @@ struct IntegratorOptions {
     // number of paths it cuts is counted in RenderStats::capped_paths.
     std::uint32_t max_depth = 1024;
     bool general_kernels = false; // compile every feature, not just the scene's
+    Traversal traversal = Traversal::Auto;
     // Next-event estimation: one shadow ray to a light per diffuse hit. Off,
     // light is found only by paths that hit emitters.
     bool next_event_estimation = true;
@@ -58,6 +66,7 @@ struct IntegratorOptions {
 // them: "cosine" and "report"; "area" and "solid-angle".
 std::string to_string(DiffuseSampling sampling);
 std::string to_string(LightSampling sampling);
+std::string to_string(Traversal traversal); // "auto", "bvh", "loop"
 
 // A short name for an estimator, e.g. "cosine+nee+solid-angle", "report+no-nee".
 // (Light sampling is left out without next-event estimation: it does not apply.)

@@ -50,15 +50,21 @@ void check_device_memory(const DeviceInfo& device, int width, int height, std::u
 
 WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const Scene& scene,
                                          IntegratorOptions options)
-    : device_(device), scene_(flatten_scene(scene)), features_(analyse_features(scene)),
-      options_(options) {
-    pixel_count_ =
-        static_cast<std::uint32_t>(scene_.width) * static_cast<std::uint32_t>(scene_.height);
+    : device_(device), features_(analyse_features(scene)), options_(options) {
+    if (options_.traversal != Traversal::Auto) {
+        features_.bvh = options_.traversal == Traversal::Hierarchy;
+        if (features_.bvh)
+            features_.fixed_counts = false;
+    }
+    const int width = scene.camera.width, height = scene.camera.height;
+    pixel_count_ = static_cast<std::uint32_t>(width) * static_cast<std::uint32_t>(height);
     pool_size_ =
         options_.pool_size == 0 ? pixel_count_ : std::min(options_.pool_size, pixel_count_);
-    check_device_memory(device_.info, scene_.width, scene_.height, pool_size_);
+    check_device_memory(device_.info, width, height, pool_size_);
 
-    const SceneFeatures compiled = options_.general_kernels ? SceneFeatures::all() : features_;
+    const SceneFeatures compiled =
+        options_.general_kernels ? SceneFeatures::general_for(features_) : features_;
+    scene_ = flatten_scene(scene, compiled.bvh);
     program_ =
         build_wavefront_program(device_.context, device_.info.device,
                                 kernel_build_options(compiled, options_), options_.program_cache);

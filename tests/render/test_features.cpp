@@ -154,10 +154,16 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
     CHECK(analyse_features(no_light()).build_options() ==
           "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 "
           "-D WP_HAS_LIGHTS=0 -D WP_TRIANGLE_COUNT=24 -D WP_SPHERE_COUNT=2");
+    // Past the fixed-count limit: runtime counts and the hierarchy.
     CHECK(analyse_features(large()).build_options() ==
           "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 "
-          "-D WP_HAS_LIGHTS=1");
-    // The general kernels: every feature, runtime counts.
+          "-D WP_HAS_LIGHTS=1 -D WP_USE_BVH=1");
+    // The general kernels: every feature, runtime counts, the scene's hierarchy.
+    CHECK(SceneFeatures::general_for(analyse_features(large())).build_options() ==
+          "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 "
+          "-D WP_HAS_LIGHTS=1 -D WP_USE_BVH=1");
+    CHECK(SceneFeatures::general_for(analyse_features(hexroom())).build_options() ==
+          SceneFeatures::all().build_options());
     CHECK(SceneFeatures::all().build_options() ==
           "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 "
           "-D WP_HAS_LIGHTS=1");
@@ -180,7 +186,7 @@ TEST_CASE("features: describe() names the features and the compiled-in counts") 
     CHECK(analyse_features(hexroom()).describe() ==
           "triangles spheres diffuse mirror lights; counts 26+2");
     CHECK(analyse_features(spheres_only()).describe() == "spheres diffuse mirror; counts 0+4");
-    CHECK(analyse_features(large()).describe() == "triangles spheres diffuse mirror lights");
+    CHECK(analyse_features(large()).describe() == "triangles spheres diffuse mirror lights; bvh");
     CHECK(SceneFeatures::all().describe() == "triangles spheres diffuse mirror lights");
 }
 
@@ -225,5 +231,35 @@ TEST_CASE("features: specialised and general kernels render bit-identical images
     }
     SECTION("more primitives than fixed counts allow") {
         check_specialised_equals_general(large());
+    }
+}
+
+TEST_CASE("features: the hierarchy and the loop over every primitive render the same image") {
+    for (const auto& [name, scene] :
+         {std::pair<std::string, Scene>{"hexroom", hexroom()}, {"large", large()}}) {
+        INFO(name);
+        IntegratorOptions bvh, loop;
+        bvh.traversal = Traversal::Hierarchy;
+        loop.traversal = Traversal::Loop;
+        test::Rendered a = test::render(scene, 8, 3, 0, bvh);
+        test::Rendered b = test::render(scene, 8, 3, 0, loop);
+        // Both find the same hit at the same t, except where two primitives
+        // are hit at the same distance (a ray through a shared edge), which
+        // may pick the other triangle of a wall: a pixel or two at most.
+        const Image ma = a.film.mean(), mb = b.film.mean();
+        std::size_t differing = 0;
+        for (std::size_t p = 0; p < ma.rgb.size(); p += 3)
+            differing += std::memcmp(&ma.rgb[p], &mb.rgb[p], 3 * sizeof(ma.rgb[0])) != 0;
+        WARN(name << ": " << differing << " of " << ma.rgb.size() / 3
+                  << " pixels differ between the hierarchy and the loop");
+        CHECK(differing * 100 <= ma.rgb.size() / 3);
+        CHECK(image_sum(ma) > 0.0);
+        for (int c = 0; c < 3; ++c) {
+            const test::MeanWithError ea = test::image_mean(a.film, c),
+                                      eb = test::image_mean(b.film, c);
+            CHECK(std::fabs(ea.mean - eb.mean) <=
+                  5.0 * std::hypot(ea.standard_error, eb.standard_error));
+        }
+        CHECK(a.stats.camera_rays == b.stats.camera_rays);
     }
 }

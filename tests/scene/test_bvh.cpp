@@ -1,0 +1,114 @@
+// The hierarchy builder: every primitive in exactly one leaf, every node's box
+// holding its children's and its primitives' boxes, the depth within the
+// device's stack, the SAH cost it reports equal to one computed from the
+// finished tree, and a tree that does not depend on the number of threads.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <random>
+#include <vector>
+
+#include "scene/bvh.hpp"
+
+using namespace wp;
+
+namespace {
+
+// Random boxes: clusters of small ones, a few long thin ones, and many with
+// the same centroid (which no plane can separate).
+std::vector<Bounds3f> random_boxes(std::size_t n, unsigned seed) {
+    std::mt19937 generator(seed);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    std::vector<Bounds3f> boxes;
+    for (std::size_t i = 0; i < n; ++i) {
+        Bounds3f b;
+        glm::vec3 c(unit(generator), unit(generator), unit(generator));
+        if (i % 97 == 0)
+            c = glm::vec3(0.5f); // a pile of equal centroids
+        c *= 100.0f;
+        glm::vec3 half(unit(generator), unit(generator), unit(generator));
+        if (i % 31 == 0)
+            half.x *= 50.0f; // long and thin
+        b.extend(c - half);
+        b.extend(c + half);
+        boxes.push_back(b);
+    }
+    return boxes;
+}
+
+// Checks the tree below `node` and returns the primitives it holds.
+void check_subtree(const Bvh& bvh, std::uint32_t node, const std::vector<Bounds3f>& boxes,
+                   std::vector<int>& seen, std::uint32_t depth, std::uint32_t& deepest) {
+    REQUIRE(node < bvh.nodes.size());
+    const BvhNode& n = bvh.nodes[node];
+    deepest = std::max(deepest, depth);
+    if (n.is_leaf()) {
+        REQUIRE(n.first_primitive + n.primitive_count <= bvh.primitives.size());
+        for (std::uint32_t k = 0; k < n.primitive_count; ++k) {
+            const std::uint32_t p = bvh.primitives[n.first_primitive + k];
+            REQUIRE(p < boxes.size());
+            seen[p] += 1;
+            CHECK(n.bounds.contains(boxes[p]));
+        }
+        return;
+    }
+    const std::uint32_t first = node + 1, second = n.second_child;
+    REQUIRE(second > first);
+    CHECK(n.bounds.contains(bvh.nodes[first].bounds));
+    CHECK(n.bounds.contains(bvh.nodes[second].bounds));
+    check_subtree(bvh, first, boxes, seen, depth + 1, deepest);
+    check_subtree(bvh, second, boxes, seen, depth + 1, deepest);
+}
+
+} // namespace
+
+TEST_CASE("bvh: every primitive exactly once, boxes nested, depth and SAH cost as reported",
+          "[bvh]") {
+    for (std::size_t n : {1u, 2u, 5u, 100u, 20000u}) {
+        INFO(n << " boxes");
+        const std::vector<Bounds3f> boxes = random_boxes(n, static_cast<unsigned>(n));
+        const Bvh bvh = build_bvh(boxes);
+        std::vector<int> seen(n, 0);
+        std::uint32_t deepest = 0;
+        check_subtree(bvh, 0, boxes, seen, 0, deepest);
+        CHECK(std::all_of(seen.begin(), seen.end(), [](int s) { return s == 1; }));
+        CHECK(bvh.stats.nodes == bvh.nodes.size());
+        CHECK(bvh.stats.depth == deepest);
+        CHECK(bvh.stats.depth <= BvhBuildOptions{}.max_depth);
+        CHECK(bvh.stats.leaves * 2 - 1 == bvh.stats.nodes); // a full binary tree
+        CHECK(bvh.stats.sah_cost == Approx(bvh_sah_cost(bvh)).epsilon(1e-12));
+        // Better than one leaf of everything, from a few primitives on.
+        if (n >= 100)
+            CHECK(bvh.stats.sah_cost < 0.1 * static_cast<double>(n));
+    }
+}
+
+TEST_CASE("bvh: the tree does not depend on the number of threads", "[bvh]") {
+    const std::vector<Bounds3f> boxes = random_boxes(200000, 3);
+    BvhBuildOptions one, many;
+    one.threads = 1;
+    many.threads = 4;
+    const Bvh a = build_bvh(boxes, one), b = build_bvh(boxes, many);
+    REQUIRE(a.nodes.size() == b.nodes.size());
+    CHECK(a.primitives == b.primitives);
+    bool same = true;
+    for (std::size_t i = 0; i < a.nodes.size(); ++i)
+        same = same && a.nodes[i].second_child == b.nodes[i].second_child &&
+               a.nodes[i].primitive_count == b.nodes[i].primitive_count &&
+               a.nodes[i].bounds.lower == b.nodes[i].bounds.lower &&
+               a.nodes[i].bounds.upper == b.nodes[i].bounds.upper;
+    CHECK(same);
+}
+
+TEST_CASE("bvh: a depth limit turns deeper nodes into leaves", "[bvh]") {
+    const std::vector<Bounds3f> boxes = random_boxes(5000, 9);
+    BvhBuildOptions shallow;
+    shallow.max_depth = 5;
+    const Bvh bvh = build_bvh(boxes, shallow);
+    std::vector<int> seen(boxes.size(), 0);
+    std::uint32_t deepest = 0;
+    check_subtree(bvh, 0, boxes, seen, 0, deepest);
+    CHECK(deepest <= 5);
+    CHECK(std::all_of(seen.begin(), seen.end(), [](int s) { return s == 1; }));
+    CHECK(build_bvh({}).nodes.empty());
+}
