@@ -57,8 +57,8 @@ struct IntegratorOptions {
     std::uint32_t pool_size = 0;
     // Whether the kernel build reads and writes the on-disk program cache,
     // and where. The default follows the environment (WAVEPATH_NO_CACHE,
-    // WAVEPATH_CACHE_DIR), as it always has; `--no-cache` sets it off here
-    // instead of changing the environment of the whole process.
+    // WAVEPATH_CACHE_DIR) as it is when the options are made; `--no-cache`
+    // sets it off here instead of changing the environment of the process.
     CachePolicy program_cache = CachePolicy::from_environment();
 };
 

@@ -6,18 +6,16 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <unistd.h>
 
 #include "image/image_io.hpp"
 #include "image/metrics.hpp"
 #include "report/convergence.hpp"
 #include "report/svg_plot.hpp"
 #include "scene/load.hpp"
+#include "support/temp_dir.hpp"
 #include "support/test_device.hpp"
 
 using namespace wp;
@@ -233,13 +231,11 @@ TEST_CASE("converge: checkpoint schedule, slope fit and time to a target error",
 }
 
 TEST_CASE("converge: the CSV round-trips and the SVG plot is well-formed XML", "[convergence]") {
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() /
-                                      ("wavepath-converge-" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir);
+    const test::TempDir dir;
     const ConvergenceRun run = converge(hexroom(8), nullptr, 8, 5);
     write_convergence_csv(dir / "run.csv", run);
 
-    std::ifstream in(dir / "run.csv");
+    std::istringstream in(test::read_text(dir / "run.csv"));
     std::string header;
     std::getline(in, header);
     CHECK(header.rfind("estimator,width,height,spp,seconds,", 0) == 0);
@@ -272,16 +268,16 @@ TEST_CASE("converge: the CSV round-trips and the SVG plot is well-formed XML", "
     CHECK(count(svg, "&lt;8x8&gt; &amp; test") == 1); // the title is escaped
     CHECK(count(svg, "render time in seconds") == 1);
     write_svg(dir / "plot.svg", convergence_plot({run}, "one run"));
-    std::ifstream svg_in(dir / "plot.svg");
-    std::stringstream svg_text;
-    svg_text << svg_in.rdbuf();
-    CHECK(xml_problem(svg_text.str()).empty());
-    CHECK(count(svg_text.str(), "<polyline") == 2);
+    const std::string svg_text = test::read_text(dir / "plot.svg");
+    CHECK(xml_problem(svg_text).empty());
+    CHECK(count(svg_text, "<polyline") == 2);
 
-    std::ofstream(dir / "bad.csv") << "estimator,nonsense\n";
+    test::write_text(dir / "bad.csv", "estimator,nonsense\n");
     CHECK_THROWS_WITH(read_convergence_csv(dir / "bad.csv"),
                       Catch::Contains("not a convergence CSV"));
-    std::filesystem::remove_all(dir);
+    CHECK_THROWS_WITH(read_convergence_csv(dir / "missing.csv"),
+                      "cannot open '" + (dir / "missing.csv").string() +
+                          "': No such file or directory");
 }
 
 TEST_CASE("svg plot: ticks, labels and skipped points", "[convergence]") {
