@@ -29,7 +29,7 @@ struct Case {
 
 } // namespace
 
-TEST_CASE("scene: every mesh-file error is one line naming the scene, the field and the problem",
+TEST_CASE("loader: every mesh-file error is one line naming the scene, the field and the problem",
           "[scene][load][mesh][errors]") {
     const wp::test::TempDir dir;
     const std::string d = dir.path().string();
@@ -164,7 +164,7 @@ TEST_CASE("scene: every mesh-file error is one line naming the scene, the field 
     }
 }
 
-TEST_CASE("scene: the mesh-file error table's base scene loads", "[scene][load][mesh][errors]") {
+TEST_CASE("loader: the mesh-file error table's base scene loads", "[scene][load][mesh][errors]") {
     // So that every case above fails for its own reason, not the scene's.
     const wp::test::TempDir dir;
     wp::test::write_text(dir / "triangle.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");

@@ -89,7 +89,7 @@ template <class F> bool is_image_of_a_corner(const glm::dvec3& p, F f) {
 
 } // namespace
 
-TEST_CASE("scene: an OBJ and a PLY mesh file become scene triangles", "[scene][load][mesh]") {
+TEST_CASE("loader: an OBJ and a PLY mesh file become scene triangles", "[scene][load][mesh]") {
     const SceneFolder folder;
     const wp::Scene s = folder.load(R"([
         {"type": "mesh", "file": "models/cube.obj", "material": "white"},
@@ -113,7 +113,7 @@ TEST_CASE("scene: an OBJ and a PLY mesh file become scene triangles", "[scene][l
         CHECK(s.triangles[t].material == 1); // PLY faces: the object's material, "red"
 }
 
-TEST_CASE("scene: usemtl names map to scene materials, others to the object's material",
+TEST_CASE("loader: usemtl names map to scene materials, others to the object's material",
           "[scene][load][mesh]") {
     const SceneFolder folder;
     // cube.obj: two faces before any usemtl, two 'red', one 'blue' (no such
@@ -131,7 +131,7 @@ TEST_CASE("scene: usemtl names map to scene materials, others to the object's ma
                                "object's material");
 }
 
-TEST_CASE("scene: mesh transform steps place the vertices", "[scene][load][mesh]") {
+TEST_CASE("loader: mesh transform steps place the vertices", "[scene][load][mesh]") {
     const SceneFolder folder;
     using F = glm::dvec3 (*)(const glm::dvec3&);
     struct Case {
@@ -184,7 +184,7 @@ TEST_CASE("scene: mesh transform steps place the vertices", "[scene][load][mesh]
     }
 }
 
-TEST_CASE("scene: the first OBJ face lands where its corners are sent", "[scene][load][mesh]") {
+TEST_CASE("loader: the first OBJ face lands where its corners are sent", "[scene][load][mesh]") {
     const SceneFolder folder;
     // cube.obj's first face is "f 1 4 3 2", corners (0,0,0) (0,1,0) (1,1,0) (1,0,0),
     // a convex quad split as a fan: (1 4 3), (1 3 2).
@@ -200,7 +200,7 @@ TEST_CASE("scene: the first OBJ face lands where its corners are sent", "[scene]
     }
 }
 
-TEST_CASE("scene: every normals option gives the same triangles, without normals in Scene",
+TEST_CASE("loader: every normals option gives the same triangles, without normals in Scene",
           "[scene][load][mesh]") {
     const SceneFolder folder;
     // crease.obj has file normals; Scene keeps positions only (the kernels have
@@ -218,7 +218,7 @@ TEST_CASE("scene: every normals option gives the same triangles, without normals
     }
 }
 
-TEST_CASE("scene: dropped degenerate triangles are counted in the scene's warnings",
+TEST_CASE("loader: dropped degenerate triangles are counted in the scene's warnings",
           "[scene][load][mesh]") {
     const SceneFolder folder;
     // strips.ply: four good strip triangles and one that repeats a vertex.
@@ -229,7 +229,7 @@ TEST_CASE("scene: dropped degenerate triangles are counted in the scene's warnin
                                ": dropped 1 degenerate (zero-area) triangles");
 }
 
-TEST_CASE("scene: mesh files are found relative to the scene file", "[scene][load][mesh]") {
+TEST_CASE("loader: mesh files are found relative to the scene file", "[scene][load][mesh]") {
     const SceneFolder folder;
     fs::create_directories(folder.dir / "scenes");
     const fs::path scene = folder.dir / "scenes" / "up.json";
@@ -246,7 +246,7 @@ TEST_CASE("scene: mesh files are found relative to the scene file", "[scene][loa
     CHECK(folder.load(mesh((folder.dir / "models" / "cube.obj").string())).triangles.size() == 12);
 }
 
-TEST_CASE("scene: an emissive material on a mesh file makes emitting triangles",
+TEST_CASE("loader: an emissive material on a mesh file makes emitting triangles",
           "[scene][load][mesh]") {
     const SceneFolder folder;
     const wp::Scene s = folder.load(R"([{"type": "mesh", "file": "models/cube_ascii.ply",
