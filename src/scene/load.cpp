@@ -377,7 +377,7 @@ class SceneReader : private json::Reader {
                 fail(p / file_key, "'" + std::string(file_key) +
                                        "' applies to mesh files only (give 'file'); inline "
                                        "vertices are already in scene coordinates");
-        if (!s.contains("vertices"))
+        if (!s.contains("vertices") && !s.contains("triangles"))
             fail(p / "file", "missing required field 'file' (or give 'vertices' and 'triangles')");
         check_keys(s, p, {"type", "vertices", "triangles", "material", "name"});
     }
