@@ -4,13 +4,17 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include <glm/geometric.hpp>
 
 #include "scene/json_reader.hpp"
+#include "scene/mesh.hpp"
+#include "scene/transform_reader.hpp"
 #include "scene/validate.hpp"
 #include "util/file.hpp"
 
@@ -40,10 +44,12 @@ std::string fmt4(double x) {
 enum class Range { Coordinate, Reflectance, Radiance };
 
 // A json::Reader that knows scenes: the fields, their ranges and how they
-// become a wp::Scene.
+// become a wp::Scene. Mesh files are found relative to `folder`, the scene
+// file's folder.
 class SceneReader : private json::Reader {
   public:
-    explicit SceneReader(const std::string& source) : json::Reader(source) {
+    SceneReader(const std::string& source, std::filesystem::path folder)
+        : json::Reader(source), folder_(std::move(folder)) {
         scene_.source = source;
     }
 
@@ -290,6 +296,55 @@ class SceneReader : private json::Reader {
         }
     }
 
+    NormalSource normal_source(const Json& v, const Ptr& p) const {
+        const std::string& name = expect_string(v, p);
+        if (name == "file")
+            return NormalSource::File;
+        if (name == "smooth")
+            return NormalSource::Smooth;
+        if (name == "none")
+            return NormalSource::None;
+        fail(p, "unknown normals '" + shorten(name, 40) + "' (expected file, smooth or none)");
+    }
+
+    // A mesh shape with a `file`: the file's triangles, placed by `transform`,
+    // appended to Scene::triangles. Its `usemtl` names that are scene materials
+    // give those materials, every other face gets `material`. Vertex normals are
+    // read (so a bad one is reported) but not kept: Scene has no shading normals
+    // yet.
+    void read_mesh_file(const Json& s, std::uint32_t material, const Ptr& p) {
+        const Ptr pf = p / "file";
+        const std::string& file = expect_string(require(s, p, "file"), pf);
+        if (file.empty())
+            fail(pf, "must name a mesh file (.obj or .ply)");
+        MeshLoadOptions options;
+        if (const auto it = s.find("normals"); it != s.end())
+            options.normals = normal_source(*it, p / "normals");
+        if (const auto it = s.find("transform"); it != s.end())
+            options.transform = read_transform(*this, *it, p / "transform");
+
+        TriangleMesh mesh;
+        try {
+            mesh = load_mesh(folder_ / file, options);
+        } catch (const MeshError& e) {
+            fail(pf, e.what()); // the mesh's message names the file and the place in it
+        }
+        std::vector<std::string> warnings = std::move(mesh.warnings);
+        const std::vector<std::uint32_t> materials =
+            resolve_materials(mesh, scene_.materials, material, warnings);
+        for (const std::string& w : warnings)
+            scene_.warnings.push_back(pointer_text(pf) + ": " + w);
+
+        // load_mesh dropped the zero-area triangles (with one warning counting
+        // them), so every triangle is kept.
+        const auto& at = mesh.positions;
+        scene_.triangles.reserve(scene_.triangles.size() + mesh.triangles.size());
+        for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+            const auto& [a, b, c] = mesh.triangles[t];
+            scene_.triangles.push_back(Triangle{{at[a], at[b], at[c]}, materials[t]});
+        }
+    }
+
     void read_sphere(const Json& s, std::uint32_t material, const Ptr& p) {
         Sphere sp;
         sp.center = vec3(require(s, p, "center"), p / "center", Range::Coordinate);
@@ -306,6 +361,27 @@ class SceneReader : private json::Reader {
         scene_.spheres.push_back(sp);
     }
 
+    // A mesh is either a file or inline vertices and triangles; the file's
+    // options (normals, transform) do not apply to inline meshes.
+    void check_mesh_keys(const Json& s, const Ptr& p) const {
+        if (s.contains("file")) {
+            for (const char* inline_key : {"vertices", "triangles"})
+                if (s.contains(inline_key))
+                    fail(p / inline_key, "give either 'file' or 'vertices' and 'triangles', "
+                                         "not both");
+            check_keys(s, p, {"type", "file", "material", "name", "normals", "transform"});
+            return;
+        }
+        for (const char* file_key : {"normals", "transform"})
+            if (s.contains(file_key))
+                fail(p / file_key, "'" + std::string(file_key) +
+                                       "' applies to mesh files only (give 'file'); inline "
+                                       "vertices are already in scene coordinates");
+        if (!s.contains("vertices") && !s.contains("triangles"))
+            fail(p / "file", "missing required field 'file' (or give 'vertices' and 'triangles')");
+        check_keys(s, p, {"type", "vertices", "triangles", "material", "name"});
+    }
+
     void read_shapes(const Json& shapes, const Ptr& p) {
         if (!shapes.is_array())
             fail(p, "expected an array of shapes, got " + describe(shapes));
@@ -319,7 +395,7 @@ class SceneReader : private json::Reader {
             if (type == "triangle" || type == "quad") {
                 check_keys(s, ps, {"type", "vertices", "material", "name"});
             } else if (type == "mesh") {
-                check_keys(s, ps, {"type", "vertices", "triangles", "material", "name"});
+                check_mesh_keys(s, ps);
             } else if (type == "sphere") {
                 check_keys(s, ps, {"type", "center", "radius", "material", "name"});
             } else {
@@ -336,7 +412,10 @@ class SceneReader : private json::Reader {
             } else if (type == "quad") {
                 read_quad(points(require(s, ps, "vertices"), ps / "vertices", 4), material, ps);
             } else if (type == "mesh") {
-                read_mesh(s, material, ps);
+                if (s.contains("file"))
+                    read_mesh_file(s, material, ps);
+                else
+                    read_mesh(s, material, ps);
             } else {
                 read_sphere(s, material, ps);
             }
@@ -345,6 +424,7 @@ class SceneReader : private json::Reader {
             fail(p, "every shape was skipped (all triangles have zero area): nothing to render");
     }
 
+    std::filesystem::path folder_;
     Scene scene_;
     std::unordered_map<std::string, std::uint32_t> material_index_;
 };
@@ -352,7 +432,10 @@ class SceneReader : private json::Reader {
 } // namespace
 
 Scene parse_scene(std::string_view json_text, const std::string& source_name) {
-    Scene scene = SceneReader(source_name).read(json::parse(json_text, source_name));
+    // Mesh files are relative to the scene file's folder (the working
+    // directory for a bare name such as "test.json").
+    const std::filesystem::path folder = std::filesystem::path(source_name).parent_path();
+    Scene scene = SceneReader(source_name, folder).read(json::parse(json_text, source_name));
     validate_scene(scene); // a backstop: the reader has already checked all of this
     return scene;
 }

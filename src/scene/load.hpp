@@ -20,8 +20,10 @@ namespace wp {
 Scene load_scene(const std::filesystem::path& path);
 
 // Parses and validates a scene from JSON text. source_name is used in messages
-// and stored in Scene::source. Syntax errors are reported with the parser's byte
-// position, the line and column, and the JSON pointer of the value being read.
+// and stored in Scene::source; mesh files named by the scene are found relative
+// to its folder (the working directory when it has none, e.g. "test.json").
+// Syntax errors are reported with the parser's byte position, the line and
+// column, and the JSON pointer of the value being read.
 Scene parse_scene(std::string_view json_text, const std::string& source_name);
 
 } // namespace wp
