@@ -70,7 +70,7 @@ void add_integrator_options(CLI::App& command, IntegratorOptions& options) {
 void add_device_option(CLI::App& command, std::string& device) {
     command.add_option("--device,-d", device,
                        "OpenCL device: an index P:D from `wavepath devices`, or part of its name "
-                       "(default: first GPU, else first CPU)");
+                       "(default: $WAVEPATH_DEVICE, else first GPU, else first CPU)");
 }
 
 void add_image_size_options(CLI::App& command, int& width, int& height) {

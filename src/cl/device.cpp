@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdlib>
 #include <sstream>
 
 namespace wp {
@@ -102,7 +103,12 @@ std::string describe_devices(const std::vector<DeviceInfo>& devices) {
     return out.str();
 }
 
-DeviceInfo select_device(const std::string& selector) {
+DeviceInfo select_device(const std::string& requested) {
+    std::string selector = requested, from;
+    if (const char* variable = std::getenv("WAVEPATH_DEVICE"); selector.empty() && variable) {
+        selector = variable;
+        from = " (from WAVEPATH_DEVICE)";
+    }
     std::vector<DeviceInfo> devices = list_devices();
     if (devices.empty())
         throw DeviceError("no OpenCL device found (is an ICD such as pocl-opencl-icd installed?)");
@@ -132,14 +138,14 @@ DeviceInfo select_device(const std::string& selector) {
         for (const DeviceInfo& d : devices)
             if (d.platform_index == platform && d.device_index == device)
                 return d;
-        throw fail("no OpenCL device has index '" + selector + "'");
+        throw fail("no OpenCL device has index '" + selector + "'" + from);
     }
 
     std::string needle = lowercase(selector);
     for (const DeviceInfo& d : devices)
         if (lowercase(d.name).find(needle) != std::string::npos)
             return d;
-    throw fail("no OpenCL device name contains '" + selector + "'");
+    throw fail("no OpenCL device name contains '" + selector + "'" + from);
 }
 
 } // namespace wp

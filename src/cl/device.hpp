@@ -38,9 +38,11 @@ struct DeviceInfo {
 // platforms gives an empty list, not an error.
 std::vector<DeviceInfo> list_devices();
 
-// Picks a device: an empty selector means the first GPU, else the first CPU,
-// else the first device; "P:D" is an index from list_devices(); anything else
-// is a case-insensitive substring of the device name (first match).
+// Picks a device: "P:D" is an index from list_devices(); anything else is a
+// case-insensitive substring of the device name (first match). An empty
+// selector means the environment variable WAVEPATH_DEVICE (same syntax) when
+// it is set and not empty, else the first GPU, else the first CPU, else the
+// first device.
 DeviceInfo select_device(const std::string& selector);
 
 // One line per device, as `wavepath devices` prints them.

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -10,6 +11,7 @@
 #include <sys/wait.h>
 
 #include "image/image_io.hpp"
+#include "support/test_device.hpp"
 
 namespace fs = std::filesystem;
 
@@ -44,13 +46,22 @@ struct Scratch {
     }
 };
 
-// Runs the executable; `environment` (e.g. "WAVEPATH_CACHE_DIR='/tmp/x'") is
-// prefixed to the shell command.
+// The test device (support/test_device.hpp) as an index P:D.
+const std::string& test_device_index() {
+    static const std::string index = wp::test::device_info().index_string();
+    return index;
+}
+
+// Runs the executable on the test device (WAVEPATH_DEVICE, unless --device
+// says otherwise), so that it runs where the other tests do; `environment`
+// (e.g. "WAVEPATH_CACHE_DIR='/tmp/x'") is prefixed to the shell command, after
+// WAVEPATH_DEVICE, which it may therefore replace.
 Run wavepath(const std::string& arguments, const Scratch& scratch,
              const std::string& environment = "") {
     fs::path out = scratch.dir / "stdout.txt", err = scratch.dir / "stderr.txt";
-    std::string command = environment + " '" + WAVEPATH_EXE + "' " + arguments + " >'" +
-                          out.string() + "' 2>'" + err.string() + "'";
+    std::string command = "WAVEPATH_DEVICE='" + test_device_index() + "' " + environment + " '" +
+                          WAVEPATH_EXE + "' " + arguments + " >'" + out.string() + "' 2>'" +
+                          err.string() + "'";
     int status = std::system(command.c_str());
     Run run;
     run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
@@ -75,22 +86,35 @@ const std::string kHexroom = std::string("'") + WAVEPATH_SOURCE_DIR + "/scenes/h
 
 } // namespace
 
-TEST_CASE("cli: devices lists the PoCL CPU device") {
+TEST_CASE("cli: devices lists the test device") {
     Scratch s;
     Run run = wavepath("devices", s);
     CHECK(run.exit_code == 0);
-    CHECK(run.out.find("0:0") != std::string::npos);
-    CHECK(run.out.find("CPU") != std::string::npos);
+    const wp::DeviceInfo device = wp::test::device_info();
+    CHECK(run.out.find(device.index_string() + "  " + device.name) != std::string::npos);
+    CHECK(run.out.find("type: " + device.type) != std::string::npos);
     CHECK(run.out.find("compute units") != std::string::npos);
+}
+
+TEST_CASE("cli: WAVEPATH_DEVICE picks the device when --device is absent") {
+    Scratch s;
+    const std::string to =
+        " --spp 1 --width 4 --height 4 --out '" + (s.dir / "x.pfm").string() + "'";
+    Run run = wavepath("render " + kHexroom + to, s);
+    INFO(run.err);
+    REQUIRE(run.exit_code == 0);
+    CHECK(run.err.find(" on " + wp::test::device_info().name + " ") != std::string::npos);
+    Run wrong = wavepath("render " + kHexroom + to, s, "WAVEPATH_DEVICE=no-such-device");
+    check_one_line_error(wrong, "'no-such-device' (from WAVEPATH_DEVICE)");
 }
 
 TEST_CASE("cli: a small render writes readable HDR and PNG files") {
     Scratch s;
     fs::path pfm = s.dir / "out.pfm", png = s.dir / "out.png";
-    Run run =
-        wavepath("render " + kHexroom + " --spp 2 --width 12 --height 10 --device 0:0 --out '" +
-                     pfm.string() + "' --png '" + png.string() + "'",
-                 s);
+    Run run = wavepath("render " + kHexroom + " --spp 2 --width 12 --height 10 --device " +
+                           test_device_index() + " --out '" + pfm.string() + "' --png '" +
+                           png.string() + "'",
+                       s);
     INFO(run.err);
     REQUIRE(run.exit_code == 0);
     wp::Image image = wp::read_image(pfm);
@@ -174,7 +198,8 @@ TEST_CASE("cli: an existing output survives a failed render") {
 
 TEST_CASE("cli: render takes the estimator flags and each changes the image but not its mean") {
     Scratch s;
-    const std::string size = " --spp 16 --width 24 --height 24 --device 0:0 --out ";
+    const std::string size =
+        " --spp 16 --width 24 --height 24 --device " + test_device_index() + " --out ";
     auto render = [&](const std::string& name, const std::string& flags) {
         const fs::path path = s.dir / (name + ".pfm");
         Run run = wavepath("render " + kHexroom + size + "'" + path.string() + "'" + flags, s);
@@ -212,8 +237,8 @@ TEST_CASE("cli: --no-cache leaves the program cache directory alone") {
     Scratch s;
     const fs::path cache = s.dir / "cache";
     const std::string environment = "WAVEPATH_CACHE_DIR='" + cache.string() + "'";
-    const std::string arguments = "render " + kHexroom +
-                                  " --spp 1 --width 8 --height 8 --device 0:0 --seed 11 --out '" +
+    const std::string arguments = "render " + kHexroom + " --spp 1 --width 8 --height 8 --device " +
+                                  test_device_index() + " --seed 11 --out '" +
                                   (s.dir / "x.pfm").string() + "'";
     Run off = wavepath(arguments + " --no-cache", s, environment);
     INFO(off.err);

@@ -124,9 +124,10 @@ BlockMeans block_means(const Image& mean, const Image* variance, int block) {
 TEST_CASE("estimators: spherical triangle sampling is uniform in solid angle and exact in area",
           "[estimators]") {
     const cl::Program& program = [&]() -> const cl::Program& {
-        static cl::Program built = build_program(test::device().context, test::device().info.device,
-                                                 kSamplerSource, "test_spherical.cl", "")
-                                       .program;
+        static cl::Program& built = *new cl::Program( // never released (test_device.hpp)
+            build_program(test::device().context, test::device().info.device, kSamplerSource,
+                          "test_spherical.cl", "")
+                .program);
         return built;
     }();
     struct Case {

@@ -150,7 +150,7 @@ inline double image_mean_sigmas(const Film& a, const Film& b, int channel) {
 // headers, e.g. "traverse.h") once per executable and option string.
 inline const cl::Program& test_program(const std::string& source, const std::string& name,
                                        const std::string& options = "") {
-    static std::map<std::string, cl::Program> cache;
+    static auto& cache = *new std::map<std::string, cl::Program>; // never released
     const std::string key = name + '\n' + options + '\n' + source;
     auto found = cache.find(key);
     if (found != cache.end())

@@ -64,7 +64,7 @@ template <typename... Args> void set_args(cl::Kernel& kernel, const Args&... arg
 // once per executable; a failed build reports the compiler log.
 inline const cl::Program& program(const std::string& source, const std::string& name,
                                   const std::string& options = "") {
-    static std::map<std::string, cl::Program> cache;
+    static auto& cache = *new std::map<std::string, cl::Program>; // never released
     std::string key = name + '\n' + options + '\n' + source;
     auto found = cache.find(key);
     if (found != cache.end())
@@ -81,8 +81,8 @@ inline const cl::Program& program(const std::string& source, const std::string& 
 
 // The five wavefront stages with every feature compiled in, built once.
 inline const cl::Program& wavefront_program() {
-    static const cl::Program built =
-        build_wavefront_program(device().context, device().info.device, "").program;
+    static const cl::Program& built = *new cl::Program( // never released
+        build_wavefront_program(device().context, device().info.device, "").program);
     return built;
 }
 
