@@ -16,6 +16,7 @@
 #include "cl/device.hpp"
 #include "cl/error.hpp"
 #include "cl/program.hpp"
+#include "cl/stages.hpp"
 #include "render/device_scene.hpp"
 #include "render/wavefront.hpp"
 #include "scene/load.hpp"
@@ -23,7 +24,26 @@
 namespace wp {
 namespace {
 
-const char* const kStages[] = {"generate", "intersect", "shade", "shadow", "accumulate"};
+// What the geometry takes on the device: the primitives and, with one, the
+// hierarchy (its build too).
+void print_geometry_memory(const DeviceScene& scene) {
+    const std::size_t primitive_bytes =
+        scene.triangles.size() * sizeof(WpTriangle) + scene.spheres.size() * sizeof(WpSphere);
+    const std::size_t hierarchy_bytes =
+        scene.bvh_nodes.size() * sizeof(WpBvhNode) + scene.bvh_primitives.size() * sizeof(wp_uint);
+    if (!scene.bvh_nodes.empty()) {
+        const BvhStats& b = scene.bvh_stats;
+        std::printf("hierarchy: %u nodes (%u leaves, at most %u primitives), depth %u, SAH cost "
+                    "%.1f, built in %.3f s\n",
+                    b.nodes, b.leaves, b.largest_leaf, b.depth, b.sah_cost, b.build_seconds);
+    }
+    std::printf("geometry on the device: %.1f MB primitives + %.1f MB hierarchy",
+                1e-6 * double(primitive_bytes), 1e-6 * double(hierarchy_bytes));
+    if (!scene.triangles.empty())
+        std::printf(" = %.1f bytes per triangle",
+                    double(primitive_bytes + hierarchy_bytes) / double(scene.triangles.size()));
+    std::printf("\n");
+}
 
 // Launches use this work-group size, as the integrator's do, so that a driver
 // that compiles per work-group size (PoCL) compiles what a render will use.
@@ -131,10 +151,10 @@ std::vector<KernelReport> report_kernels(DeviceContext& device, const cl::Progra
                                          const std::vector<std::vector<ArgumentKind>>& arguments,
                                          const std::vector<std::string>& unknown) {
     std::vector<KernelReport> reports;
-    for (std::size_t k = 0; k < std::size(kStages); ++k) {
+    for (std::size_t k = 0; k < kStageKernelNames.size(); ++k) {
         KernelReport r;
-        r.name = kStages[k];
-        cl::Kernel kernel(program, kStages[k]);
+        r.name = std::string(kStageKernelNames[k]);
+        cl::Kernel kernel(program, r.name.c_str());
         const cl::Device& d = device.info.device;
         try {
             r.work_group_size = kernel.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(d);
@@ -230,6 +250,7 @@ int run_info(const InfoCommand& command) {
     std::printf("kernels: %s\n",
                 command.integrator.general_kernels ? "general (--general)" : "specialised");
     std::printf("build options: %s\n", built.options.c_str());
+    print_geometry_memory(integrator.device_scene());
 
     const CachePolicy& cache = command.integrator.program_cache;
     std::printf("program build (the five kernels are one program):\n");
@@ -268,9 +289,10 @@ int run_info(const InfoCommand& command) {
 
     std::vector<std::vector<ArgumentKind>> arguments;
     std::vector<std::string> unknown;
-    for (const char* name : kStages) {
+    for (std::string_view name : kStageKernelNames) {
         std::string why;
-        arguments.push_back(argument_kinds(cl::Kernel(cold.program, name), why));
+        arguments.push_back(
+            argument_kinds(cl::Kernel(cold.program, std::string(name).c_str()), why));
         unknown.push_back(why);
     }
     std::vector<KernelReport> cold_kernels =

@@ -67,6 +67,7 @@ class WavefrontIntegrator {
     const RenderStats& stats() const { return stats_; }
     const BuiltProgram& program() const { return program_; }
     const SceneFeatures& features() const { return features_; }
+    const DeviceScene& device_scene() const { return scene_; }
     const IntegratorOptions& options() const { return options_; }
     std::uint32_t pool_size() const { return pool_size_; }
     int width() const { return scene_.width; }
