@@ -15,6 +15,7 @@
 #include "scene/polygon_mesh.hpp"
 #include "scene/polygon_triangulation.hpp"
 #include "scene/validate.hpp"
+#include "util/file.hpp"
 
 namespace wp {
 
@@ -34,32 +35,16 @@ MeshError MeshError::at_element(const std::filesystem::path& file, const std::st
 
 namespace {
 
+// The file's bytes, or a MeshError in the words of docs/meshes.md.
 std::string read_whole_file(const std::filesystem::path& path) {
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))
         throw MeshError::in_file(path, "cannot open mesh file: it is a directory");
-    std::ifstream in(path, std::ios::binary);
-    if (!in)
-        throw MeshError::in_file(path,
-                                 std::string("cannot open mesh file: ") + std::strerror(errno));
-    std::string bytes;
-    in.seekg(0, std::ios::end);
-    const std::streamoff size = in.tellg();
-    if (size < 0)
-        throw MeshError::in_file(path, "cannot read mesh file");
-    bytes.resize(static_cast<std::size_t>(size));
-    in.seekg(0, std::ios::beg);
-    in.read(bytes.data(), size);
-    if (in.gcount() != size)
-        throw MeshError::in_file(path,
-                                 std::string("cannot read mesh file: ") + std::strerror(errno));
-    return bytes;
-}
-
-std::string lower(std::string s) {
-    std::transform(s.begin(), s.end(), s.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return s;
+    try {
+        return read_file_text(path);
+    } catch (const FileError& error) {
+        throw MeshError::in_file(path, "cannot open mesh file: " + error.reason());
+    }
 }
 
 std::string format_number(double x) {
@@ -145,7 +130,7 @@ TriangleMesh finish(const std::filesystem::path& file, PolygonMesh&& poly,
 } // namespace
 
 TriangleMesh load_mesh(const std::filesystem::path& path, const MeshLoadOptions& options) {
-    const std::string ext = lower(path.extension().string());
+    const std::string ext = lower_extension(path);
     if (ext != ".obj" && ext != ".ply")
         throw MeshError::in_file(path, ext.empty() ? "unknown mesh format: the file name has no "
                                                      "extension (expected .obj or .ply)"
