@@ -79,7 +79,63 @@ typedef struct {
      * inside: only an offset origin that landed inside one can (next to a
      * contact point, docs/stability.md case 4). */
     int inside_solid;
+    /* Unit, on the side of `normal`: the interpolated vertex normals of a
+     * triangle that has them (WP_HAS_SHADING_NORMALS), else `normal`. */
+    float3 shading_normal;
+    int smooth; /* shading_normal is interpolated (not the geometric normal) */
+    /* Where rays leave the surface from: `position`, or with shading normals
+     * the point lifted off the flat triangle towards the smooth surface its
+     * vertex normals describe (wp_terminator_point). */
+    float3 spawn_front; /* for a ray leaving by the front side */
+    float3 spawn_back;
 } WpSurface;
+
+#if WP_HAS_SHADING_NORMALS
+/* The shadow terminator fix (Hanika, "Hacking the shadow terminator", Ray
+ * Tracing Gems II, 2021). Shading normals make a coarse mesh look smooth, but
+ * rays still start on its flat facets, from which the neighbouring facets
+ * block light that the smooth surface would receive: a jagged dark band along
+ * the terminator. The fix moves the ray origin from p towards the surface the
+ * vertex normals describe: for each vertex i, p projected onto the tangent
+ * plane at v_i when p lies below it, blended with the barycentrics,
+ *     p' = p + sum_i b_i max(0, -dot(p - v_i, n_i)) n_i,
+ * with the normals on the side the ray leaves by. It only ever lifts p, by at
+ * most the facets' deviation from the smooth surface. */
+static inline float3 wp_terminator_point(float3 p, float3 b, const WpTriangle* t,
+                                         const WpShadingNormals* n, float side) {
+#if WP_SHADOW_TERMINATOR_FIX
+    float3 n0 = side * n->n0.xyz, n1 = side * n->n1.xyz, n2 = side * n->n2.xyz;
+    float d0 = fmax(0.0f, -dot(p - t->v0.xyz, n0));
+    float d1 = fmax(0.0f, -dot(p - t->v1.xyz, n1));
+    float d2 = fmax(0.0f, -dot(p - t->v2.xyz, n2));
+    return p + (b.x * d0) * n0 + (b.y * d1) * n1 + (b.z * d2) * n2;
+#else
+    (void)b, (void)t, (void)n, (void)side;
+    return p;
+#endif
+}
+
+/* The shading normal and the spawn points of a hit on a triangle with vertex
+ * normals; s->position is already on the triangle's plane. */
+static inline void wp_shade_with_vertex_normals(const WpSceneView* scene, const WpTriangle* t,
+                                                WpSurface* s) {
+    WpShadingNormals n = scene->triangle_normals[t->normals - 1u];
+    /* Barycentrics of the hit point from the sub-triangles' areas. */
+    float3 e1 = t->v1.xyz - t->v0.xyz, e2 = t->v2.xyz - t->v0.xyz, w = s->position - t->v0.xyz;
+    float3 ng = cross(e1, e2);
+    float inverse_area = 1.0f / dot(ng, ng);
+    float b1 = dot(cross(w, e2), ng) * inverse_area;
+    float b2 = dot(cross(e1, w), ng) * inverse_area;
+    float3 b = (float3)(1.0f - b1 - b2, b1, b2);
+    float3 shading = normalize(b.x * n.n0.xyz + b.y * n.n1.xyz + b.z * n.n2.xyz);
+    /* The normals are the file's: keep them on the winding's side. */
+    float side = dot(shading, s->normal) < 0.0f ? -1.0f : 1.0f;
+    s->shading_normal = side * shading;
+    s->smooth = 1;
+    s->spawn_front = wp_terminator_point(s->position, b, t, &n, side);
+    s->spawn_back = wp_terminator_point(s->position, b, t, &n, -side);
+}
+#endif
 
 /* The surface of `primitive` where the ray origin + t direction hit it. The
  * hit point is reprojected onto the surface, so that its error scales with
@@ -105,8 +161,19 @@ static inline WpSurface wp_surface_at(const WpSceneView* scene, wp_uint primitiv
         s.position = position - dot(position - triangle.v0.xyz, s.normal) * s.normal;
         s.scale = wp_triangle_scale(&triangle);
         s.material = triangle.material;
+#if WP_HAS_SHADING_NORMALS
+        if (triangle.normals != 0u) {
+            s.front_face = dot(direction, s.normal) < 0.0f;
+            wp_shade_with_vertex_normals(scene, &triangle, &s);
+            return s;
+        }
+#endif
     }
     s.front_face = dot(direction, s.normal) < 0.0f;
+    s.shading_normal = s.normal;
+    s.smooth = 0;
+    s.spawn_front = s.position;
+    s.spawn_back = s.position;
     return s;
 }
 

@@ -19,6 +19,9 @@
 #ifndef WP_HAS_MIRROR
 #define WP_HAS_MIRROR 1
 #endif
+#ifndef WP_HAS_SHADING_NORMALS /* triangles with vertex normals */
+#define WP_HAS_SHADING_NORMALS 1
+#endif
 #ifndef WP_HAS_LIGHTS /* emissive triangles to sample by next-event estimation */
 #define WP_HAS_LIGHTS 1
 #endif
@@ -30,6 +33,12 @@
  * without options need no hierarchy. */
 #ifndef WP_USE_BVH
 #define WP_USE_BVH 0
+#endif
+
+/* The shadow terminator fix of shading normals (primitive.h): on unless a test
+ * turns it off to show what it fixes. */
+#ifndef WP_SHADOW_TERMINATOR_FIX
+#define WP_SHADOW_TERMINATOR_FIX 1
 #endif
 
 /* Estimator switch, not a scene feature: with next-event estimation off,

@@ -10,6 +10,10 @@
  *     contribution it would make if nothing blocks it.
  *  3. Scattering: the material's BSDF (bsdf.h) picks the next direction and
  *     the factor the throughput takes.
+ *  Triangles with vertex normals shade by the interpolated normal and send
+ *  rays from the terminator-fixed point (primitive.h); whether light from
+ *  below their flat facet arrives is the shadow ray's to say, and paths
+ *  scattered into the facet are absorbed.
  *  4. Russian roulette: survive with probability min(1, max(throughput)) and
  *     divide survivors' throughput by it, which keeps the estimate unbiased.
  *     Past frame.max_depth bounces a path is cut and counted; the cap is a
@@ -46,20 +50,19 @@ static inline float3 wp_shade_emission(const WpMaterial* material, const WpSurfa
 
 /* Step 2: one shadow ray towards a light point, queued with the contribution
  * it carries if unblocked. */
-static inline void wp_shade_next_event(const WpSceneView* scene, const WpMaterial* material,
-                                       const WpSurface* surface, float3 wo, float3 normal,
-                                       float3 origin, float3 beta, const WpPathRandom* random,
-                                       wp_uint slot, __global wp_uint* shadow_queue,
-                                       __global wp_uint* counters, __global float4* shadow_origin,
-                                       __global float4* shadow_direction,
-                                       __global float4* shadow_contribution) {
+static inline void
+wp_shade_next_event(const WpSceneView* scene, const WpMaterial* material, const WpSurface* surface,
+                    float3 wo, float3 normal, float3 shading, float3 origin, float3 beta,
+                    const WpPathRandom* random, wp_uint slot, __global wp_uint* shadow_queue,
+                    __global wp_uint* counters, __global float4* shadow_origin,
+                    __global float4* shadow_direction, __global float4* shadow_contribution) {
 #if WP_HAS_LIGHTS && WP_USE_NEE
     WpLightSample light;
     if (!wp_sample_light(
-            scene, surface->position, origin, normal, wp_path_random(random, WP_DIM_LIGHT_PICK),
+            scene, surface->position, origin, shading, wp_path_random(random, WP_DIM_LIGHT_PICK),
             wp_path_random(random, WP_DIM_LIGHT_U), wp_path_random(random, WP_DIM_LIGHT_V), &light))
         return;
-    float3 contribution = beta * wp_bsdf_eval_pi(material, wo, light.direction, normal) *
+    float3 contribution = beta * wp_bsdf_eval_pi(material, wo, light.direction, shading) *
                           light.irradiance * (1.0f / WP_PI);
     if (wp_is_black(contribution))
         return;
@@ -68,7 +71,8 @@ static inline void wp_shade_next_event(const WpSceneView* scene, const WpMateria
     shadow_direction[slot] = (float4)(light.direction, light.length);
     shadow_contribution[slot] = (float4)(contribution, 0.0f);
 #else
-    (void)scene, (void)material, (void)surface, (void)wo, (void)normal, (void)origin, (void)beta;
+    (void)scene, (void)material, (void)surface, (void)wo, (void)normal, (void)shading;
+    (void)origin, (void)beta;
     (void)random, (void)slot, (void)shadow_queue, (void)counters, (void)shadow_origin;
     (void)shadow_direction, (void)shadow_contribution;
 #endif
@@ -120,7 +124,11 @@ __kernel void shade(WP_STAGE_PARAMETERS) {
         return;
     }
     WpMaterial material = materials[surface.material];
-    float3 normal = surface.front_face ? surface.normal : -surface.normal; /* the ray's side */
+    /* The geometric and the shading normal on the side the ray came from, and
+     * where rays leave by that side. */
+    float3 normal = surface.front_face ? surface.normal : -surface.normal;
+    float3 shading = surface.front_face ? surface.shading_normal : -surface.shading_normal;
+    float3 spawn = surface.front_face ? surface.spawn_front : surface.spawn_back;
 
     float3 beta = throughput[slot].xyz;
     wp_uint depth = path_depth[slot];
@@ -134,15 +142,22 @@ __kernel void shade(WP_STAGE_PARAMETERS) {
         return;
     }
 
-    float3 origin = wp_offset_ray_origin(surface.position, normal, surface.scale);
+    float3 origin = wp_offset_ray_origin(spawn, normal, surface.scale);
     if (!wp_bsdf_is_delta(&material))
-        wp_shade_next_event(&scene, &material, &surface, direction, normal, origin, beta, &random,
-                            slot, shadow_queue, counters, shadow_origin, shadow_direction,
+        wp_shade_next_event(&scene, &material, &surface, direction, normal, shading, origin, beta,
+                            &random, slot, shadow_queue, counters, shadow_origin, shadow_direction,
                             shadow_contribution);
 
     float u1 = wp_path_random(&random, WP_DIM_BSDF_U);
     float u2 = wp_path_random(&random, WP_DIM_BSDF_V);
-    WpBsdfSample scattered = wp_bsdf_sample(&material, direction, normal, u1, u2);
+    WpBsdfSample scattered = wp_bsdf_sample(&material, direction, shading, u1, u2);
+#if WP_HAS_SHADING_NORMALS
+    /* Scattered by the shading normal into the true surface: absorbed. */
+    if (surface.smooth && !(dot(scattered.direction, normal) > 0.0f)) {
+        wp_queue_push(finished_queue, counters, WP_COUNTER_FINISHED, slot);
+        return;
+    }
+#endif
     if (scattered.specular)
         flags |= WP_PATH_SPECULAR;
     else

@@ -47,14 +47,23 @@ typedef cl_float4 wp_float4;
 #define WP_COUNTER_COUNT 8u
 
 /* A triangle: vertices in xyz (w unused). Its front face is the side of
- * cross(v1 - v0, v2 - v0); only emitters care which side is the front. */
+ * cross(v1 - v0, v2 - v0); only emitters care which side is the front.
+ * `normals` is 0, or k + 1 for shading normals in triangle_normals[k]. */
 typedef struct {
     wp_float4 v0;
     wp_float4 v1;
     wp_float4 v2;
     wp_uint material;
-    wp_uint pad0, pad1, pad2;
+    wp_uint normals;
+    wp_uint pad1, pad2;
 } WpTriangle;
+
+/* A triangle's vertex normals for shading (unit, xyz), in vertex order. */
+typedef struct {
+    wp_float4 n0;
+    wp_float4 n1;
+    wp_float4 n2;
+} WpShadingNormals;
 
 typedef struct {
     wp_float4 center_radius; /* xyz centre, w radius */
@@ -162,8 +171,9 @@ typedef struct {
     X(spheres, WpSphere)                                                                           \
     X(materials, WpMaterial)                                                                       \
     X(lights, WpLight)                                                                             \
-    X(bvh_nodes, WpBvhNode)    /* with WP_USE_BVH; a dummy without */                              \
-    X(bvh_primitives, wp_uint) /* primitive numbers, leaf by leaf */
+    X(triangle_normals, WpShadingNormals) /* shading normals of the triangles that have them */    \
+    X(bvh_nodes, WpBvhNode)               /* with WP_USE_BVH; a dummy without */                   \
+    X(bvh_primitives, wp_uint)            /* primitive numbers, leaf by leaf */
 
 #define WP_PATH_BUFFERS(X)                                                                         \
     /* path state, one entry per slot (structure of arrays) */                                     \

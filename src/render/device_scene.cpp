@@ -115,6 +115,8 @@ SceneFeatures analyse_features(const Scene& scene, std::uint32_t max_fixed_count
                 return true;
         return false;
     };
+    f.shading_normals = std::any_of(scene.triangles.begin(), scene.triangles.end(),
+                                    [](const Triangle& t) { return t.has_normals; });
     f.diffuse = uses(MaterialKind::Diffuse);
     f.mirror = uses(MaterialKind::Mirror);
     f.lights = false;
@@ -152,6 +154,14 @@ DeviceScene flatten_scene(const Scene& scene, bool hierarchy) {
         w.v1 = to_float4(t.v[1]);
         w.v2 = to_float4(t.v[2]);
         w.material = t.material;
+        if (t.has_normals) {
+            WpShadingNormals n{};
+            n.n0 = to_float4(t.normals[0]);
+            n.n1 = to_float4(t.normals[1]);
+            n.n2 = to_float4(t.normals[2]);
+            out.triangle_normals.push_back(n);
+            w.normals = static_cast<wp_uint>(out.triangle_normals.size()); // index + 1
+        }
         out.triangles.push_back(w);
         if (scene.materials[t.material].is_emissive()) {
             double area = 0.5 * glm::length(glm::cross(t.v[1] - t.v[0], t.v[2] - t.v[0]));

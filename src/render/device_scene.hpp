@@ -30,7 +30,8 @@ inline constexpr std::uint32_t kMinBvhPrimitives = kMaxFixedCountPrimitives + 1;
     X(spheres, WP_HAS_SPHERES)                                                                     \
     X(diffuse, WP_HAS_DIFFUSE) /* material kinds in use */                                         \
     X(mirror, WP_HAS_MIRROR)                                                                       \
-    X(lights, WP_HAS_LIGHTS) /* emissive triangles for next-event estimation */
+    X(shading_normals, WP_HAS_SHADING_NORMALS) /* triangles with vertex normals */                 \
+    X(lights, WP_HAS_LIGHTS)                   /* emissive triangles for next-event estimation */
 
 // Which kinds of primitive, material and light the scene uses.
 struct SceneFeatures {
@@ -80,8 +81,9 @@ struct DeviceScene {
     std::vector<WpTriangle> triangles;
     std::vector<WpSphere> spheres;
     std::vector<WpMaterial> materials;
-    std::vector<WpLight> lights;      // emissive triangles with their area CDF
-    std::vector<WpBvhNode> bvh_nodes; // empty without a hierarchy
+    std::vector<WpLight> lights;                    // emissive triangles with their area CDF
+    std::vector<WpShadingNormals> triangle_normals; // of the triangles that have them
+    std::vector<WpBvhNode> bvh_nodes;               // empty without a hierarchy
     std::vector<wp_uint> bvh_primitives;
     BvhStats bvh_stats;
     float light_area = 0.0f; // total emissive area

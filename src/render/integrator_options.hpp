@@ -38,6 +38,10 @@ struct IntegratorOptions {
     std::uint32_t max_depth = 1024;
     bool general_kernels = false; // compile every feature, not just the scene's
     Traversal traversal = Traversal::Auto;
+    // Start rays from the smooth surface that vertex normals describe, not the
+    // flat triangle (Hanika 2021; kernels/primitive.h). Off only to show the
+    // artefact it removes.
+    bool shadow_terminator_fix = true;
     // Next-event estimation: one shadow ray to a light per diffuse hit. Off,
     // light is found only by paths that hit emitters.
     bool next_event_estimation = true;

@@ -309,9 +309,9 @@ class SceneReader : private json::Reader {
 
     // A mesh shape with a `file`: the file's triangles, placed by `transform`,
     // appended to Scene::triangles. Its `usemtl` names that are scene materials
-    // give those materials, every other face gets `material`. Vertex normals are
-    // read (so a bad one is reported) but not kept: Scene has no shading normals
-    // yet.
+    // give those materials, every other face gets `material`. Vertex normals
+    // (from the file, or smooth ones on request) become the triangles' shading
+    // normals.
     void read_mesh_file(const Json& s, std::uint32_t material, const Ptr& p) {
         const Ptr pf = p / "file";
         const std::string& file = expect_string(require(s, p, "file"), pf);
@@ -341,7 +341,12 @@ class SceneReader : private json::Reader {
         scene_.triangles.reserve(scene_.triangles.size() + mesh.triangles.size());
         for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
             const auto& [a, b, c] = mesh.triangles[t];
-            scene_.triangles.push_back(Triangle{{at[a], at[b], at[c]}, materials[t]});
+            Triangle triangle{{at[a], at[b], at[c]}, materials[t]};
+            if (!mesh.normals.empty()) {
+                triangle.has_normals = true;
+                triangle.normals = {mesh.normals[a], mesh.normals[b], mesh.normals[c]};
+            }
+            scene_.triangles.push_back(triangle);
         }
     }
 

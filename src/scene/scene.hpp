@@ -52,6 +52,11 @@ struct Material {
 struct Triangle {
     std::array<glm::dvec3, 3> v;
     std::uint32_t material = 0; // index into Scene::materials
+    // Unit vertex normals for shading (from a mesh file), interpolated across
+    // the triangle; without them the geometric normal shades. They shade only:
+    // which side is the front is still the winding's.
+    bool has_normals = false;
+    std::array<glm::dvec3, 3> normals{};
 };
 
 struct Sphere {

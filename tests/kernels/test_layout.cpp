@@ -17,16 +17,20 @@ namespace {
 
 // Every struct of wp_shared.h, and every field of each.
 #define WP_LAYOUT_STRUCTS(X)                                                                       \
-    X(WpTriangle) X(WpSphere) X(WpMaterial) X(WpLight) X(WpCamera) X(WpFrame) X(WpLaunch)
+    X(WpTriangle)                                                                                  \
+    X(WpShadingNormals) X(WpSphere) X(WpMaterial) X(WpLight) X(WpCamera) X(WpFrame) X(WpLaunch)
 
 #define WP_LAYOUT_FIELDS(X)                                                                        \
     X(WpTriangle, v0)                                                                              \
     X(WpTriangle, v1)                                                                              \
     X(WpTriangle, v2)                                                                              \
     X(WpTriangle, material)                                                                        \
-    X(WpTriangle, pad0)                                                                            \
+    X(WpTriangle, normals)                                                                         \
     X(WpTriangle, pad1)                                                                            \
     X(WpTriangle, pad2)                                                                            \
+    X(WpShadingNormals, n0)                                                                        \
+    X(WpShadingNormals, n1)                                                                        \
+    X(WpShadingNormals, n2)                                                                        \
     X(WpSphere, center_radius)                                                                     \
     X(WpSphere, material)                                                                          \
     X(WpSphere, pad0)                                                                              \

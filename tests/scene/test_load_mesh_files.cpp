@@ -200,11 +200,12 @@ TEST_CASE("loader: the first OBJ face lands where its corners are sent", "[scene
     }
 }
 
-TEST_CASE("loader: every normals option gives the same triangles, without normals in Scene",
+TEST_CASE("loader: the normals option gives the triangles their shading normals: the file's, "
+          "smooth ones, or none",
           "[scene][load][mesh]") {
     const SceneFolder folder;
-    // crease.obj has file normals; Scene keeps positions only (the kernels have
-    // no shading normals yet), so the option changes nothing the renderer sees.
+    // crease.obj: two triangles in the plane z = 0 (front faces +z), the file
+    // normals (0, 0, 2) on the first and (0, 0.6, 0.8) on the second.
     const wp::Scene plain = folder.load(mesh("models/crease.obj"));
     REQUIRE(plain.triangles.size() == 2);
     for (const char* normals : {"file", "smooth", "none"}) {
@@ -215,7 +216,20 @@ TEST_CASE("loader: every normals option gives the same triangles, without normal
         for (std::size_t t = 0; t < s.triangles.size(); ++t)
             CHECK(s.triangles[t].v == plain.triangles[t].v);
         CHECK(s.warnings.empty());
+        const std::string option = normals;
+        for (const wp::Triangle& t : s.triangles) {
+            CHECK(t.has_normals == (option != "none"));
+            if (!t.has_normals)
+                continue;
+            const glm::dvec3 expected = option == "smooth" || t.v[2] == glm::dvec3(1, 1, 0)
+                                            ? glm::dvec3(0, 0, 1)
+                                            : glm::dvec3(0, 0.6, 0.8);
+            for (const glm::dvec3& n : t.normals)
+                CHECK(glm::length(n - expected) < 1e-12);
+        }
     }
+    // The default is the file's.
+    CHECK(plain.triangles[0].has_normals);
 }
 
 TEST_CASE("loader: dropped degenerate triangles are counted in the scene's warnings",
