@@ -501,6 +501,85 @@ long max_rss_mib() {
     return r.ru_maxrss / 1024;
 }
 
+// The best of each figure over several runs: the shortest build, the most
+// Mrays/s (each run already keeps its best of --repetitions).
+json merged(const std::vector<std::string>& paths) {
+    json results;
+    for (const std::string& path : paths) {
+        json run = json::parse(std::ifstream(path));
+        if (results.is_null()) {
+            results = run;
+            continue;
+        }
+        for (std::size_t i = 0; i < results.size(); ++i) {
+            json &r = results[i], &o = run.at(i);
+            if (r["triangles"] != o["triangles"])
+                throw std::runtime_error(path + ": other sizes than " + paths[0]);
+            for (auto& [key, value] : r["build"].items())
+                if (key.ends_with("_s"))
+                    value = std::min(value.get<double>(), o["build"][key].get<double>());
+            for (std::size_t j = 0; j < r["traced"].size(); ++j)
+                for (auto& [key, value] : r["traced"][j].items())
+                    if (key.ends_with("_mrays"))
+                        value = std::max(value.get<double>(), o["traced"][j][key].get<double>());
+            r["load_start"] =
+                r["load_start"].get<std::string>() + "; " + o["load_start"].get<std::string>();
+        }
+    }
+    return results;
+}
+
+int summarise(const json& results, const std::string& svg_path) {
+    // The summary table.
+    std::printf("\n| triangles | build wavepath s | build Embree medium s | build Embree high s | "
+                "intersect incoherent wp / E1 / E16 Mrays/s | camera wp / E16 | bounce wp / E16 | "
+                "shadow incoherent wp / E1 / E16 | shadow light wp / E16 | B/tri wp / Embree "
+                "medium / high |\n|---|---|---|---|---|---|---|---|---|---|\n");
+    for (const json& r : results) {
+        auto m = [&](int i, const char* key) { return r["traced"][i][key].get<double>(); };
+        std::printf(
+            "| %zu | %.4f | %.4f | %.4f | %.2f / %.2f / %.2f | %.2f / %.2f | %.2f / %.2f | "
+            "%.2f / %.2f / %.2f | %.2f / %.2f | %.1f / %.1f / %.1f |\n",
+            r["triangles"].get<std::size_t>(), r["build"]["wavepath_bvh_s"].get<double>(),
+            r["build"]["embree_medium_s"].get<double>(), r["build"]["embree_high_s"].get<double>(),
+            m(0, "wavepath_mrays"), m(0, "embree_high_1_mrays"), m(0, "embree_high_16_mrays"),
+            m(1, "wavepath_mrays"), m(1, "embree_high_16_mrays"), m(2, "wavepath_mrays"),
+            m(2, "embree_high_16_mrays"), m(3, "wavepath_mrays"), m(3, "embree_high_1_mrays"),
+            m(3, "embree_high_16_mrays"), m(4, "wavepath_mrays"), m(4, "embree_high_16_mrays"),
+            r["memory"]["wavepath_bytes_per_triangle"].get<double>(),
+            r["memory"]["embree_medium_bytes_per_triangle"].get<double>(),
+            r["memory"]["embree_high_bytes_per_triangle"].get<double>());
+    }
+
+    if (!svg_path.empty()) {
+        LogLogPlot plot;
+        plot.title = "Closest hit, 2 cores: incoherent (solid) and camera rays (dashed)";
+        plot.x_label = "triangles";
+        plot.y_label = "Mrays/s";
+        struct Line {
+            const char *key, *label, *colour;
+        };
+        const Line lines[] = {{"wavepath_mrays", "wavepath (OpenCL on PoCL)", "#1f77b4"},
+                              {"embree_high_1_mrays", "Embree 1-ray", "#ff7f0e"},
+                              {"embree_high_16_mrays", "Embree 16-ray packets", "#2ca02c"}};
+        for (int set : {0, 1})
+            for (const Line& line : lines) {
+                const char* key = line.key;
+                PlotSeries s;
+                s.colour = line.colour;
+                s.label = std::string(line.label) + (set == 0 ? ", incoherent" : ", camera");
+                s.dashed = set == 1;
+                for (const json& r : results) {
+                    s.x.push_back(r["triangles"].get<double>());
+                    s.y.push_back(r["traced"][set][key].get<double>());
+                }
+                plot.series.push_back(s);
+            }
+        write_svg(svg_path, plot);
+    }
+    return 0;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -522,7 +601,17 @@ int main(int argc, char** argv) {
     app.add_option("--room", room, "Scene around the sphere")->capture_default_str();
     app.add_option("--json", json_path, "Write every figure here");
     app.add_option("--svg", svg_path, "Write the Mrays/s plot here");
+    std::vector<std::string> merge;
+    app.add_option("--merge", merge,
+                   "Measure nothing: print the table (and write --svg) of the best figure of "
+                   "each row over these --json files of runs with the same sizes");
     CLI11_PARSE(app, argc, argv);
+    if (!merge.empty()) {
+        json best = merged(merge);
+        if (!json_path.empty())
+            std::ofstream(json_path) << best.dump(1) << "\n";
+        return summarise(best, svg_path);
+    }
 
     DeviceContext device(select_device(device_selector), true);
     RTCDevice embree = rtcNewDevice(("threads=" + std::to_string(threads)).c_str());
@@ -664,54 +753,6 @@ int main(int argc, char** argv) {
             std::ofstream(json_path) << results.dump(1) << "\n";
     }
 
-    // The summary table.
-    std::printf("\n| triangles | build wavepath s | build Embree medium s | build Embree high s | "
-                "intersect incoherent wp / E1 / E16 Mrays/s | camera wp / E16 | bounce wp / E16 | "
-                "shadow incoherent wp / E1 / E16 | shadow light wp / E16 | B/tri wp / Embree "
-                "medium / high |\n|---|---|---|---|---|---|---|---|---|---|\n");
-    for (const json& r : results) {
-        auto m = [&](int i, const char* key) { return r["traced"][i][key].get<double>(); };
-        std::printf(
-            "| %zu | %.4f | %.4f | %.4f | %.2f / %.2f / %.2f | %.2f / %.2f | %.2f / %.2f | "
-            "%.2f / %.2f / %.2f | %.2f / %.2f | %.1f / %.1f / %.1f |\n",
-            r["triangles"].get<std::size_t>(), r["build"]["wavepath_bvh_s"].get<double>(),
-            r["build"]["embree_medium_s"].get<double>(), r["build"]["embree_high_s"].get<double>(),
-            m(0, "wavepath_mrays"), m(0, "embree_high_1_mrays"), m(0, "embree_high_16_mrays"),
-            m(1, "wavepath_mrays"), m(1, "embree_high_16_mrays"), m(2, "wavepath_mrays"),
-            m(2, "embree_high_16_mrays"), m(3, "wavepath_mrays"), m(3, "embree_high_1_mrays"),
-            m(3, "embree_high_16_mrays"), m(4, "wavepath_mrays"), m(4, "embree_high_16_mrays"),
-            r["memory"]["wavepath_bytes_per_triangle"].get<double>(),
-            r["memory"]["embree_medium_bytes_per_triangle"].get<double>(),
-            r["memory"]["embree_high_bytes_per_triangle"].get<double>());
-    }
-
-    if (!svg_path.empty()) {
-        LogLogPlot plot;
-        plot.title = "Closest-hit throughput, incoherent rays (2 threads)";
-        plot.x_label = "triangles";
-        plot.y_label = "Mrays/s";
-        struct Line {
-            const char *key, *label, *colour;
-        };
-        const Line lines[] = {{"wavepath_mrays", "wavepath (OpenCL on PoCL)", "#1f77b4"},
-                              {"embree_high_1_mrays", "Embree 1-ray", "#ff7f0e"},
-                              {"embree_high_16_mrays", "Embree 16-ray packets", "#2ca02c"}};
-        for (int set : {0, 1})
-            for (const Line& line : lines) {
-                const char* key = line.key;
-                PlotSeries s;
-                s.colour = line.colour;
-                s.label = std::string(line.label) + (set == 0 ? ", incoherent" : ", camera");
-                s.dashed = set == 1;
-                for (const json& r : results) {
-                    s.x.push_back(r["triangles"].get<double>());
-                    s.y.push_back(r["traced"][set][key].get<double>());
-                }
-                plot.series.push_back(s);
-            }
-        plot.title = "Closest-hit throughput (2 cores): incoherent and camera rays";
-        write_svg(svg_path, plot);
-    }
     rtcReleaseDevice(embree);
-    return 0;
+    return summarise(results, svg_path);
 }
