@@ -450,8 +450,21 @@ struct Checker {
 json compare(const Hits& wp, const Hits& embree, const Rays& rays, bool shadow) {
     std::size_t same = 0, tie = 0, t_differs = 0, other = 0, hit_miss = 0, hits = 0;
     double worst = 0.0;
+    json examples = json::array(); // the first disagreements, to look at
+    auto example = [&](std::size_t i) {
+        if (examples.size() >= 8)
+            return;
+        const cl_float4 &o = rays.origins[i], &d = rays.directions[i];
+        examples.push_back({{"ray", i},
+                            {"origin", {o.s[0], o.s[1], o.s[2]}},
+                            {"direction", {d.s[0], d.s[1], d.s[2], d.s[3]}},
+                            {"wavepath", {wp.primitive[i], wp.t[i]}},
+                            {"embree", {embree.primitive[i], embree.t[i]}}});
+    };
     for (std::size_t i = 0; i < wp.t.size(); ++i) {
         if (shadow) {
+            if (wp.t[i] != embree.t[i])
+                example(i);
             (wp.t[i] == embree.t[i] ? same : hit_miss)++;
             hits += embree.t[i] > 0.5f;
             continue;
@@ -463,6 +476,7 @@ json compare(const Hits& wp, const Hits& embree, const Rays& rays, bool shadow) 
             continue;
         }
         if (a != b) {
+            example(i);
             ++hit_miss;
             continue;
         }
@@ -472,6 +486,7 @@ json compare(const Hits& wp, const Hits& embree, const Rays& rays, bool shadow) 
         double relative = std::fabs(double(wp.t[i]) - embree.t[i]) / scale;
         bool equal = wp.primitive[i] == embree.primitive[i];
         if (relative > 1e-5) {
+            example(i);
             (equal ? t_differs : other)++;
             continue;
         }
@@ -485,7 +500,8 @@ json compare(const Hits& wp, const Hits& embree, const Rays& rays, bool shadow) 
             {"other", other},
             {"hit_miss", hit_miss},
             {"hits_or_occluded", hits},
-            {"max_relative_dt", worst}};
+            {"max_relative_dt", worst},
+            {"examples", examples}};
 }
 
 std::string uptime() {
@@ -725,13 +741,14 @@ int main(int argc, char** argv) {
             Hits ours = checker.run(rays, shadow);
             t["check_vs_embree_medium_1"] = compare(ours, hits["medium_1"], rays, shadow);
             t["check_embree_16_vs_1"] = compare(hits["medium_16"], hits["medium_1"], rays, shadow);
+            json brief = t["check_vs_embree_medium_1"];
+            brief.erase("examples");
             std::printf("%-9s %-10s %8zu rays: wavepath %7.2f | Embree medium 1 %7.2f, 16 %7.2f | "
                         "high 1 %7.2f, 16 %7.2f Mrays/s; hits %s (load %s)\n",
                         shadow ? "shadow" : "intersect", label.c_str(), rays.origins.size(),
                         count / wp_best / 1e6, count / best["medium_1"] / 1e6,
                         count / best["medium_16"] / 1e6, count / best["high_1"] / 1e6,
-                        count / best["high_16"] / 1e6, t["check_vs_embree_medium_1"].dump().c_str(),
-                        uptime().c_str());
+                        count / best["high_16"] / 1e6, brief.dump().c_str(), uptime().c_str());
             std::fflush(stdout);
             traced.push_back(t);
         };
