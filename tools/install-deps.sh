@@ -2,6 +2,8 @@
 # Installs the Debian packages wavepath needs, when any is missing. Idempotent:
 # on a machine that has them all it does nothing and needs no network.
 # --ci adds what CI checks with beyond the build (.ci/run): clang-format 14.
+# --bench adds what the benchmark against Embree needs (bench/, docs/performance.md):
+# libembree-dev; neither the default nor --ci installs it.
 set -euo pipefail
 packages=(
   build-essential cmake pkg-config
@@ -11,6 +13,9 @@ packages=(
 )
 if [[ "${1:-}" == "--ci" ]]; then
   packages+=(clang-format-14)
+fi
+if [[ "${1:-}" == "--bench" ]]; then
+  packages+=(libembree-dev)
 fi
 missing=()
 for p in "${packages[@]}"; do
