@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <iostream>
 
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 
 #include "app/cli_options.hpp"
@@ -22,7 +24,7 @@ namespace wp {
 void check_output(const std::string& path, const std::vector<std::string>& extensions) {
     if (path.empty())
         return;
-    check_parent_directory(path);
+    check_writable(path);
     const std::string extension = lower_extension(path);
     if (extensions.empty() ||
         std::find(extensions.begin(), extensions.end(), extension) != extensions.end())
@@ -33,6 +35,42 @@ void check_output(const std::string& path, const std::vector<std::string>& exten
     throw FileError("cannot write '" + path + "'",
                     "unsupported extension '" + std::filesystem::path(path).extension().string() +
                         "' (use " + list + ")");
+}
+
+void check_distinct_outputs(const std::vector<NamedPath>& inputs,
+                            const std::vector<NamedPath>& outputs) {
+    std::vector<std::pair<std::filesystem::path, const NamedPath*>> seen;
+    for (const NamedPath& input : inputs)
+        if (!input.path.empty())
+            seen.emplace_back(resolved_path(input.path), &input);
+    for (const NamedPath& output : outputs) {
+        if (output.path.empty())
+            continue;
+        const std::filesystem::path resolved = resolved_path(output.path);
+        for (const auto& [other, named] : seen)
+            if (other == resolved)
+                throw FileError("cannot write " + output.role + " '" + output.path + "'",
+                                "it is the same file as " + named->role + " '" + named->path + "'");
+        seen.emplace_back(resolved, &output);
+    }
+}
+
+void write_result_image(const std::string& path, const Image& image, const ViewOptions& view) {
+    try {
+        write_image(path, image, view);
+        return;
+    } catch (const FileError& e) {
+        // Same extension, so the fallback holds the same format.
+        const std::filesystem::path fallback = std::filesystem::temp_directory_path() /
+                                               ("wavepath-" + std::to_string(::getpid()) + "-" +
+                                                std::filesystem::path(path).filename().string());
+        try {
+            write_image(fallback, image, view);
+        } catch (const std::exception&) {
+            throw e; // nowhere to save it: the first failure is the one to report
+        }
+        throw FileError(e.what(), "the image was saved to '" + fallback.string() + "' instead");
+    }
 }
 
 CLI::App* add_render_subcommand(CLI::App& app, RenderCommand& command) {
@@ -60,7 +98,8 @@ CLI::App* add_render_subcommand(CLI::App& app, RenderCommand& command) {
         ->default_str("srgb")
         ->check(CLI::IsMember({"srgb", "seed"}));
     r->add_option("--exposure", command.view.exposure_stops, "PNG exposure in stops (srgb view)")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->check(finite_number);
     r->add_flag(
         "--profile", command.profile,
         "Print per-stage device times, items and rates at the end (OpenCL event profiling)");
@@ -100,6 +139,11 @@ int run_render(const RenderCommand& command) {
     check_output(command.png, kImageExtensions);
     check_output(command.profile_json);
     check_output(command.trace);
+    check_distinct_outputs({{"the scene", command.scene}},
+                           {{"--out", command.out},
+                            {"--png", command.png},
+                            {"--profile-json", command.profile_json},
+                            {"--trace", command.trace}});
 
     Scene scene = load_scene_for_render(command.scene, command.width, command.height);
 
@@ -126,9 +170,9 @@ int run_render(const RenderCommand& command) {
     }
 
     Image image = film.mean();
-    write_image(command.out, image, command.view);
+    write_result_image(command.out, image, command.view);
     if (!command.png.empty())
-        write_image(command.png, image, command.view);
+        write_result_image(command.png, image, command.view);
 
     const RenderStats& stats = integrator.stats();
     double seconds = stats.render_seconds;

@@ -87,9 +87,29 @@ int run_info(const InfoCommand& command);
 inline const std::vector<std::string> kImageExtensions = {".exr", ".pfm", ".png"};
 
 // Fails before rendering, not after, if an output cannot be written: throws
-// FileError unless the directory of `path` exists and, when `extensions` is
-// not empty, its extension (in any case) is one of them. "" (no output) passes.
+// FileError unless check_writable(path) passes (util/file.hpp) and, when
+// `extensions` is not empty, its extension (in any case) is one of them. ""
+// (no output) passes.
 void check_output(const std::string& path, const std::vector<std::string>& extensions = {});
+
+// A file a command reads or writes, with the words that name it in messages
+// ("--png", "the scene").
+struct NamedPath {
+    std::string role;
+    std::string path;
+};
+
+// Fails before any work if an output would destroy an input or another
+// output: throws FileError "cannot write <role> '<path>': it is the same file
+// as <role> '<path>'" when two of them resolve (symbolic links, "..") to the
+// same file. Empty paths (not given) are skipped.
+void check_distinct_outputs(const std::vector<NamedPath>& inputs,
+                            const std::vector<NamedPath>& outputs);
+
+// Writes an image that took long to make; if that fails, saves it to a
+// fallback file (in the system's temporary directory) so the work is not
+// lost, and throws FileError naming both the failure and the fallback.
+void write_result_image(const std::string& path, const Image& image, const ViewOptions& view);
 
 // Loads a scene, prints its warnings, and applies --width/--height (0 keeps
 // the scene's resolution).
