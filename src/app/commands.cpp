@@ -17,6 +17,7 @@
 #include "render/wavefront.hpp"
 #include "report/profile_report.hpp"
 #include "scene/load.hpp"
+#include "scene/validate.hpp"
 #include "util/file.hpp"
 
 namespace wp {
@@ -116,6 +117,10 @@ Scene load_scene_for_render(const std::string& path, int width, int height) {
     Scene scene = load_scene(path);
     for (const std::string& warning : scene.warnings)
         std::cerr << "wavepath: warning: " << warning << "\n";
+    if (!has_emitter(scene))
+        std::cerr << "wavepath: warning: " << path
+                  << ": no shape emits light (no triangle has an emitter material or one with "
+                     "emission), so the image will be black\n";
     if (width > 0)
         scene.camera.width = width;
     if (height > 0)
