@@ -1,0 +1,85 @@
+// Messages for mistakes that are not about a scene's values: a mistyped
+// subcommand, invalid UTF-8, a scene without light, output that cannot go to
+// standard output.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <string>
+
+#include "app/cli_run.hpp"
+
+using namespace wp::test::cli;
+namespace fs = std::filesystem;
+
+TEST_CASE("cli: a mistyped subcommand suggests the nearest") {
+    Scratch s;
+    Run run = wavepath("rendr " + kHexroom, s);
+    check_one_line_error(run, "unknown subcommand 'rendr'; did you mean 'render'?");
+    CHECK(run.exit_code == 2);
+    check_one_line_error(wavepath("converg " + kHexroom, s), "did you mean 'converge'?");
+    Run far = wavepath("xyzzy", s);
+    check_one_line_error(far, "unknown subcommand 'xyzzy'; expected one of devices, render,");
+    // An option where the subcommand should be keeps CLI11's own message.
+    Run option = wavepath("--bogus", s);
+    check_one_line_error(option, "wavepath: error: ");
+    CHECK(option.err.find("unknown subcommand") == std::string::npos);
+}
+
+TEST_CASE("cli: invalid UTF-8 is reported at the key it is in") {
+    Scratch s;
+    std::string scene = slurp(std::string(WAVEPATH_SOURCE_DIR) + "/scenes/hexroom.json");
+    const fs::path out = s.dir / "x.pfm";
+    SECTION("in a key") {
+        // The second material's key gets an invalid byte.
+        scene.replace(scene.find("\"left_wall\":"), 12, "\"le\xfft_wall\":");
+        const fs::path bad = s.write("key.json", scene);
+        Run run = wavepath("render '" + bad.string() + "' --out '" + out.string() + "'", s);
+        check_one_line_error(run, "key.json:");
+        CHECK(run.err.find(": /materials: invalid JSON: ") != std::string::npos);
+        CHECK(run.err.find("(in the key after 'back_left_wall')") != std::string::npos);
+        CHECK(run.err.find('\xff') == std::string::npos); // the message is valid UTF-8
+    }
+    SECTION("in a value") {
+        scene.replace(scene.find("\"diffuse\""), 9, "\"diff\xc3use\"");
+        const fs::path bad = s.write("value.json", scene);
+        Run run = wavepath("render '" + bad.string() + "' --out '" + out.string() + "'", s);
+        check_one_line_error(run, ": /materials/back_left_wall/type: invalid JSON: ");
+        CHECK(run.err.find("in the key") == std::string::npos);
+    }
+    CHECK_FALSE(fs::exists(out));
+}
+
+TEST_CASE("cli: a scene with no emitter gets a warning") {
+    Scratch s;
+    const fs::path scene = s.write("dark.json", R"({
+      "camera": {"eye": [-4, 0, 1], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 40, "resolution": [4, 4]},
+      "materials": {"white": {"type": "diffuse", "reflectance": [0.7, 0.7, 0.7]},
+                    "light": {"type": "emitter", "radiance": [1, 1, 1]}},
+      "shapes": [{"type": "quad", "material": "white", "vertices": [[-5, -5, 0], [5, -5, 0], [5, 5, 0], [-5, 5, 0]]}]})");
+    const std::string to = " --spp 1 --out '" + (s.dir / "x.pfm").string() + "'";
+    Run dark = wavepath("render '" + scene.string() + "'" + to, s);
+    INFO(dark.err);
+    REQUIRE(dark.exit_code == 0);
+    CHECK(dark.err.find("wavepath: warning: " + scene.string() + ": no shape emits light") !=
+          std::string::npos);
+    Run lit = wavepath("render " + kHexroom + to, s);
+    REQUIRE(lit.exit_code == 0);
+    CHECK(lit.err.find("no shape emits light") == std::string::npos);
+}
+
+TEST_CASE("cli: a failed write to standard output is a failure") {
+    REQUIRE(fs::exists("/dev/full"));
+    for (const std::string command : {"devices", "--help", "render --help"}) {
+        INFO(command);
+        const std::string shell =
+            "'" + std::string(WAVEPATH_EXE) + "' " + command + " >/dev/full 2>/dev/null";
+        const int status = std::system(shell.c_str());
+        REQUIRE(WIFEXITED(status));
+        CHECK(WEXITSTATUS(status) != 0);
+        // And to a working stdout the same command succeeds.
+        const std::string fine =
+            "'" + std::string(WAVEPATH_EXE) + "' " + command + " >/dev/null 2>/dev/null";
+        const int ok = std::system(fine.c_str());
+        CHECK((WIFEXITED(ok) && WEXITSTATUS(ok) == 0));
+    }
+}
