@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/cli_options.hpp"
+#include "app/interrupt.hpp"
 #include "app/progress.hpp"
 #include "cl/context.hpp"
 #include "cl/device.hpp"
@@ -139,6 +140,12 @@ int run_devices() {
     return 0;
 }
 
+std::uint32_t samples_per_call(const IntegratorOptions& options) {
+    // One wave without regeneration (a slot per pixel); with it, enough that
+    // the refilled pool stays busy past the first paths' end.
+    return options.regeneration ? 8 : 1;
+}
+
 int run_render(const RenderCommand& command) {
     check_output(command.out, kImageExtensions);
     check_output(command.png, kImageExtensions);
@@ -169,10 +176,20 @@ int run_render(const RenderCommand& command) {
     Film film(scene.camera.width, scene.camera.height);
     const std::uint64_t pixels = static_cast<std::uint64_t>(scene.camera.width) *
                                  static_cast<std::uint64_t>(scene.camera.height);
+    // Samples are rendered a few per call, so that Ctrl-C (interrupt.hpp) is
+    // noticed between calls, where every pixel has the same number. Always
+    // the same split for the same options, so the image is too.
+    const std::uint32_t per_call = samples_per_call(options);
+    std::uint32_t spp = 0;
     {
         ProgressBar progress(command.spp, pixels);
-        integrator.render(0, command.spp, film, [&](double done) { progress.update(done); });
+        while (spp < command.spp && (spp == 0 || !interrupt_requested())) {
+            const std::uint32_t part = std::min(per_call, command.spp - spp);
+            integrator.render(spp, part, film, [&](double done) { progress.update(spp + done); });
+            spp += part;
+        }
     }
+    const bool interrupted = spp < command.spp;
 
     Image image = film.mean();
     write_result_image(command.out, image, command.view);
@@ -181,11 +198,11 @@ int run_render(const RenderCommand& command) {
 
     const RenderStats& stats = integrator.stats();
     double seconds = stats.render_seconds;
-    double samples = static_cast<double>(pixels) * command.spp;
+    double samples = static_cast<double>(pixels) * spp;
     double rays = static_cast<double>(stats.camera_rays + stats.bounce_rays + stats.shadow_rays);
     std::printf("rendered %s: %dx%d, %u spp, %.2f s, %.3g samples/s, %.3g Mrays/s "
                 "(%.0f camera, %.0f bounce, %.0f shadow rays)\n",
-                command.out.c_str(), scene.camera.width, scene.camera.height, command.spp, seconds,
+                command.out.c_str(), scene.camera.width, scene.camera.height, spp, seconds,
                 samples / seconds, rays / seconds / 1e6, static_cast<double>(stats.camera_rays),
                 static_cast<double>(stats.bounce_rays), static_cast<double>(stats.shadow_rays));
     std::printf("paths cut by the depth cap (%u): %llu; NaN/Inf samples dropped: %llu\n",
@@ -197,7 +214,7 @@ int run_render(const RenderCommand& command) {
         context.scene = command.scene;
         context.width = scene.camera.width;
         context.height = scene.camera.height;
-        context.spp = command.spp;
+        context.spp = spp;
         context.build_options = integrator.program().options;
         context.build_seconds = integrator.program().build_seconds;
         context.regeneration = options.regeneration;
@@ -208,6 +225,12 @@ int run_render(const RenderCommand& command) {
             write_profile_json(command.profile_json, profiler, stats, context);
         if (!command.trace.empty())
             profiler.write_trace(command.trace, device.info.name);
+    }
+    if (interrupted) {
+        std::fflush(stdout);
+        std::cerr << "wavepath: interrupted: the outputs hold " << spp << " of the " << command.spp
+                  << " samples per pixel asked for\n";
+        return 128 + interrupt_signal(); // the shell's code for "ended by this signal"
     }
     return 0;
 }

@@ -115,6 +115,10 @@ void write_result_image(const std::string& path, const Image& image, const ViewO
 // the scene's resolution).
 Scene load_scene_for_render(const std::string& path, int width, int height);
 
+// How many samples per pixel run_render asks of one render() call: the
+// granularity at which an interrupted render stops.
+std::uint32_t samples_per_call(const IntegratorOptions& options);
+
 int run_devices();
 int run_bench(const BenchCommand& command);
 int run_render(const RenderCommand& command);

@@ -12,6 +12,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/commands.hpp"
+#include "app/interrupt.hpp"
 #include "cl/device.hpp"
 #include "cl/error.hpp"
 #include "cl/program.hpp"
@@ -86,6 +87,7 @@ int main(int argc, char** argv) {
         return 2;
     }
 
+    wp::install_interrupt_handlers();
     int status = 1;
     try {
         if (app.got_subcommand("devices"))

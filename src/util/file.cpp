@@ -5,6 +5,7 @@
 #include <cerrno>
 #include <climits>
 #include <cstdio>
+#include <cstring>
 #include <memory>
 #include <system_error>
 
@@ -15,6 +16,43 @@ namespace wp {
 namespace {
 
 namespace fs = std::filesystem;
+
+// The temporary files of writes in progress, for remove_pending_temp_files
+// in a signal handler: fixed buffers (no allocation there) published through
+// an atomic flag, so the handler sees either no path or a complete one.
+struct PendingTemp {
+    std::atomic<bool> set{false};
+    char path[PATH_MAX];
+};
+PendingTemp g_pending[4];
+
+// Registers `temp` in a free slot for as long as the object lives; a path
+// too long or no free slot (nested writes) just goes unregistered.
+class PendingTempGuard {
+  public:
+    explicit PendingTempGuard(const fs::path& temp) {
+        const std::string& text = temp.native();
+        if (text.size() >= PATH_MAX)
+            return;
+        for (PendingTemp& slot : g_pending) {
+            if (slot.set.load())
+                continue;
+            std::memcpy(slot.path, text.c_str(), text.size() + 1);
+            slot.set.store(true);
+            slot_ = &slot;
+            return;
+        }
+    }
+    ~PendingTempGuard() {
+        if (slot_ != nullptr)
+            slot_->set.store(false);
+    }
+    PendingTempGuard(const PendingTempGuard&) = delete;
+    PendingTempGuard& operator=(const PendingTempGuard&) = delete;
+
+  private:
+    PendingTemp* slot_ = nullptr;
+};
 
 // The most a temporary file's name adds to the target's: ".", ".tmp-", a pid
 // and "-" and a counter (create_temp_file).
@@ -153,6 +191,12 @@ fs::path resolved_path(const fs::path& path) {
     return ec ? absolute.lexically_normal() : resolved;
 }
 
+void remove_pending_temp_files() noexcept {
+    for (PendingTemp& slot : g_pending)
+        if (slot.set.load())
+            ::unlink(slot.path);
+}
+
 void write_file_atomically(const fs::path& path,
                            const std::function<void(const fs::path& temp)>& write,
                            Durability durability) {
@@ -165,6 +209,7 @@ void write_file_atomically(const fs::path& path,
     std::error_code ec;
     try {
         temp = create_temp_file(path.has_parent_path() ? path.parent_path() : fs::path("."), path);
+        const PendingTempGuard pending(temp);
         write(temp);
         if (durability == Durability::Synced)
             sync_file(temp);

@@ -55,6 +55,12 @@ void check_writable(const std::filesystem::path& path);
 // path that does not exist yet is resolved as far as it exists.
 std::filesystem::path resolved_path(const std::filesystem::path& path);
 
+// Removes the temporary file of a write_file_atomically in progress, if any.
+// Async-signal-safe (it only calls unlink): for a signal handler that ends
+// the process in the middle of a write, which would otherwise leave the
+// temporary file behind.
+void remove_pending_temp_files() noexcept;
+
 // Whether write_file_atomically flushes the new file to disk before the
 // rename. Without it, a power loss soon after can leave an empty file where
 // the old one was: right for results, needless for a cache that checks its

@@ -166,3 +166,22 @@ TEST_CASE("resolved_path sees through '..' and symbolic links", "[file]") {
     // Files that do not exist yet resolve as far as their directories do.
     CHECK(wp::resolved_path(dir / "sub" / ".." / "new.exr") == wp::resolved_path(dir / "new.exr"));
 }
+
+TEST_CASE("remove_pending_temp_files removes the temporary file of a write in progress",
+          "[atomic]") {
+    TempDir dir;
+    const auto path = dir / "out.exr";
+    fs::path seen;
+    wp::write_file_atomically(path, [&](const fs::path& temp) {
+        seen = temp;
+        wp::test::write_text(temp, "partial");
+        wp::remove_pending_temp_files(); // what the signal handler does
+        CHECK_FALSE(fs::exists(temp));
+        wp::test::write_text(temp, "recreated"); // so that the rename can still happen
+    });
+    CHECK(wp::test::read_text(path) == "recreated");
+    // After the write nothing is registered any more.
+    wp::test::write_text(seen, "unrelated file with the old temporary name");
+    wp::remove_pending_temp_files();
+    CHECK(fs::exists(seen));
+}
