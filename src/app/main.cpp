@@ -11,6 +11,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/caches.hpp"
 #include "app/commands.hpp"
 #include "app/interrupt.hpp"
 #include "cl/device.hpp"
@@ -90,6 +91,14 @@ int main(int argc, char** argv) {
     wp::install_interrupt_handlers();
     int status = 1;
     try {
+        if (app.got_subcommand("bench"))
+            wp::prepare_caches(bench.integrator);
+        else if (converge_app->parsed())
+            wp::prepare_caches(converge.integrator);
+        else if (info_app->parsed())
+            wp::prepare_caches(info.integrator);
+        else if (app.got_subcommand("render"))
+            wp::prepare_caches(render.integrator);
         if (app.got_subcommand("devices"))
             status = wp::run_devices();
         else if (app.got_subcommand("bench"))

@@ -3,7 +3,9 @@
 // standard output.
 #include <catch2/catch.hpp>
 
+#include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "app/cli_run.hpp"
@@ -82,4 +84,33 @@ TEST_CASE("cli: a failed write to standard output is a failure") {
         const int ok = std::system(fine.c_str());
         CHECK((WIFEXITED(ok) && WEXITSTATUS(ok) == 0));
     }
+}
+
+TEST_CASE("cli: the program cache and PoCL's kernel cache stay bounded") {
+    Scratch s;
+    const fs::path cache = s.dir / "cache";
+    // Old entries bigger than the bounds (sparse files: no disk used).
+    auto make = [](const fs::path& path, std::uintmax_t bytes) {
+        fs::create_directories(path.parent_path());
+        std::ofstream(path).put('x');
+        fs::resize_file(path, bytes);
+        fs::last_write_time(path, fs::file_time_type::clock::now() - std::chrono::hours(24));
+    };
+    make(cache / "0000000000000000.clbin", 300ull << 20);
+    make(cache / "pocl" / "ZZ" / "OLDPROGRAM" / "program.bc", 600ull << 20);
+    const std::string arguments = "render " + kHexroom + " --spp 1 --width 4 --height 4 --out '" +
+                                  (s.dir / "x.pfm").string() + "'";
+    Run run = wavepath(arguments, s, "WAVEPATH_CACHE_DIR='" + cache.string() + "' POCL_CACHE_DIR=");
+    INFO(run.err);
+    REQUIRE(run.exit_code == 0);
+    CHECK_FALSE(fs::exists(cache / "0000000000000000.clbin"));
+    CHECK_FALSE(fs::exists(cache / "pocl" / "ZZ" / "OLDPROGRAM"));
+    // This run's program went to both caches: PoCL's is inside wavepath's.
+    std::size_t programs = 0, pocl_files = 0;
+    for (const auto& entry : fs::directory_iterator(cache))
+        programs += entry.path().extension() == ".clbin";
+    for (const auto& entry : fs::recursive_directory_iterator(cache / "pocl"))
+        pocl_files += entry.is_regular_file();
+    CHECK(programs >= 1);
+    CHECK(pocl_files >= 1);
 }
