@@ -192,6 +192,9 @@ int run_render(const RenderCommand& command) {
     const bool interrupted = spp < command.spp;
 
     Image image = film.mean();
+    image.metadata = {{"wavepath.samples_per_pixel", std::to_string(spp)},
+                      {"wavepath.samples_requested", std::to_string(command.spp)},
+                      {"wavepath.seed", std::to_string(options.seed)}};
     write_result_image(command.out, image, command.view);
     if (!command.png.empty())
         write_result_image(command.png, image, command.view);

@@ -109,9 +109,9 @@ std::vector<std::string> temporary_files(const fs::path& dir) {
 TEST_CASE("cli: the first SIGINT or SIGTERM writes the outputs with the samples done") {
     const int sig = GENERATE(SIGINT, SIGTERM);
     Scratch s;
-    const fs::path pfm = s.dir / "out.pfm", png = s.dir / "out.png";
+    const fs::path exr = s.dir / "out.exr", png = s.dir / "out.png";
     Child child({"render", kScene, "--width", "24", "--height", "16", "--spp", kManySamples,
-                 "--out", pfm.string(), "--png", png.string()},
+                 "--out", exr.string(), "--png", png.string()},
                 s);
     child.wait_until_rendering();
     child.signal(sig);
@@ -129,9 +129,14 @@ TEST_CASE("cli: the first SIGINT or SIGTERM writes the outputs with the samples 
     CHECK(spp < 1000000);
     // The summary on stdout gives the same count.
     CHECK(child.out().find("24x16, " + std::to_string(spp) + " spp") != std::string::npos);
-    const wp::Image image = wp::read_image(pfm);
+    const wp::Image image = wp::read_image(exr);
     CHECK(image.width == 24);
     CHECK(image.height == 16);
+    // The image says what it holds.
+    using Entry = std::pair<std::string, std::string>;
+    CHECK(image.metadata == std::vector<Entry>{{"wavepath.samples_per_pixel", std::to_string(spp)},
+                                               {"wavepath.samples_requested", kManySamples},
+                                               {"wavepath.seed", "0"}});
     double sum = 0.0;
     for (const float v : image.rgb) {
         REQUIRE(std::isfinite(v));
