@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <new>
+#include <stdexcept>
 
 #include <unistd.h>
 
@@ -140,6 +142,22 @@ int run_devices() {
     return 0;
 }
 
+Film allocate_film(int width, int height) {
+    try {
+        return Film(width, height);
+    } catch (const std::bad_alloc&) {
+        // Per pixel (film.hpp): rgb sums, sums of squares and odd-sample sums
+        // in double, and two 64-bit counts.
+        const double bytes = static_cast<double>(width) * static_cast<double>(height) *
+                             (9 * sizeof(double) + 2 * sizeof(std::uint64_t));
+        char size[32];
+        std::snprintf(size, sizeof size, "%.0f MiB", bytes / (1 << 20));
+        throw std::runtime_error("out of host memory: the film of " + std::to_string(width) + "x" +
+                                 std::to_string(height) + " pixels needs " + size +
+                                 " (try a smaller --width/--height)");
+    }
+}
+
 std::uint32_t samples_per_call(const IntegratorOptions& options) {
     // One wave without regeneration (a slot per pixel); with it, enough that
     // the refilled pool stays busy past the first paths' end.
@@ -164,6 +182,10 @@ int run_render(const RenderCommand& command) {
     DeviceContext device(select_device(command.device), profiling);
     const IntegratorOptions& options = command.integrator;
     WavefrontIntegrator integrator(device, scene, options);
+    // After the integrator, whose device check is arithmetic: allocating (and
+    // zeroing) a film first would take a minute and all host memory before
+    // an image too big for the device is refused.
+    Film film = allocate_film(scene.camera.width, scene.camera.height);
     Profiler profiler;
     if (profiling)
         integrator.set_profiler(&profiler);
@@ -173,7 +195,6 @@ int run_render(const RenderCommand& command) {
               << integrator.program().build_seconds
               << " s; features: " << integrator.features().describe() << ")\n";
 
-    Film film(scene.camera.width, scene.camera.height);
     const std::uint64_t pixels = static_cast<std::uint64_t>(scene.camera.width) *
                                  static_cast<std::uint64_t>(scene.camera.height);
     // Samples are rendered a few per call, so that Ctrl-C (interrupt.hpp) is

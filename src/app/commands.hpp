@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "image/tonemap.hpp"
+#include "render/film.hpp"
 #include "render/integrator_options.hpp"
 #include "scene/scene.hpp"
 
@@ -114,6 +115,10 @@ void write_result_image(const std::string& path, const Image& image, const ViewO
 // Loads a scene, prints its warnings, and applies --width/--height (0 keeps
 // the scene's resolution).
 Scene load_scene_for_render(const std::string& path, int width, int height);
+
+// The render's film; throws "out of host memory: the film of WxH pixels
+// needs N MiB ..." where the allocation fails.
+Film allocate_film(int width, int height);
 
 // How many samples per pixel run_render asks of one render() call: the
 // granularity at which an interrupted render stops.

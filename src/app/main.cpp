@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <iostream>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -115,6 +116,9 @@ int main(int argc, char** argv) {
         std::cerr << e.log() << "\nwavepath: error: " << e.what() << "\n";
     } catch (const cl::Error& e) {
         std::cerr << "wavepath: error: " << wp::describe_cl_error(e) << "\n";
+    } catch (const std::bad_alloc&) {
+        // An allocation without a name of its own (the film has one: commands.cpp).
+        std::cerr << "wavepath: error: out of host memory\n";
     } catch (const std::exception& e) {
         std::cerr << "wavepath: error: " << e.what() << "\n";
     }

@@ -114,3 +114,24 @@ TEST_CASE("cli: the program cache and PoCL's kernel cache stay bounded") {
     CHECK(programs >= 1);
     CHECK(pocl_files >= 1);
 }
+
+TEST_CASE("cli: out of host memory names the allocation and its size") {
+    Scratch s;
+    const fs::path out = s.dir / "x.exr";
+    // 3 GB of address space: enough to start and for the device's buffers of
+    // 1024 path slots (PoCL's device memory is host memory), not for a
+    // 6144x6144 film. (More pixels make PoCL itself abort on its failed
+    // allocation before the film's turn.)
+    const std::string command = "bash -c \"ulimit -v 3000000; WAVEPATH_DEVICE='" +
+                                test_device_index() + "' '" + WAVEPATH_EXE + "' render " +
+                                kHexroom +
+                                " --width 6144 --height 6144 --pool 1024 --spp 1 --out '" +
+                                out.string() + "'\" 2>'" + (s.dir / "err.txt").string() + "'";
+    const int status = std::system(command.c_str());
+    Run run;
+    run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    run.err = slurp(s.dir / "err.txt");
+    check_one_line_error(
+        run, "out of host memory: the film of 6144x6144 pixels needs 3168 MiB (try a smaller");
+    CHECK_FALSE(fs::exists(out));
+}
