@@ -89,7 +89,10 @@ int main(int argc, char** argv) {
         return 2;
     }
 
-    wp::install_interrupt_handlers();
+    // Only render stops at a wave boundary; elsewhere Ctrl-C keeps its
+    // default, immediate effect.
+    if (app.got_subcommand("render"))
+        wp::install_interrupt_handlers();
     int status = 1;
     try {
         if (app.got_subcommand("bench"))

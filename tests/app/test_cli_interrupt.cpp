@@ -195,3 +195,15 @@ TEST_CASE("cli: an image that cannot be written after the render is saved elsewh
     CHECK(image.width == 24);
     fs::remove(fallback);
 }
+
+TEST_CASE("cli: commands other than render keep Ctrl-C's immediate effect") {
+    Scratch s;
+    Child child({"converge", kScene, "--width", "24", "--height", "16", "--max-spp", "16777216"},
+                s);
+    child.wait_for_stderr("kernels built in");
+    child.signal(SIGINT);
+    const int status = child.wait();
+    INFO("stderr: " << child.err());
+    REQUIRE(WIFSIGNALED(status));
+    CHECK(WTERMSIG(status) == SIGINT);
+}
