@@ -1,5 +1,6 @@
 #include "app/cli_options.hpp"
 
+#include <cmath>
 #include <map>
 #include <vector>
 
@@ -29,6 +30,15 @@ void add_choice(CLI::App& command, const std::string& flag, Enum& value,
 }
 
 } // namespace
+
+const CLI::Validator finite_number(
+    [](const std::string& text) -> std::string {
+        double value = 0.0;
+        if (!CLI::detail::lexical_cast(text, value) || !std::isfinite(value))
+            return "expected a finite number, got '" + text + "'";
+        return {};
+    },
+    "FINITE");
 
 void add_integrator_options(CLI::App& command, IntegratorOptions& options) {
     command.add_option("--seed", options.seed, "Random seed; the same seed gives the same image")

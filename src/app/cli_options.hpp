@@ -7,9 +7,7 @@
 
 #include "render/integrator_options.hpp"
 
-namespace CLI {
-class App;
-}
+#include <CLI/CLI.hpp>
 
 namespace wp {
 
@@ -20,6 +18,10 @@ namespace cli_limits {
 inline constexpr unsigned max_samples_per_pixel = 1u << 24;
 inline constexpr unsigned max_depth = 1u << 20;
 } // namespace cli_limits
+
+// Refuses "nan", "inf" and anything else that is not a finite number, for
+// options whose value goes into arithmetic (--exposure).
+extern const CLI::Validator finite_number;
 
 // Every field of IntegratorOptions: --seed, --max-depth, --no-nee, --diffuse,
 // --light-sampling, --general, --regeneration, --pool and --no-cache (which

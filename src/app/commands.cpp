@@ -4,10 +4,15 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <new>
+#include <stdexcept>
+
+#include <unistd.h>
 
 #include <CLI/CLI.hpp>
 
 #include "app/cli_options.hpp"
+#include "app/interrupt.hpp"
 #include "app/progress.hpp"
 #include "cl/context.hpp"
 #include "cl/device.hpp"
@@ -15,6 +20,7 @@
 #include "render/wavefront.hpp"
 #include "report/profile_report.hpp"
 #include "scene/load.hpp"
+#include "scene/validate.hpp"
 #include "util/file.hpp"
 
 namespace wp {
@@ -22,7 +28,7 @@ namespace wp {
 void check_output(const std::string& path, const std::vector<std::string>& extensions) {
     if (path.empty())
         return;
-    check_parent_directory(path);
+    check_writable(path);
     const std::string extension = lower_extension(path);
     if (extensions.empty() ||
         std::find(extensions.begin(), extensions.end(), extension) != extensions.end())
@@ -33,6 +39,42 @@ void check_output(const std::string& path, const std::vector<std::string>& exten
     throw FileError("cannot write '" + path + "'",
                     "unsupported extension '" + std::filesystem::path(path).extension().string() +
                         "' (use " + list + ")");
+}
+
+void check_distinct_outputs(const std::vector<NamedPath>& inputs,
+                            const std::vector<NamedPath>& outputs) {
+    std::vector<std::pair<std::filesystem::path, const NamedPath*>> seen;
+    for (const NamedPath& input : inputs)
+        if (!input.path.empty())
+            seen.emplace_back(resolved_path(input.path), &input);
+    for (const NamedPath& output : outputs) {
+        if (output.path.empty())
+            continue;
+        const std::filesystem::path resolved = resolved_path(output.path);
+        for (const auto& [other, named] : seen)
+            if (other == resolved)
+                throw FileError("cannot write " + output.role + " '" + output.path + "'",
+                                "it is the same file as " + named->role + " '" + named->path + "'");
+        seen.emplace_back(resolved, &output);
+    }
+}
+
+void write_result_image(const std::string& path, const Image& image, const ViewOptions& view) {
+    try {
+        write_image(path, image, view);
+        return;
+    } catch (const FileError& e) {
+        // Same extension, so the fallback holds the same format.
+        const std::filesystem::path fallback = std::filesystem::temp_directory_path() /
+                                               ("wavepath-" + std::to_string(::getpid()) + "-" +
+                                                std::filesystem::path(path).filename().string());
+        try {
+            write_image(fallback, image, view);
+        } catch (const std::exception&) {
+            throw e; // nowhere to save it: the first failure is the one to report
+        }
+        throw FileError(e.what(), "the image was saved to '" + fallback.string() + "' instead");
+    }
 }
 
 CLI::App* add_render_subcommand(CLI::App& app, RenderCommand& command) {
@@ -60,7 +102,8 @@ CLI::App* add_render_subcommand(CLI::App& app, RenderCommand& command) {
         ->default_str("srgb")
         ->check(CLI::IsMember({"srgb", "seed"}));
     r->add_option("--exposure", command.view.exposure_stops, "PNG exposure in stops (srgb view)")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->check(finite_number);
     r->add_flag(
         "--profile", command.profile,
         "Print per-stage device times, items and rates at the end (OpenCL event profiling)");
@@ -77,6 +120,10 @@ Scene load_scene_for_render(const std::string& path, int width, int height) {
     Scene scene = load_scene(path);
     for (const std::string& warning : scene.warnings)
         std::cerr << "wavepath: warning: " << warning << "\n";
+    if (!has_emitter(scene))
+        std::cerr << "wavepath: warning: " << path
+                  << ": no shape emits light (no triangle has an emitter material or one with "
+                     "emission), so the image will be black\n";
     if (width > 0)
         scene.camera.width = width;
     if (height > 0)
@@ -95,11 +142,38 @@ int run_devices() {
     return 0;
 }
 
+Film allocate_film(int width, int height) {
+    try {
+        return Film(width, height);
+    } catch (const std::bad_alloc&) {
+        // Per pixel (film.hpp): rgb sums, sums of squares and odd-sample sums
+        // in double, and two 64-bit counts.
+        const double bytes = static_cast<double>(width) * static_cast<double>(height) *
+                             (9 * sizeof(double) + 2 * sizeof(std::uint64_t));
+        char size[32];
+        std::snprintf(size, sizeof size, "%.0f MiB", bytes / (1 << 20));
+        throw std::runtime_error("out of host memory: the film of " + std::to_string(width) + "x" +
+                                 std::to_string(height) + " pixels needs " + size +
+                                 " (try a smaller --width/--height)");
+    }
+}
+
+std::uint32_t samples_per_call(const IntegratorOptions& options) {
+    // One wave without regeneration (a slot per pixel); with it, enough that
+    // the refilled pool stays busy past the first paths' end.
+    return options.regeneration ? 8 : 1;
+}
+
 int run_render(const RenderCommand& command) {
     check_output(command.out, kImageExtensions);
     check_output(command.png, kImageExtensions);
     check_output(command.profile_json);
     check_output(command.trace);
+    check_distinct_outputs({{"the scene", command.scene}},
+                           {{"--out", command.out},
+                            {"--png", command.png},
+                            {"--profile-json", command.profile_json},
+                            {"--trace", command.trace}});
 
     Scene scene = load_scene_for_render(command.scene, command.width, command.height);
 
@@ -108,6 +182,10 @@ int run_render(const RenderCommand& command) {
     DeviceContext device(select_device(command.device), profiling);
     const IntegratorOptions& options = command.integrator;
     WavefrontIntegrator integrator(device, scene, options);
+    // After the integrator, whose device check is arithmetic: allocating (and
+    // zeroing) a film first would take a minute and all host memory before
+    // an image too big for the device is refused.
+    Film film = allocate_film(scene.camera.width, scene.camera.height);
     Profiler profiler;
     if (profiling)
         integrator.set_profiler(&profiler);
@@ -117,26 +195,38 @@ int run_render(const RenderCommand& command) {
               << integrator.program().build_seconds
               << " s; features: " << integrator.features().describe() << ")\n";
 
-    Film film(scene.camera.width, scene.camera.height);
     const std::uint64_t pixels = static_cast<std::uint64_t>(scene.camera.width) *
                                  static_cast<std::uint64_t>(scene.camera.height);
+    // Samples are rendered a few per call, so that Ctrl-C (interrupt.hpp) is
+    // noticed between calls, where every pixel has the same number. Always
+    // the same split for the same options, so the image is too.
+    const std::uint32_t per_call = samples_per_call(options);
+    std::uint32_t spp = 0;
     {
         ProgressBar progress(command.spp, pixels);
-        integrator.render(0, command.spp, film, [&](double done) { progress.update(done); });
+        while (spp < command.spp && (spp == 0 || !interrupt_requested())) {
+            const std::uint32_t part = std::min(per_call, command.spp - spp);
+            integrator.render(spp, part, film, [&](double done) { progress.update(spp + done); });
+            spp += part;
+        }
     }
+    const bool interrupted = spp < command.spp;
 
     Image image = film.mean();
-    write_image(command.out, image, command.view);
+    image.metadata = {{"wavepath.samples_per_pixel", std::to_string(spp)},
+                      {"wavepath.samples_requested", std::to_string(command.spp)},
+                      {"wavepath.seed", std::to_string(options.seed)}};
+    write_result_image(command.out, image, command.view);
     if (!command.png.empty())
-        write_image(command.png, image, command.view);
+        write_result_image(command.png, image, command.view);
 
     const RenderStats& stats = integrator.stats();
     double seconds = stats.render_seconds;
-    double samples = static_cast<double>(pixels) * command.spp;
+    double samples = static_cast<double>(pixels) * spp;
     double rays = static_cast<double>(stats.camera_rays + stats.bounce_rays + stats.shadow_rays);
     std::printf("rendered %s: %dx%d, %u spp, %.2f s, %.3g samples/s, %.3g Mrays/s "
                 "(%.0f camera, %.0f bounce, %.0f shadow rays)\n",
-                command.out.c_str(), scene.camera.width, scene.camera.height, command.spp, seconds,
+                command.out.c_str(), scene.camera.width, scene.camera.height, spp, seconds,
                 samples / seconds, rays / seconds / 1e6, static_cast<double>(stats.camera_rays),
                 static_cast<double>(stats.bounce_rays), static_cast<double>(stats.shadow_rays));
     std::printf("paths cut by the depth cap (%u): %llu; NaN/Inf samples dropped: %llu\n",
@@ -148,7 +238,7 @@ int run_render(const RenderCommand& command) {
         context.scene = command.scene;
         context.width = scene.camera.width;
         context.height = scene.camera.height;
-        context.spp = command.spp;
+        context.spp = spp;
         context.build_options = integrator.program().options;
         context.build_seconds = integrator.program().build_seconds;
         context.regeneration = options.regeneration;
@@ -159,6 +249,12 @@ int run_render(const RenderCommand& command) {
             write_profile_json(command.profile_json, profiler, stats, context);
         if (!command.trace.empty())
             profiler.write_trace(command.trace, device.info.name);
+    }
+    if (interrupted) {
+        std::fflush(stdout);
+        std::cerr << "wavepath: interrupted: the outputs hold " << spp << " of the " << command.spp
+                  << " samples per pixel asked for\n";
+        return 128 + interrupt_signal(); // the shell's code for "ended by this signal"
     }
     return 0;
 }

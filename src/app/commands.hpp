@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "image/tonemap.hpp"
+#include "render/film.hpp"
 #include "render/integrator_options.hpp"
 #include "scene/scene.hpp"
 
@@ -87,13 +88,41 @@ int run_info(const InfoCommand& command);
 inline const std::vector<std::string> kImageExtensions = {".exr", ".pfm", ".png"};
 
 // Fails before rendering, not after, if an output cannot be written: throws
-// FileError unless the directory of `path` exists and, when `extensions` is
-// not empty, its extension (in any case) is one of them. "" (no output) passes.
+// FileError unless check_writable(path) passes (util/file.hpp) and, when
+// `extensions` is not empty, its extension (in any case) is one of them. ""
+// (no output) passes.
 void check_output(const std::string& path, const std::vector<std::string>& extensions = {});
+
+// A file a command reads or writes, with the words that name it in messages
+// ("--png", "the scene").
+struct NamedPath {
+    std::string role;
+    std::string path;
+};
+
+// Fails before any work if an output would destroy an input or another
+// output: throws FileError "cannot write <role> '<path>': it is the same file
+// as <role> '<path>'" when two of them resolve (symbolic links, "..") to the
+// same file. Empty paths (not given) are skipped.
+void check_distinct_outputs(const std::vector<NamedPath>& inputs,
+                            const std::vector<NamedPath>& outputs);
+
+// Writes an image that took long to make; if that fails, saves it to a
+// fallback file (in the system's temporary directory) so the work is not
+// lost, and throws FileError naming both the failure and the fallback.
+void write_result_image(const std::string& path, const Image& image, const ViewOptions& view);
 
 // Loads a scene, prints its warnings, and applies --width/--height (0 keeps
 // the scene's resolution).
 Scene load_scene_for_render(const std::string& path, int width, int height);
+
+// The render's film; throws "out of host memory: the film of WxH pixels
+// needs N MiB ..." where the allocation fails.
+Film allocate_film(int width, int height);
+
+// How many samples per pixel run_render asks of one render() call: the
+// granularity at which an interrupted render stops.
+std::uint32_t samples_per_call(const IntegratorOptions& options);
 
 int run_devices();
 int run_bench(const BenchCommand& command);

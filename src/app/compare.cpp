@@ -64,6 +64,8 @@ CLI::App* add_compare_subcommand(CLI::App& app, CompareCommand& command) {
 
 int run_compare(const CompareCommand& command) {
     check_output(command.diff, kImageExtensions);
+    check_distinct_outputs({{"the image", command.image}, {"the reference", command.reference}},
+                           {{"--diff", command.diff}});
     const Image image = read_image(command.image);
     const Image reference = read_image(command.reference);
     if (image.width != reference.width || image.height != reference.height)

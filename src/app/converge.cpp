@@ -10,6 +10,7 @@
 #include "cl/context.hpp"
 #include "cl/device.hpp"
 #include "image/image_io.hpp"
+#include "image/metrics.hpp"
 #include "render/wavefront.hpp"
 #include "report/convergence.hpp"
 #include "scene/load.hpp"
@@ -59,6 +60,12 @@ int run_converge(const ConvergeCommand& command) {
     check_output(command.csv, {".csv"});
     check_output(command.plot, {".svg"});
     check_output(command.out, kImageExtensions);
+    std::vector<NamedPath> inputs = {{"the scene", command.scene},
+                                     {"the reference", command.reference}};
+    for (const std::string& overlay : command.overlays)
+        inputs.push_back({"--overlay", overlay});
+    check_distinct_outputs(
+        inputs, {{"--csv", command.csv}, {"--plot", command.plot}, {"--out", command.out}});
     // Overlays are read first, so a bad one fails before the render.
     std::vector<ConvergenceRun> runs(1);
     for (const std::string& path : command.overlays)
@@ -88,6 +95,11 @@ int run_converge(const ConvergeCommand& command) {
                 "x" + std::to_string(reference.height) + " but the render is " +
                 std::to_string(scene.camera.width) + "x" + std::to_string(scene.camera.height) +
                 " (use --width/--height)");
+        if (const std::size_t bad = count_nonfinite(reference); bad > 0)
+            throw std::runtime_error("reference '" + command.reference + "' has " +
+                                     std::to_string(bad) +
+                                     " NaN or infinite values; errors against it would be "
+                                     "meaningless");
     }
 
     const IntegratorOptions& options = command.integrator;
@@ -132,7 +144,7 @@ int run_converge(const ConvergeCommand& command) {
         write_svg(command.plot, convergence_plot(runs, title));
     }
     if (!command.out.empty())
-        write_image(command.out, film.mean());
+        write_result_image(command.out, film.mean(), ViewOptions{});
     const RenderStats& stats = integrator.stats();
     if (stats.nonfinite_samples > 0 || stats.capped_paths > 0)
         std::cerr << "wavepath: warning: " << stats.nonfinite_samples

@@ -3,16 +3,62 @@
 // This file only parses the command line and turns every failure into one
 // line on stderr and a non-zero exit; the subcommands live in commands.cpp,
 // bench.cpp, converge.cpp, compare.cpp and info.cpp.
+#include <cerrno>
+#include <cstdio>
 #include <iostream>
+#include <new>
+#include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
+#include "app/caches.hpp"
 #include "app/commands.hpp"
+#include "app/interrupt.hpp"
 #include "cl/device.hpp"
 #include "cl/error.hpp"
 #include "cl/program.hpp"
 #include "image/image.hpp"
 #include "scene/scene.hpp"
+#include "util/file.hpp"
+#include "util/suggest.hpp"
+
+namespace {
+
+// The one-line message for a first argument that is no subcommand, with the
+// nearest name if there is one ("unknown subcommand 'rendr'; did you mean
+// 'render'?"); empty when the first argument is an option or a subcommand.
+std::string unknown_subcommand(const CLI::App& app, int argc, char** argv) {
+    if (argc < 2 || argv[1][0] == '-')
+        return {};
+    const std::string typed = argv[1];
+    std::vector<std::string> names;
+    for (const CLI::App* sub : app.get_subcommands({}))
+        names.push_back(sub->get_name());
+    std::string list;
+    for (const std::string& name : names) {
+        if (name == typed)
+            return {};
+        list += (list.empty() ? "" : ", ") + name;
+    }
+    const auto nearest = wp::nearest_name(typed, names);
+    return "unknown subcommand '" + typed + "'; " +
+           (nearest ? "did you mean '" + *nearest + "'?" : "expected one of " + list);
+}
+
+// Output that never arrived is a failure too ("wavepath devices > /dev/full"):
+// flush stdout and report the first error its writes met.
+int finish_stdout(int status) {
+    errno = 0;
+    if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+        std::cerr << "wavepath: error: cannot write to standard output: "
+                  << wp::errno_text(errno != 0 ? errno : EIO) << "\n";
+        return status == 0 ? 1 : status;
+    }
+    return status;
+}
+
+} // namespace
 
 int main(int argc, char** argv) {
     CLI::App app{"wavepath: a wavefront Monte Carlo path tracer on OpenCL"};
@@ -35,30 +81,49 @@ int main(int argc, char** argv) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) { // --help
-        return app.exit(e);
+        return finish_stdout(app.exit(e));
     } catch (const CLI::ParseError& e) {
-        std::cerr << "wavepath: error: " << e.what() << " (see wavepath --help)\n";
+        const std::string unknown = unknown_subcommand(app, argc, argv);
+        std::cerr << "wavepath: error: " << (unknown.empty() ? e.what() : unknown)
+                  << " (see wavepath --help)\n";
         return 2;
     }
 
+    // Only render stops at a wave boundary; elsewhere Ctrl-C keeps its
+    // default, immediate effect.
+    if (app.got_subcommand("render"))
+        wp::install_interrupt_handlers();
+    int status = 1;
     try {
-        if (app.got_subcommand("devices"))
-            return wp::run_devices();
         if (app.got_subcommand("bench"))
-            return wp::run_bench(bench);
-        if (converge_app->parsed())
-            return wp::run_converge(converge);
-        if (compare_app->parsed())
-            return wp::run_compare(compare);
-        if (info_app->parsed())
-            return wp::run_info(info);
-        return wp::run_render(render);
+            wp::prepare_caches(bench.integrator);
+        else if (converge_app->parsed())
+            wp::prepare_caches(converge.integrator);
+        else if (info_app->parsed())
+            wp::prepare_caches(info.integrator);
+        else if (app.got_subcommand("render"))
+            wp::prepare_caches(render.integrator);
+        if (app.got_subcommand("devices"))
+            status = wp::run_devices();
+        else if (app.got_subcommand("bench"))
+            status = wp::run_bench(bench);
+        else if (converge_app->parsed())
+            status = wp::run_converge(converge);
+        else if (compare_app->parsed())
+            status = wp::run_compare(compare);
+        else if (info_app->parsed())
+            status = wp::run_info(info);
+        else
+            status = wp::run_render(render);
     } catch (const wp::BuildError& e) {
         std::cerr << e.log() << "\nwavepath: error: " << e.what() << "\n";
     } catch (const cl::Error& e) {
         std::cerr << "wavepath: error: " << wp::describe_cl_error(e) << "\n";
+    } catch (const std::bad_alloc&) {
+        // An allocation without a name of its own (the film has one: commands.cpp).
+        std::cerr << "wavepath: error: out of host memory\n";
     } catch (const std::exception& e) {
         std::cerr << "wavepath: error: " << e.what() << "\n";
     }
-    return 1;
+    return finish_stdout(status);
 }

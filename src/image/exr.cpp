@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -156,6 +157,26 @@ void write_exr(const std::filesystem::path& path, const Image& img) {
     header.pixel_types = pixel_types.data();
     header.requested_pixel_types = requested_types.data();
     header.compression_type = TINYEXR_COMPRESSIONTYPE_ZIP;
+    // The metadata as string attributes: the value is the text's bytes, no terminator.
+    std::vector<EXRAttribute> attributes;
+    for (const auto& [name, text] : img.metadata) {
+        if (name.empty() || name.size() >= sizeof(EXRAttribute::name) ||
+            text.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+            throw ImageError(context + ": metadata name '" + name.substr(0, 40) +
+                             "' is empty or too long");
+        EXRAttribute attribute{};
+        std::strncpy(attribute.name, name.c_str(), sizeof attribute.name - 1);
+        std::strncpy(attribute.type, "string", sizeof attribute.type - 1);
+        attribute.value =
+            reinterpret_cast<unsigned char*>(const_cast<char*>(text.data())); // only read
+        attribute.size = static_cast<int>(text.size());
+        attributes.push_back(attribute);
+    }
+    if (attributes.size() > TINYEXR_MAX_CUSTOM_ATTRIBUTES)
+        throw ImageError(context + ": more than " + std::to_string(TINYEXR_MAX_CUSTOM_ATTRIBUTES) +
+                         " metadata entries");
+    header.num_custom_attributes = static_cast<int>(attributes.size());
+    header.custom_attributes = attributes.empty() ? nullptr : attributes.data();
 
     // Encode in memory, then write atomically: tinyexr's own file writer would truncate
     // the previous image before the new one is complete.
@@ -245,6 +266,14 @@ Image read_exr(const std::filesystem::path& path) {
         for (std::size_t i = 0; i < n; ++i) {
             img.rgb[i * 3 + static_cast<std::size_t>(slot)] = plane[i];
         }
+    }
+    for (int a = 0; a < header.header.num_custom_attributes; ++a) {
+        const EXRAttribute& attribute = header.header.custom_attributes[a];
+        if (std::string(attribute.type) == "string" && attribute.value != nullptr &&
+            attribute.size >= 0)
+            img.metadata.emplace_back(attribute.name,
+                                      std::string(reinterpret_cast<const char*>(attribute.value),
+                                                  static_cast<std::size_t>(attribute.size)));
     }
     return img;
 }

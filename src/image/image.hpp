@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace wp {
@@ -21,6 +22,10 @@ struct Image {
     int height = 0;
     // Row-major, top row first, 3 floats (r, g, b) per pixel: linear radiance.
     std::vector<float> rgb;
+    // Name and text pairs about how the image was made (e.g. the samples per
+    // pixel of a render cut short). EXR files keep them as string attributes;
+    // PFM and PNG have no place for them.
+    std::vector<std::pair<std::string, std::string>> metadata;
 
     Image() = default;
     Image(int w, int h) : width(w), height(h), rgb(static_cast<std::size_t>(w) * h * 3, 0.0f) {}

@@ -23,6 +23,7 @@ class DomBuilder final : public nlohmann::json_sax<Json> {
     Json root;
 
     bool failed = false;
+    bool too_deep = false; // the SAX interface gives no position for it: see deep_position
     bool has_position = false;
     std::size_t position = 0; // nlohmann's count of bytes read, the failing one included
     std::string pointer;      // where it failed
@@ -39,13 +40,16 @@ class DomBuilder final : public nlohmann::json_sax<Json> {
     bool binary(binary_t& /*val*/) override { return put(Json(nullptr)); } // not in JSON text
 
     bool start_object(std::size_t /*elements*/) override {
+        if (!enter())
+            return false;
         Json* v = place(Json::object());
         frames_.push_back(Frame{v, false, 0, {}, {}});
         return true;
     }
     bool key(string_t& val) override {
         Frame& f = frames_.back();
-        if (!f.keys.insert(val).second) {
+        auto& members = f.value->get_ref<Json::object_t&>();
+        if (is_duplicate(f, members, val)) {
             failed = true;
             pointer = pointer_text(path(frames_.size() - 1) / val);
             problem = "duplicate key '" + shorten(val, 60) +
@@ -53,7 +57,12 @@ class DomBuilder final : public nlohmann::json_sax<Json> {
             return false;
         }
         f.key = val;
-        pending_ = &(*f.value)[val];
+        f.in_member = true;
+        // The key is new (checked above), so append it directly: ordered_json's
+        // operator[] searches the members linearly first, which made an object
+        // of n members (a scene's materials) take n^2 / 2 comparisons.
+        members.Container::emplace_back(val, nullptr);
+        pending_ = &members.back().second;
         return true;
     }
     bool end_object() override {
@@ -61,6 +70,8 @@ class DomBuilder final : public nlohmann::json_sax<Json> {
         return true;
     }
     bool start_array(std::size_t /*elements*/) override {
+        if (!enter())
+            return false;
         Json* v = place(Json::array());
         frames_.push_back(Frame{v, true, 0, {}, {}});
         return true;
@@ -88,17 +99,54 @@ class DomBuilder final : public nlohmann::json_sax<Json> {
                 if (const auto colon = what.find(": "); colon != std::string::npos)
                     what.erase(0, colon + 2);
             problem = "invalid JSON: " + what;
+            if (!frames_.empty() && !frames_.back().is_array && !frames_.back().in_member)
+                problem += frames_.back().key.empty()
+                               ? " (in the object's first key)"
+                               : " (in the key after '" + shorten(frames_.back().key, 60) + "')";
         }
         return false;
     }
 
   private:
+    // Refuses to go deeper than kMaxNesting: later passes over the DOM (and
+    // its destructor) recurse once per level, so a value nested a million
+    // deep would overflow the stack instead of failing with a message.
+    bool enter() {
+        if (frames_.size() < kMaxNesting)
+            return true;
+        failed = true;
+        too_deep = true;
+        pointer = pointer_text(error_path());
+        problem = "values nested more than " + std::to_string(kMaxNesting) + " levels deep";
+        return false;
+    }
+
+    // Objects up to this size are checked for duplicate keys by a scan of
+    // their members; larger ones (a scene's materials) get a hash set, so the
+    // check stays linear without a set for every small object.
+    static constexpr std::size_t kScanLimit = 16;
+
+    struct Frame;
+    static bool is_duplicate(Frame& f, const Json::object_t& members, const std::string& key) {
+        if (members.size() < kScanLimit)
+            return std::any_of(members.begin(), members.end(),
+                               [&](const auto& member) { return member.first == key; });
+        if (f.keys.empty())
+            for (const auto& member : members)
+                f.keys.insert(member.first);
+        return !f.keys.insert(key).second;
+    }
+
     struct Frame {
         Json* value;
         bool is_array;
         std::size_t count; // elements placed so far (arrays)
         std::string key;   // the member being read (objects)
         std::unordered_set<std::string> keys;
+        // Objects: between a key and the end of its value. Outside, the
+        // parser is reading the next key, and an error there (say invalid
+        // UTF-8) is in that key, not in `key`'s value.
+        bool in_member = false;
     };
 
     // Pointer to the value being read inside the first n frames.
@@ -120,7 +168,7 @@ class DomBuilder final : public nlohmann::json_sax<Json> {
         Pointer p = path(frames_.size() - 1);
         if (top.is_array)
             return p / top.count;
-        return top.key.empty() ? p : p / top.key;
+        return top.in_member ? p / top.key : p;
     }
 
     Json* place(Json&& v) {
@@ -135,6 +183,7 @@ class DomBuilder final : public nlohmann::json_sax<Json> {
             return &f.value->back();
         }
         *pending_ = std::move(v);
+        f.in_member = false; // a container's end comes later, but its errors are inside it
         return pending_;
     }
     bool put(Json&& v) {
@@ -160,6 +209,31 @@ std::pair<std::size_t, std::size_t> line_column(std::string_view text, std::size
     return {line, at - line_start + 1};
 }
 
+// Offset of the bracket that opens level `depth` + 1, skipping strings; the
+// text's size if none does. Only called after the parser stopped there, so
+// the text up to it is valid JSON.
+std::size_t deep_position(std::string_view text, std::size_t depth) {
+    std::size_t level = 0;
+    bool in_string = false;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        if (in_string) {
+            if (c == '\\')
+                ++i;
+            else if (c == '"')
+                in_string = false;
+        } else if (c == '"') {
+            in_string = true;
+        } else if (c == '[' || c == '{') {
+            if (++level > depth)
+                return i;
+        } else if (c == ']' || c == '}') {
+            --level;
+        }
+    }
+    return text.size();
+}
+
 } // namespace
 
 std::string number_text(double x) {
@@ -168,10 +242,43 @@ std::string number_text(double x) {
     return std::string(buf.data(), res.ptr);
 }
 
+namespace {
+
+// Length of the well-formed UTF-8 sequence at s[i], or 0 if there is none
+// (a stray continuation byte, a truncated or overlong sequence, a surrogate).
+std::size_t utf8_length(const std::string& s, std::size_t i) {
+    const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(s[k]); };
+    const unsigned char b = byte(i);
+    if (b < 0x80)
+        return 1;
+    std::size_t n = b >= 0xF0 && b <= 0xF4 ? 4 : b >= 0xE0 ? 3 : b >= 0xC2 && b < 0xE0 ? 2 : 0;
+    if (n == 0 || b > 0xF4 || i + n > s.size())
+        return 0;
+    for (std::size_t k = 1; k < n; ++k)
+        if ((byte(i + k) & 0xC0) != 0x80)
+            return 0;
+    const unsigned char c = byte(i + 1);
+    if ((b == 0xE0 && c < 0xA0) || (b == 0xED && c >= 0xA0) || (b == 0xF0 && c < 0x90) ||
+        (b == 0xF4 && c >= 0x90))
+        return 0;
+    return n;
+}
+
+} // namespace
+
 std::string one_line(std::string s) {
-    for (char& ch : s)
-        if (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f)
-            ch = '?';
+    for (std::size_t i = 0; i < s.size();) {
+        const unsigned char ch = static_cast<unsigned char>(s[i]);
+        if (ch < 0x20 || ch == 0x7f) {
+            s[i++] = '?';
+            continue;
+        }
+        const std::size_t n = utf8_length(s, i);
+        if (n == 0)
+            s[i++] = '?'; // a terminal would garble an invalid byte, or the rest of the line
+        else
+            i += n;
+    }
     return s;
 }
 
@@ -215,6 +322,10 @@ Json parse(std::string_view text, const std::string& source) {
     DomBuilder dom;
     const bool ok = Json::sax_parse(text.begin(), text.end(), &dom);
     if (!ok || dom.failed) {
+        if (dom.too_deep) {
+            dom.has_position = true;
+            dom.position = deep_position(text, kMaxNesting) + 1;
+        }
         std::string msg = source;
         if (dom.has_position) {
             const std::size_t at = dom.position == 0 ? 0 : dom.position - 1;

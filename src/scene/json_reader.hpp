@@ -22,9 +22,13 @@ namespace wp::json {
 using Json = nlohmann::ordered_json;
 using Pointer = Json::json_pointer;
 
+// Arrays and objects nest at most this deep; a scene needs 4.
+inline constexpr std::size_t kMaxNesting = 64;
+
 // Parses `text` through a SAX handler, so that every error (syntax, a
 // number that overflows to infinity, a duplicate key, which would silently
-// replace the earlier value) comes with the pointer of the value being read.
+// replace the earlier value, nesting deeper than kMaxNesting) comes with the
+// pointer of the value being read.
 // Throws SceneError("<source>[:<line>:<column> (byte <n>)]: <pointer>: <problem>").
 Json parse(std::string_view text, const std::string& source);
 
@@ -39,7 +43,8 @@ std::string number_text(double x);
 // "an object".
 std::string describe(const Json& v);
 
-// Messages are one line: control characters (from keys or names) become '?'.
+// Messages are one line of valid UTF-8: control characters and bytes that
+// are not well-formed UTF-8 (from keys or names) become '?'.
 std::string one_line(std::string s);
 
 // s shortened to at most n bytes plus "...", without cutting a UTF-8 sequence.

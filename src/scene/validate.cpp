@@ -143,6 +143,13 @@ class Checker {
 
 } // namespace
 
+bool has_emitter(const Scene& scene) {
+    for (const Triangle& t : scene.triangles)
+        if (t.material < scene.materials.size() && scene.materials[t.material].is_emissive())
+            return true;
+    return false;
+}
+
 void validate_scene(const Scene& scene) {
     Checker(scene).run();
 }

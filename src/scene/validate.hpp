@@ -36,6 +36,10 @@ bool view_direction_is_degenerate(const glm::dvec3& eye, const glm::dvec3& look_
 // True when up is zero or (numerically) parallel to look_at - eye.
 bool up_is_parallel(const glm::dvec3& eye, const glm::dvec3& look_at, const glm::dvec3& up);
 
+// True when some triangle has an emissive material. Light comes only from
+// those (spheres cannot emit), so a scene without one renders black.
+bool has_emitter(const Scene& scene);
+
 // Checks a complete Scene against every rule the loader enforces (finite values
 // within the limits above, reflectance in [0, 1], non-negative emission, positive
 // radius, resolution 1..16384, fov in (0, 180), a usable camera frame, material

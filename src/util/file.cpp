@@ -3,7 +3,9 @@
 #include <atomic>
 #include <cctype>
 #include <cerrno>
+#include <climits>
 #include <cstdio>
+#include <cstring>
 #include <memory>
 #include <system_error>
 
@@ -14,6 +16,47 @@ namespace wp {
 namespace {
 
 namespace fs = std::filesystem;
+
+// The temporary files of writes in progress, for remove_pending_temp_files
+// in a signal handler: fixed buffers (no allocation there) published through
+// an atomic flag, so the handler sees either no path or a complete one.
+struct PendingTemp {
+    std::atomic<bool> set{false};
+    char path[PATH_MAX];
+};
+PendingTemp g_pending[4];
+
+// Registers `temp` in a free slot for as long as the object lives; a path
+// too long or no free slot (nested writes) just goes unregistered.
+class PendingTempGuard {
+  public:
+    explicit PendingTempGuard(const fs::path& temp) {
+        const std::string& text = temp.native();
+        if (text.size() >= PATH_MAX)
+            return;
+        for (PendingTemp& slot : g_pending) {
+            if (slot.set.load())
+                continue;
+            std::memcpy(slot.path, text.c_str(), text.size() + 1);
+            slot.set.store(true);
+            slot_ = &slot;
+            return;
+        }
+    }
+    ~PendingTempGuard() {
+        if (slot_ != nullptr)
+            slot_->set.store(false);
+    }
+    PendingTempGuard(const PendingTempGuard&) = delete;
+    PendingTempGuard& operator=(const PendingTempGuard&) = delete;
+
+  private:
+    PendingTemp* slot_ = nullptr;
+};
+
+// The most a temporary file's name adds to the target's: ".", ".tmp-", a pid
+// and "-" and a counter (create_temp_file).
+constexpr std::size_t kTempSuffixBytes = 1 + 5 + 10 + 1 + 20;
 
 struct FileCloser {
     void operator()(std::FILE* f) const noexcept { std::fclose(f); }
@@ -112,6 +155,48 @@ void check_parent_directory(const fs::path& path) {
         throw FileError(cannot("write", path), "'" + dir.string() + "' is not a directory");
 }
 
+void check_writable(const fs::path& path) {
+    check_parent_directory(path);
+    const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
+    std::error_code ec;
+    if (fs::is_directory(path, ec))
+        throw FileError(cannot("write", path), "it is a directory");
+    const long name_max = ::pathconf(dir.c_str(), _PC_NAME_MAX);
+    const std::size_t limit = name_max > 0 ? static_cast<std::size_t>(name_max) : NAME_MAX;
+    const std::size_t name = path.filename().native().size();
+    if (name + kTempSuffixBytes > limit)
+        throw FileError(
+            cannot("write", path),
+            "file name too long (" + std::to_string(name) + " bytes; at most " +
+                std::to_string(limit > kTempSuffixBytes ? limit - kTempSuffixBytes : 0) +
+                " here, leaving room for the temporary file's suffix)");
+    // The temporary file is created in dir, so dir must take new entries (a
+    // writable file at path is not enough). Creating one is the only test
+    // that also holds for root and read-only mounts, where access() says yes.
+    try {
+        const fs::path probe = create_temp_file(dir, path);
+        ::unlink(probe.c_str());
+    } catch (const FileError& e) {
+        throw FileError(cannot("write", path), "cannot create files in directory '" + dir.string() +
+                                                   "' (" + e.reason() + ")");
+    }
+}
+
+fs::path resolved_path(const fs::path& path) {
+    std::error_code ec;
+    fs::path absolute = fs::absolute(path, ec);
+    if (ec)
+        return path.lexically_normal();
+    fs::path resolved = fs::weakly_canonical(absolute, ec);
+    return ec ? absolute.lexically_normal() : resolved;
+}
+
+void remove_pending_temp_files() noexcept {
+    for (PendingTemp& slot : g_pending)
+        if (slot.set.load())
+            ::unlink(slot.path);
+}
+
 void write_file_atomically(const fs::path& path,
                            const std::function<void(const fs::path& temp)>& write,
                            Durability durability) {
@@ -124,6 +209,7 @@ void write_file_atomically(const fs::path& path,
     std::error_code ec;
     try {
         temp = create_temp_file(path.has_parent_path() ? path.parent_path() : fs::path("."), path);
+        const PendingTempGuard pending(temp);
         write(temp);
         if (durability == Durability::Synced)
             sync_file(temp);

@@ -39,9 +39,27 @@ std::vector<unsigned char> read_file_bytes(const std::filesystem::path& path);
 std::string read_file_text(const std::filesystem::path& path);
 
 // Throws FileError "cannot write '<path>': directory '<dir>' does not exist"
-// (or "... is not a directory") unless a file could be created at path: for
-// commands that check their outputs before hours of work, not after.
+// (or "... is not a directory") unless path's directory exists.
 void check_parent_directory(const std::filesystem::path& path);
+
+// Throws FileError "cannot write '<path>': <reason>" unless
+// write_file_atomically could write path: its directory exists and takes new
+// files (tried by creating and removing one), path is not a directory, and
+// its name leaves room for the temporary file's suffix within the
+// filesystem's name limit. For commands that check their outputs before
+// hours of work, not after.
+void check_writable(const std::filesystem::path& path);
+
+// The path with symbolic links, "." and ".." resolved, for telling whether
+// two names are the same file ("a/../b.exr" and a link to it are "b.exr"); a
+// path that does not exist yet is resolved as far as it exists.
+std::filesystem::path resolved_path(const std::filesystem::path& path);
+
+// Removes the temporary file of a write_file_atomically in progress, if any.
+// Async-signal-safe (it only calls unlink): for a signal handler that ends
+// the process in the middle of a write, which would otherwise leave the
+// temporary file behind.
+void remove_pending_temp_files() noexcept;
 
 // Whether write_file_atomically flushes the new file to disk before the
 // rename. Without it, a power loss soon after can leave an empty file where

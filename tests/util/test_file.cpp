@@ -134,3 +134,54 @@ TEST_CASE("errno text, extensions and parent directories", "[file]") {
     CHECK_THROWS_WITH(wp::check_parent_directory(dir / "file" / "x.png"),
                       Catch::EndsWith("is not a directory"));
 }
+
+TEST_CASE("check_writable refuses what write_file_atomically could not write", "[file]") {
+    TempDir dir;
+    CHECK_NOTHROW(wp::check_writable(dir / "new.png"));
+    CHECK(dir.entries().empty()); // the probe file is gone again
+    fs::create_directories(dir / "sub.exr");
+    CHECK_THROWS_WITH(wp::check_writable(dir / "sub.exr"),
+                      "cannot write '" + (dir / "sub.exr").string() + "': it is a directory");
+    // 255 bytes is a valid name, but not once ".tmp-<pid>-<n>" is added.
+    std::string name(251, 'x');
+    name += ".exr";
+    CHECK_THROWS_WITH(wp::check_writable(dir / name), Catch::Contains("file name too long"));
+    CHECK_NOTHROW(wp::check_writable(dir / (std::string(200, 'x') + ".exr")));
+    CHECK_THROWS_WITH(wp::check_writable(dir / "no" / "x.png"), Catch::Contains("does not exist"));
+    // A directory that takes no new files: /sys does not even for root.
+    CHECK_THROWS_WITH(wp::check_writable("/sys/x.png"),
+                      Catch::Contains("cannot create files in directory '/sys'"));
+}
+
+TEST_CASE("resolved_path sees through '..' and symbolic links", "[file]") {
+    TempDir dir;
+    wp::test::write_text(dir / "a.json", "{}");
+    fs::create_directories(dir / "sub");
+    fs::create_symlink(dir / "a.json", dir / "link.json");
+    const fs::path a = wp::resolved_path(dir / "a.json");
+    CHECK(wp::resolved_path(dir / "sub" / ".." / "a.json") == a);
+    CHECK(wp::resolved_path(dir / "link.json") == a);
+    CHECK(wp::resolved_path(dir / "." / "a.json") == a);
+    CHECK(wp::resolved_path(dir / "b.json") != a);
+    // Files that do not exist yet resolve as far as their directories do.
+    CHECK(wp::resolved_path(dir / "sub" / ".." / "new.exr") == wp::resolved_path(dir / "new.exr"));
+}
+
+TEST_CASE("remove_pending_temp_files removes the temporary file of a write in progress",
+          "[atomic]") {
+    TempDir dir;
+    const auto path = dir / "out.exr";
+    fs::path seen;
+    wp::write_file_atomically(path, [&](const fs::path& temp) {
+        seen = temp;
+        wp::test::write_text(temp, "partial");
+        wp::remove_pending_temp_files(); // what the signal handler does
+        CHECK_FALSE(fs::exists(temp));
+        wp::test::write_text(temp, "recreated"); // so that the rename can still happen
+    });
+    CHECK(wp::test::read_text(path) == "recreated");
+    // After the write nothing is registered any more.
+    wp::test::write_text(seen, "unrelated file with the old temporary name");
+    wp::remove_pending_temp_files();
+    CHECK(fs::exists(seen));
+}

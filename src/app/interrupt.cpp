@@ -1,0 +1,54 @@
+#include "app/interrupt.hpp"
+
+#include <csignal>
+
+#include <signal.h>
+
+#include <unistd.h>
+
+#include "util/file.hpp"
+
+namespace wp {
+namespace {
+
+// Written by the handler, read by the render loop: lock-free atomics are
+// the only shared state a handler may touch.
+volatile std::sig_atomic_t g_signal = 0;
+
+void on_signal(int sig) {
+    if (g_signal == 0) {
+        g_signal = sig;
+        static const char message[] =
+            "\nwavepath: interrupted: finishing the current wave and writing the outputs "
+            "(again to quit at once)\n";
+        // Best effort: nothing to do in a handler if stderr is gone.
+        [[maybe_unused]] const ssize_t written = ::write(2, message, sizeof message - 1);
+        return;
+    }
+    // The second signal: no half-written output, then the default action
+    // (termination by this signal, which the parent sees as such).
+    remove_pending_temp_files();
+    std::signal(sig, SIG_DFL);
+    std::raise(sig);
+}
+
+} // namespace
+
+void install_interrupt_handlers() {
+    struct sigaction action = {};
+    action.sa_handler = on_signal;
+    sigemptyset(&action.sa_mask);
+    action.sa_flags = SA_RESTART; // blocking reads and writes carry on after the first one
+    sigaction(SIGINT, &action, nullptr);
+    sigaction(SIGTERM, &action, nullptr);
+}
+
+bool interrupt_requested() {
+    return g_signal != 0;
+}
+
+int interrupt_signal() {
+    return g_signal;
+}
+
+} // namespace wp

@@ -1,0 +1,17 @@
+// Ctrl-C and SIGTERM during a long render. The first one asks the render to
+// stop at the next wave boundary, so that every pixel has the same number of
+// samples and the outputs are written with what was done; a second one ends
+// the process at once, removing the temporary file of a write in progress
+// (util/file.hpp) so that nothing half-written is left.
+#pragma once
+
+namespace wp {
+
+// Installs the SIGINT and SIGTERM handlers; call once, before any work.
+void install_interrupt_handlers();
+
+// Whether a first signal has arrived, and which (0: none).
+bool interrupt_requested();
+int interrupt_signal();
+
+} // namespace wp

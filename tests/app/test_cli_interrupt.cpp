@@ -1,0 +1,209 @@
+// Ctrl-C during a long render, for real: the executable runs in a child
+// process, gets SIGINT or SIGTERM once it is rendering, and must write its
+// outputs with the samples done so far; a second signal ends it at once
+// without leaving a temporary file.
+#include <catch2/catch.hpp>
+
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <regex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "app/cli_run.hpp"
+#include "image/image_io.hpp"
+
+extern char** environ;
+
+using namespace wp::test::cli;
+namespace fs = std::filesystem;
+
+namespace {
+
+// A wavepath process with stdout and stderr in files of the scratch directory.
+class Child {
+  public:
+    Child(const std::vector<std::string>& arguments, const Scratch& s)
+        : out_(s.dir / "child-stdout.txt"), err_(s.dir / "child-stderr.txt") {
+        std::vector<std::string> args = {WAVEPATH_EXE};
+        args.insert(args.end(), arguments.begin(), arguments.end());
+        args.push_back("--device");
+        args.push_back(test_device_index());
+        std::vector<char*> argv;
+        for (std::string& a : args)
+            argv.push_back(a.data());
+        argv.push_back(nullptr);
+        posix_spawn_file_actions_t actions;
+        posix_spawn_file_actions_init(&actions);
+        posix_spawn_file_actions_addopen(&actions, 1, out_.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
+                                         0644);
+        posix_spawn_file_actions_addopen(&actions, 2, err_.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
+                                         0644);
+        const int rc = posix_spawn(&pid_, argv[0], &actions, nullptr, argv.data(), environ);
+        posix_spawn_file_actions_destroy(&actions);
+        REQUIRE(rc == 0);
+    }
+    ~Child() {
+        if (pid_ > 0) { // a failed test: do not leave it running
+            ::kill(pid_, SIGKILL);
+            ::waitpid(pid_, nullptr, 0);
+        }
+    }
+    Child(const Child&) = delete;
+    Child& operator=(const Child&) = delete;
+
+    // Waits (at most two minutes: the first kernel build is slow) until the
+    // render has started, then a little longer so that some samples are done.
+    void wait_until_rendering() const {
+        wait_for_stderr(" spp on ");
+        std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    }
+    void wait_for_stderr(const std::string& text) const {
+        const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(2);
+        while (slurp(err_).find(text) == std::string::npos) {
+            REQUIRE(std::chrono::steady_clock::now() < deadline);
+            std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        }
+    }
+    void signal(int sig) const { REQUIRE(::kill(pid_, sig) == 0); }
+
+    // The wait status, within a minute.
+    int wait() {
+        const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(1);
+        int status = 0;
+        while (::waitpid(pid_, &status, WNOHANG) == 0) {
+            REQUIRE(std::chrono::steady_clock::now() < deadline);
+            std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        }
+        pid_ = 0;
+        return status;
+    }
+    std::string out() const { return slurp(out_); }
+    std::string err() const { return slurp(err_); }
+
+  private:
+    pid_t pid_ = 0;
+    fs::path out_, err_;
+};
+
+const std::string kScene = std::string(WAVEPATH_SOURCE_DIR) + "/scenes/hexroom.json";
+constexpr const char* kManySamples = "1000000"; // hours: it ends only by the signal
+
+std::vector<std::string> temporary_files(const fs::path& dir) {
+    std::vector<std::string> names;
+    for (const auto& entry : fs::recursive_directory_iterator(dir))
+        if (entry.path().filename().string().find(".tmp") != std::string::npos)
+            names.push_back(entry.path().string());
+    return names;
+}
+
+} // namespace
+
+TEST_CASE("cli: the first SIGINT or SIGTERM writes the outputs with the samples done") {
+    const int sig = GENERATE(SIGINT, SIGTERM);
+    Scratch s;
+    const fs::path exr = s.dir / "out.exr", png = s.dir / "out.png";
+    Child child({"render", kScene, "--width", "24", "--height", "16", "--spp", kManySamples,
+                 "--out", exr.string(), "--png", png.string()},
+                s);
+    child.wait_until_rendering();
+    child.signal(sig);
+    const int status = child.wait();
+    const std::string err = child.err();
+    INFO("stderr: " << err);
+    REQUIRE(WIFEXITED(status));
+    CHECK(WEXITSTATUS(status) == 128 + sig);
+
+    std::smatch match;
+    REQUIRE(std::regex_search(err, match,
+                              std::regex("the outputs hold ([0-9]+) of the 1000000 samples")));
+    const long spp = std::stol(match[1]);
+    CHECK(spp > 0);
+    CHECK(spp < 1000000);
+    // The summary on stdout gives the same count.
+    CHECK(child.out().find("24x16, " + std::to_string(spp) + " spp") != std::string::npos);
+    const wp::Image image = wp::read_image(exr);
+    CHECK(image.width == 24);
+    CHECK(image.height == 16);
+    // The image says what it holds.
+    using Entry = std::pair<std::string, std::string>;
+    CHECK(image.metadata == std::vector<Entry>{{"wavepath.samples_per_pixel", std::to_string(spp)},
+                                               {"wavepath.samples_requested", kManySamples},
+                                               {"wavepath.seed", "0"}});
+    double sum = 0.0;
+    for (const float v : image.rgb) {
+        REQUIRE(std::isfinite(v));
+        sum += v;
+    }
+    CHECK(sum > 0.0);
+    CHECK(fs::file_size(png) > 0);
+    CHECK(temporary_files(s.dir).empty());
+}
+
+TEST_CASE("cli: a second signal ends the render at once and leaves no temporary file") {
+    Scratch s;
+    const fs::path pfm = s.dir / "out.pfm";
+    // A pool of 64 slots for 320x320 pixels: one sample per pixel takes 1600
+    // waves, so the render is still in its wave when the second signal comes.
+    Child child({"render", kScene, "--width", "320", "--height", "320", "--pool", "64", "--spp",
+                 kManySamples, "--out", pfm.string()},
+                s);
+    child.wait_until_rendering();
+    child.signal(SIGINT);
+    // Signals sent back to back may merge into one: wait until the first has
+    // been handled.
+    child.wait_for_stderr("again to quit at once");
+    child.signal(SIGINT);
+    const int status = child.wait();
+    INFO("stderr: " << child.err());
+    REQUIRE(WIFSIGNALED(status));
+    CHECK(WTERMSIG(status) == SIGINT);
+    CHECK(temporary_files(s.dir).empty());
+}
+
+TEST_CASE("cli: an image that cannot be written after the render is saved elsewhere") {
+    Scratch s;
+    fs::create_directories(s.dir / "gone");
+    const fs::path pfm = s.dir / "gone" / "out.pfm";
+    Child child({"render", kScene, "--width", "24", "--height", "16", "--spp", kManySamples,
+                 "--out", pfm.string()},
+                s);
+    child.wait_until_rendering();
+    fs::remove_all(s.dir / "gone"); // after the checks, before the write
+    child.signal(SIGINT);
+    const int status = child.wait();
+    const std::string err = child.err();
+    INFO("stderr: " << err);
+    REQUIRE(WIFEXITED(status));
+    CHECK(WEXITSTATUS(status) == 1);
+    std::smatch match;
+    REQUIRE(std::regex_search(
+        err, match,
+        std::regex("wavepath: error: cannot write '[^']*out\\.pfm': .*the image was "
+                   "saved to '([^']+)' instead\\n")));
+    const fs::path fallback = match[1].str();
+    CHECK(fallback.filename().string().find("out.pfm") != std::string::npos);
+    REQUIRE(fs::exists(fallback));
+    const wp::Image image = wp::read_image(fallback);
+    CHECK(image.width == 24);
+    fs::remove(fallback);
+}
+
+TEST_CASE("cli: commands other than render keep Ctrl-C's immediate effect") {
+    Scratch s;
+    Child child({"converge", kScene, "--width", "24", "--height", "16", "--max-spp", "16777216"},
+                s);
+    child.wait_for_stderr("kernels built in");
+    child.signal(SIGINT);
+    const int status = child.wait();
+    INFO("stderr: " << child.err());
+    REQUIRE(WIFSIGNALED(status));
+    CHECK(WTERMSIG(status) == SIGINT);
+}
