@@ -15,13 +15,21 @@ PathBufferBytes path_buffer_bytes() {
     return bytes;
 }
 
-std::uint64_t PathBufferBytes::largest(std::uint64_t slots, std::uint64_t pixels) const {
+std::uint64_t PathBufferBytes::largest(std::uint64_t slots, std::uint64_t pixels,
+                                       const char** name) const {
     std::uint64_t most = 0;
-#define WP_LARGEST(name, type, per_slot, per_pixel, fixed)                                         \
-    most = std::max<std::uint64_t>(most, sizeof(type) *                                            \
-                                             ((per_slot)*slots + (per_pixel)*pixels + (fixed)));
+    const char* most_name = "";
+#define WP_LARGEST(buffer, type, per_slot, per_pixel, fixed)                                       \
+    if (const std::uint64_t bytes =                                                                \
+            sizeof(type) * ((per_slot)*slots + (per_pixel)*pixels + (fixed));                      \
+        bytes > most) {                                                                            \
+        most = bytes;                                                                              \
+        most_name = #buffer;                                                                       \
+    }
     WP_PATH_BUFFERS(WP_LARGEST)
 #undef WP_LARGEST
+    if (name)
+        *name = most_name;
     return most;
 }
 

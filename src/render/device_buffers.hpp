@@ -28,8 +28,10 @@ struct PathBufferBytes {
     std::uint64_t per_slot = 0;
     std::uint64_t per_pixel = 0;
     std::uint64_t fixed = 0;
-    // The largest single buffer for `slots` path slots and `pixels` pixels.
-    std::uint64_t largest(std::uint64_t slots, std::uint64_t pixels) const;
+    // The largest single buffer for `slots` path slots and `pixels` pixels,
+    // and its name (as in the lists of kernels/wp_shared.h).
+    std::uint64_t largest(std::uint64_t slots, std::uint64_t pixels,
+                          const char** name = nullptr) const;
     std::uint64_t total(std::uint64_t slots, std::uint64_t pixels) const {
         return per_slot * slots + per_pixel * pixels + fixed;
     }

@@ -36,14 +36,16 @@ void check_device_memory(const DeviceInfo& device, int width, int height, std::u
         static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
     const PathBufferBytes bytes = path_buffer_bytes();
     const std::uint64_t total = bytes.total(slots, pixels);
-    const std::uint64_t largest = bytes.largest(slots, pixels);
+    const char* largest_name = "";
+    const std::uint64_t largest = bytes.largest(slots, pixels, &largest_name);
     const std::uint64_t max_alloc = device.device.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
     if (total > device.global_memory_bytes || largest > max_alloc)
-        throw std::runtime_error(
-            "out of device memory: a " + std::to_string(width) + "x" + std::to_string(height) +
-            " image needs " + gibibytes(total) + " (largest buffer " + gibibytes(largest) +
-            ") on " + device.name + ", which has " + gibibytes(device.global_memory_bytes) +
-            " (largest buffer " + gibibytes(max_alloc) + "); use a smaller --width/--height");
+        throw std::runtime_error("out of device memory: a " + std::to_string(width) + "x" +
+                                 std::to_string(height) + " image needs " + gibibytes(total) +
+                                 " (largest buffer " + largest_name + ", " + gibibytes(largest) +
+                                 ") on " + device.name + ", which has " +
+                                 gibibytes(device.global_memory_bytes) + " (largest buffer " +
+                                 gibibytes(max_alloc) + "); use a smaller --width/--height");
 }
 
 } // namespace

@@ -108,7 +108,7 @@ TEST_CASE("cli: bad input gives one clear line and a non-zero exit") {
                                           " --width 16384 --height 16384 --out '" + out.string() +
                                           "'",
                                       s),
-                             "out of device memory");
+                             "out of device memory: a 16384x16384 image needs");
     }
     CHECK_FALSE(fs::exists(out));
 }

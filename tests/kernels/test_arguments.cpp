@@ -66,5 +66,9 @@ TEST_CASE("stage kernels: the host binds one buffer per listed name, and sizes t
     WP_PATH_BUFFERS(WP_SIZE)
 #undef WP_SIZE
     CHECK(path_buffer_bytes().total(3, 5) == total);
-    CHECK(path_buffer_bytes().largest(3, 5) == 5 * sizeof(cl_float4)); // a film buffer
+    const char* name = nullptr;
+    CHECK(path_buffer_bytes().largest(3, 5, &name) == 5 * sizeof(cl_float4)); // a film buffer
+    CHECK(std::string(name) == "film_sum");
+    CHECK(path_buffer_bytes().largest(7, 1, &name) == 7 * sizeof(cl_float4)); // a path buffer
+    CHECK(std::string(name) == "ray_origin");
 }
