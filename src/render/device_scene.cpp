@@ -7,9 +7,8 @@
 #include <glm/geometric.hpp>
 
 namespace wp {
-namespace {
 
-wp_float4 to_float4(const glm::dvec3& v, double w = 0.0) {
+wp_float4 to_float4(const glm::dvec3& v, double w) {
     wp_float4 r;
     r.s[0] = static_cast<float>(v.x);
     r.s[1] = static_cast<float>(v.y);
@@ -17,6 +16,8 @@ wp_float4 to_float4(const glm::dvec3& v, double w = 0.0) {
     r.s[3] = static_cast<float>(w);
     return r;
 }
+
+namespace {
 
 std::string flag(const char* name, bool on) {
     return std::string("-D ") + name + (on ? "=1" : "=0");

@@ -92,6 +92,9 @@ struct DeviceScene {
     int height = 0;
 };
 
+// A double-precision point or vector as the kernels' float4 (w as given).
+wp_float4 to_float4(const glm::dvec3& v, double w = 0.0);
+
 // Converts to float32 and builds the light table, and with `hierarchy` the
 // bounding volume hierarchy over triangles and spheres; the camera basis is
 // scaled so that film coordinates in [-1, 1] span the field of view.

@@ -10,6 +10,7 @@
 #include <glm/vec3.hpp>
 
 #include "cl/cl.hpp"
+#include "render/device_scene.hpp"
 
 namespace wp::test {
 
@@ -21,14 +22,8 @@ inline D3 from_float4(const cl_float4& v) {
     return {v.s[0], v.s[1], v.s[2]};
 }
 
-inline cl_float4 to_float4(const D3& v, double w = 0.0) {
-    cl_float4 r;
-    r.s[0] = static_cast<float>(v.x);
-    r.s[1] = static_cast<float>(v.y);
-    r.s[2] = static_cast<float>(v.z);
-    r.s[3] = static_cast<float>(w);
-    return r;
-}
+// The renderer's own conversion (render/device_scene.hpp).
+using wp::to_float4;
 
 // The value a double vector takes once rounded to float, back in double.
 inline D3 rounded(const D3& v) {
