@@ -7,6 +7,7 @@
 
 #include "app/cli_options.hpp"
 #include "app/commands.hpp"
+#include "app/view_cli.hpp"
 #include "cl/context.hpp"
 #include "cl/device.hpp"
 #include "image/image_io.hpp"
@@ -49,6 +50,7 @@ CLI::App* add_converge_subcommand(CLI::App& app, ConvergeCommand& command) {
     c->add_flag("--replot", command.replot,
                 "Render nothing: draw --plot from the --overlay CSVs alone");
     c->add_option("--out,-o", command.out, "Write the final image (.exr, .pfm or .png)");
+    add_view_options(*c, command.view); // for an --out .png
     c->add_option("--title", command.title, "The plot's title (default: scene, size, device)");
     add_device_option(*c, command.device);
     add_image_size_options(*c, command.width, command.height);
@@ -144,7 +146,7 @@ int run_converge(const ConvergeCommand& command) {
         write_svg(command.plot, convergence_plot(runs, title));
     }
     if (!command.out.empty())
-        write_result_image(command.out, film.mean(), ViewOptions{});
+        write_result_image(command.out, film.mean(), view_for_scene(command.view, scene));
     const RenderStats& stats = integrator.stats();
     if (stats.nonfinite_samples > 0 || stats.capped_paths > 0)
         std::cerr << "wavepath: warning: " << stats.nonfinite_samples
