@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace wp {
@@ -25,28 +26,56 @@ double luminance(double r, double g, double b) {
 AutoExposure auto_exposure(const Image& img, double emitter_luminance) {
     check_image_shape(img, "cannot choose an exposure", /*require_pixels=*/false);
     AutoExposure result;
-    std::vector<double> luminances, brightest_channels;
-    for (std::size_t p = 0; p < img.rgb.size(); p += 3) {
-        const double r = img.rgb[p], g = img.rgb[p + 1], b = img.rgb[p + 2];
+    // Per pixel: luminance and brightest channel, or NaN for a pixel that
+    // takes no part (an emitter, or a non-finite value).
+    const std::size_t pixels = img.rgb.size() / 3;
+    std::vector<double> luminance_of(pixels), brightest_of(pixels);
+    for (std::size_t i = 0; i < pixels; ++i) {
+        const double r = img.rgb[3 * i], g = img.rgb[3 * i + 1], b = img.rgb[3 * i + 2];
         const double y = luminance(r, g, b);
-        if (!std::isfinite(y) || !(y > 0.0))
-            continue;
-        if (y >= emitter_luminance) {
-            ++result.emitters;
-            continue;
-        }
-        luminances.push_back(y);
-        brightest_channels.push_back(std::max({r, g, b}));
+        const bool emitter = std::isfinite(y) && y >= emitter_luminance;
+        result.emitters += emitter;
+        const bool takes_part = std::isfinite(y) && !emitter;
+        luminance_of[i] = takes_part ? y : std::nan("");
+        brightest_of[i] = takes_part ? std::max({r, g, b}) : std::nan("");
     }
+    // The statistics are of the image seen through a 3x3 median filter: at a
+    // few samples per pixel, light found through a mirror or a small gap
+    // shows as isolated bright pixels (fireflies), which can be more than
+    // 1 % of the image and would set the highlight quantile; the filter
+    // removes them and keeps regions of two pixels or more across.
+    std::vector<double> luminances, brightest_channels, window_y, window_max;
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x) {
+            const std::size_t i = static_cast<std::size_t>(y) * img.width + x;
+            if (!(luminance_of[i] > 0.0))
+                continue; // black pixels carry no information about exposure
+            window_y.clear();
+            window_max.clear();
+            for (int v = std::max(y - 1, 0); v <= std::min(y + 1, img.height - 1); ++v)
+                for (int u = std::max(x - 1, 0); u <= std::min(x + 1, img.width - 1); ++u) {
+                    const std::size_t j = static_cast<std::size_t>(v) * img.width + u;
+                    if (!std::isnan(luminance_of[j])) {
+                        window_y.push_back(luminance_of[j]);
+                        window_max.push_back(brightest_of[j]);
+                    }
+                }
+            luminances.push_back(quantile(window_y, 0.5));
+            brightest_channels.push_back(quantile(window_max, 0.5));
+        }
     result.counted = luminances.size();
     if (luminances.empty())
         return result; // black, or all emitter: no exposure shows more than another
     const double median = quantile(luminances, 0.5);
     const double highlight = quantile(brightest_channels, kHighlightQuantile);
-    result.key_scale = kMidGrey / median;
-    // A counted pixel has positive luminance, so a positive channel.
-    result.highlight_scale = 1.0 / highlight;
+    // Filtered values may be 0 (a lit pixel among black ones); a zero
+    // statistic sets no bound.
+    constexpr double kNoBound = std::numeric_limits<double>::infinity();
+    result.key_scale = median > 0.0 ? kMidGrey / median : kNoBound;
+    result.highlight_scale = highlight > 0.0 ? 1.0 / highlight : kNoBound;
     result.scale = std::min(result.key_scale, result.highlight_scale);
+    if (result.scale == kNoBound)
+        result.scale = 1.0;
     return result;
 }
 

@@ -134,3 +134,24 @@ TEST_CASE("the exposure offset is in stops from the automatic exposure", "[expos
     CHECK(text.find("srgb, exposure ") == 0);
     CHECK(text.find("offset -2.5)") != std::string::npos);
 }
+
+TEST_CASE("isolated fireflies do not set the exposure; bright regions do", "[exposure]") {
+    // Grey 0.5 with a firefly of 100 at every 5th pixel of every 5th row and
+    // column offset (4 % of the pixels, none next to another).
+    Image img(50, 50);
+    std::fill(img.rgb.begin(), img.rgb.end(), 0.5f);
+    for (int y = 0; y < 50; y += 5)
+        for (int x = (y / 5) % 5; x < 50; x += 5)
+            img.pixel(x, y)[0] = img.pixel(x, y)[1] = img.pixel(x, y)[2] = 100.0f;
+    const wp::AutoExposure noisy = wp::auto_exposure(img, kInfinity);
+    CHECK(noisy.highlight_scale == Approx(1.0 / 0.5));
+    CHECK(noisy.scale == Approx(0.18 / 0.5));
+    // A bright block 3 pixels high (6 % of the image) is light, not noise:
+    // it keeps the exposure from clipping it.
+    for (int y = 20; y < 23; ++y)
+        for (int x = 0; x < 50; ++x)
+            img.pixel(x, y)[0] = img.pixel(x, y)[1] = img.pixel(x, y)[2] = 10.0f;
+    const wp::AutoExposure lit = wp::auto_exposure(img, kInfinity);
+    CHECK(lit.highlight_scale == Approx(1.0 / 10.0));
+    CHECK(lit.scale == lit.highlight_scale);
+}
