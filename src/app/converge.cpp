@@ -7,6 +7,7 @@
 
 #include "app/cli_options.hpp"
 #include "app/commands.hpp"
+#include "app/render_metadata.hpp"
 #include "app/view_cli.hpp"
 #include "cl/context.hpp"
 #include "cl/device.hpp"
@@ -145,8 +146,19 @@ int run_converge(const ConvergeCommand& command) {
                                             std::to_string(run.height) + ", " + device.info.name;
         write_svg(command.plot, convergence_plot(runs, title));
     }
-    if (!command.out.empty())
-        write_result_image(command.out, film.mean(), view_for_scene(command.view, scene));
+    if (!command.out.empty() && !run.checkpoints.empty()) {
+        Image image = film.mean();
+        const Checkpoint& last = run.checkpoints.back();
+        image.metadata = render_metadata({command.scene,
+                                          run.width,
+                                          run.height,
+                                          last.spp,
+                                          settings.max_spp > 0 ? settings.max_spp : last.spp,
+                                          options,
+                                          {device.info.name},
+                                          last.seconds});
+        write_result_image(command.out, image, view_for_scene(command.view, scene));
+    }
     const RenderStats& stats = integrator.stats();
     if (stats.nonfinite_samples > 0 || stats.capped_paths > 0)
         std::cerr << "wavepath: warning: " << stats.nonfinite_samples

@@ -1,6 +1,7 @@
 #include "image/exposure.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -16,6 +17,26 @@ double quantile(std::vector<double>& values, double q) {
                      values.end());
     return values[rank];
 }
+
+// The values of a 3x3 neighbourhood, kept sorted as they come (at most 9:
+// insertion is the fastest sort here).
+class Window {
+  public:
+    void add(double value) {
+        std::size_t i = size_++;
+        for (; i > 0 && values_[i - 1] > value; --i)
+            values_[i] = values_[i - 1];
+        values_[i] = value;
+    }
+    // The same nearest rank as quantile(values, 0.5).
+    double median() const {
+        return values_[static_cast<std::size_t>(std::lround(0.5 * static_cast<double>(size_ - 1)))];
+    }
+
+  private:
+    std::array<double, 9> values_{};
+    std::size_t size_ = 0;
+};
 
 } // namespace
 
@@ -44,24 +65,25 @@ AutoExposure auto_exposure(const Image& img, double emitter_luminance) {
     // shows as isolated bright pixels (fireflies), which can be more than
     // 1 % of the image and would set the highlight quantile; the filter
     // removes them and keeps regions of two pixels or more across.
-    std::vector<double> luminances, brightest_channels, window_y, window_max;
+    std::vector<double> luminances, brightest_channels;
+    luminances.reserve(pixels);
+    brightest_channels.reserve(pixels);
     for (int y = 0; y < img.height; ++y)
         for (int x = 0; x < img.width; ++x) {
             const std::size_t i = static_cast<std::size_t>(y) * img.width + x;
             if (!(luminance_of[i] > 0.0))
                 continue; // black pixels carry no information about exposure
-            window_y.clear();
-            window_max.clear();
+            Window window_y, window_max;
             for (int v = std::max(y - 1, 0); v <= std::min(y + 1, img.height - 1); ++v)
                 for (int u = std::max(x - 1, 0); u <= std::min(x + 1, img.width - 1); ++u) {
                     const std::size_t j = static_cast<std::size_t>(v) * img.width + u;
                     if (!std::isnan(luminance_of[j])) {
-                        window_y.push_back(luminance_of[j]);
-                        window_max.push_back(brightest_of[j]);
+                        window_y.add(luminance_of[j]);
+                        window_max.add(brightest_of[j]);
                     }
                 }
-            luminances.push_back(quantile(window_y, 0.5));
-            brightest_channels.push_back(quantile(window_max, 0.5));
+            luminances.push_back(window_y.median());
+            brightest_channels.push_back(window_max.median());
         }
     result.counted = luminances.size();
     if (luminances.empty())
