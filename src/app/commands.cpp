@@ -167,6 +167,7 @@ int run_render(const RenderCommand& command) {
                             {"--trace", command.trace}});
 
     Scene scene = load_scene_for_render(command.scene, command.width, command.height);
+    const std::string scene_sha256 = file_sha256(command.scene); // for the metadata
 
     const bool profiling =
         command.profile || !command.profile_json.empty() || !command.trace.empty();
@@ -204,14 +205,15 @@ int run_render(const RenderCommand& command) {
     const bool interrupted = spp < command.spp;
 
     Image image = film.mean();
-    image.metadata = render_metadata({command.scene,
-                                      scene.camera.width,
-                                      scene.camera.height,
-                                      spp,
-                                      command.spp,
-                                      options,
-                                      {device.info.name},
-                                      integrator.stats().render_seconds});
+    image.metadata = render_metadata({.scene_file = command.scene,
+                                      .scene_sha256 = scene_sha256,
+                                      .width = scene.camera.width,
+                                      .height = scene.camera.height,
+                                      .samples_done = spp,
+                                      .samples_requested = command.spp,
+                                      .options = options,
+                                      .devices = {device.info.name},
+                                      .render_seconds = integrator.stats().render_seconds});
     const ViewOptions view = view_for_scene(command.view, scene);
     write_result_image(command.out, image, view);
     if (!command.png.empty())

@@ -88,6 +88,7 @@ int run_converge(const ConvergeCommand& command) {
         throw std::runtime_error("converge needs a scene file (or --replot)");
 
     Scene scene = load_scene_for_render(command.scene, command.width, command.height);
+    const std::string scene_sha256 = file_sha256(command.scene); // for --out's metadata
 
     Image reference;
     if (!command.reference.empty()) {
@@ -149,14 +150,16 @@ int run_converge(const ConvergeCommand& command) {
     if (!command.out.empty() && !run.checkpoints.empty()) {
         Image image = film.mean();
         const Checkpoint& last = run.checkpoints.back();
-        image.metadata = render_metadata({command.scene,
-                                          run.width,
-                                          run.height,
-                                          last.spp,
-                                          settings.max_spp > 0 ? settings.max_spp : last.spp,
-                                          options,
-                                          {device.info.name},
-                                          last.seconds});
+        image.metadata = render_metadata(
+            {.scene_file = command.scene,
+             .scene_sha256 = scene_sha256,
+             .width = run.width,
+             .height = run.height,
+             .samples_done = last.spp,
+             .samples_requested = settings.max_spp > 0 ? settings.max_spp : last.spp,
+             .options = options,
+             .devices = {device.info.name},
+             .render_seconds = last.seconds});
         write_result_image(command.out, image, view_for_scene(command.view, scene));
     }
     const RenderStats& stats = integrator.stats();

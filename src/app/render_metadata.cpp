@@ -24,15 +24,19 @@ std::string join(const std::vector<std::string>& names, const std::string& separ
 
 } // namespace
 
+std::string file_sha256(const std::string& path) {
+    const std::vector<unsigned char> bytes = read_file_bytes(path);
+    return sha256_hex(bytes.data(), bytes.size());
+}
+
 Metadata render_metadata(const RenderRecord& record) {
-    const std::vector<unsigned char> scene = read_file_bytes(record.scene_file);
     const double samples = static_cast<double>(record.width) * static_cast<double>(record.height) *
                            record.samples_done;
     return {
         {"wavepath.version", WAVEPATH_VERSION},
         {"wavepath.commit", WAVEPATH_GIT_DESCRIBE},
         {"wavepath.scene", record.scene_file},
-        {"wavepath.scene_sha256", sha256_hex(scene.data(), scene.size())},
+        {"wavepath.scene_sha256", record.scene_sha256},
         {"wavepath.resolution", std::to_string(record.width) + "x" + std::to_string(record.height)},
         {"wavepath.samples_per_pixel", std::to_string(record.samples_done)},
         {"wavepath.samples_requested", std::to_string(record.samples_requested)},
