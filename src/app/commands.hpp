@@ -57,6 +57,7 @@ struct ConvergeCommand {
     int width = 0;
     int height = 0;
     IntegratorOptions integrator;
+    ViewOptions view; // of --out, when it is a .png
 };
 
 struct CompareCommand {
