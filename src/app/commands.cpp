@@ -13,7 +13,7 @@
 
 #include "app/cli_options.hpp"
 #include "app/interrupt.hpp"
-#include "app/progress.hpp"
+#include "app/render_loop.hpp"
 #include "cl/context.hpp"
 #include "cl/device.hpp"
 #include "image/image_io.hpp"
@@ -113,6 +113,7 @@ CLI::App* add_render_subcommand(CLI::App& app, RenderCommand& command) {
     r->add_option("--trace", command.trace,
                   "Write every kernel launch and transfer as a Chrome trace (Perfetto, "
                   "chrome://tracing)");
+    add_render_loop_options(*r, command.loop, command.spp);
     return r;
 }
 
@@ -176,6 +177,7 @@ int run_render(const RenderCommand& command) {
                             {"--trace", command.trace}});
 
     Scene scene = load_scene_for_render(command.scene, command.width, command.height);
+    RenderLoop loop(command.loop, command.view); // a preview port in use fails here
 
     const bool profiling =
         command.profile || !command.profile_json.empty() || !command.trace.empty();
@@ -190,27 +192,24 @@ int run_render(const RenderCommand& command) {
     if (profiling)
         integrator.set_profiler(&profiler);
 
-    std::cerr << "wavepath: " << scene.camera.width << "x" << scene.camera.height << " at "
-              << command.spp << " spp on " << device.info.name << " (kernels built in "
-              << integrator.program().build_seconds
+    std::cerr << "wavepath: " << scene.camera.width << "x" << scene.camera.height << " "
+              << describe_halt_conditions(command.loop, command.spp) << " on " << device.info.name
+              << " (kernels built in " << integrator.program().build_seconds
               << " s; features: " << integrator.features().describe() << ")\n";
 
     const std::uint64_t pixels = static_cast<std::uint64_t>(scene.camera.width) *
                                  static_cast<std::uint64_t>(scene.camera.height);
-    // Samples are rendered a few per call, so that Ctrl-C (interrupt.hpp) is
-    // noticed between calls, where every pixel has the same number. Always
-    // the same split for the same options, so the image is too.
-    const std::uint32_t per_call = samples_per_call(options);
-    std::uint32_t spp = 0;
-    {
-        ProgressBar progress(command.spp, pixels);
-        while (spp < command.spp && (spp == 0 || !interrupt_requested())) {
-            const std::uint32_t part = std::min(per_call, command.spp - spp);
-            integrator.render(spp, part, film, [&](double done) { progress.update(spp + done); });
-            spp += part;
-        }
-    }
-    const bool interrupted = spp < command.spp;
+    // Samples are rendered a few per call, so that Ctrl-C (interrupt.hpp) and
+    // the halt conditions are checked between calls, where every pixel has
+    // the same number. Always the same split for the same options, so the
+    // image is too.
+    const RenderLoopResult rendered = loop.run(
+        film, command.spp, samples_per_call(options),
+        [&](std::uint32_t first, std::uint32_t count, const std::function<void(double)>& progress) {
+            integrator.render(first, count, film, progress);
+        });
+    const std::uint32_t spp = rendered.spp;
+    const bool interrupted = rendered.interrupted();
 
     Image image = film.mean();
     image.metadata = {{"wavepath.samples_per_pixel", std::to_string(spp)},
