@@ -65,17 +65,23 @@ void ProgressReport::update(const ProgressState& state) {
     const double fraction =
         state.seconds_left >= 0.0 && total > 0.0 ? state.elapsed_seconds / total : 0.0;
     if (style_ == ProgressStyle::Terminal)
-        draw_terminal(state, fraction);
+        draw_terminal(state, fraction, false);
     else
         print_line(state, fraction);
 }
 
-void ProgressReport::draw_terminal(const ProgressState& state, double fraction) {
+void ProgressReport::draw_terminal(const ProgressState& state, double fraction, bool at_once) {
     const auto now = std::chrono::steady_clock::now();
-    if (drawn_ && now - last_output_ < std::chrono::milliseconds(100))
-        return; // redraw at most ten times a second
+    if (!at_once && drawn_ && now - last_output_ < std::chrono::milliseconds(100)) {
+        // Redraw at most ten times a second; the last state waits for finish().
+        pending_ = true;
+        latest_ = state;
+        latest_fraction_ = fraction;
+        return;
+    }
     last_output_ = now;
     drawn_ = true;
+    pending_ = false;
     constexpr int width = 30;
     const int filled = std::clamp(static_cast<int>(width * fraction), 0, width);
     std::string bar(static_cast<std::size_t>(filled), '#');
@@ -109,6 +115,8 @@ void ProgressReport::print_line(const ProgressState& state, double fraction) {
 }
 
 void ProgressReport::finish() {
+    if (pending_)
+        draw_terminal(latest_, latest_fraction_, true);
     if (style_ == ProgressStyle::Terminal && drawn_)
         std::fputc('\n', stderr);
     drawn_ = false;

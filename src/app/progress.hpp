@@ -41,11 +41,15 @@ class ProgressReport {
     void finish();
 
   private:
-    void draw_terminal(const ProgressState& state, double fraction);
+    void draw_terminal(const ProgressState& state, double fraction, bool now);
     void print_line(const ProgressState& state, double fraction);
 
     ProgressStyle style_;
     bool drawn_ = false;
+    // Terminal: the latest state, if its drawing was skipped (finish draws it).
+    bool pending_ = false;
+    ProgressState latest_;
+    double latest_fraction_ = 0.0;
     std::chrono::steady_clock::time_point last_output_{};
     int tenths_printed_ = 0; // Lines: the last tenth of the way a line was printed for
 };
