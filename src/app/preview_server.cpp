@@ -72,10 +72,11 @@ PreviewServer::PreviewServer(const std::string& address, int port)
     impl.port = port == 0 ? server.bind_to_any_port(address) : port;
     const bool bound = port == 0 ? impl.port > 0 : server.bind_to_port(address, port);
     if (!bound)
-        throw std::runtime_error("cannot serve the preview on " + address + ":" +
-                                 std::to_string(port) +
-                                 ": the port is in use or the address is not this machine's "
-                                 "(--preview 0 picks a free port)");
+        throw std::runtime_error(
+            "cannot serve the preview on " + address + ":" + std::to_string(port) + ": " +
+            (port == 0 ? std::string("the address is not one of this machine's")
+                       : "the port is in use or the address is not one of this machine's "
+                         "(--preview 0 picks a free port)"));
     impl.thread = std::thread([&impl] {
         impl.server.listen_after_bind();
         impl.listening_ended = true;

@@ -48,6 +48,13 @@ constexpr double kPreviewInterval = 1.0;
 // The next call's time is predicted from the mean of the last few.
 constexpr std::size_t kCallsForPrediction = 8;
 
+// The estimate from a film of `spp` (>= 2) samples per pixel in every pixel:
+// its even and odd sample indices 0 .. spp-1 are the two halves, ceil(spp/2)
+// and floor(spp/2) of them.
+double rel_mse_estimate(const Film& film, std::uint32_t spp) {
+    return rel_mse_from_halves(film.half_mean(0), film.half_mean(1), spp - spp / 2, spp / 2);
+}
+
 } // namespace
 
 void add_render_loop_options(CLI::App& render, RenderLoopOptions& options, std::uint32_t& spp) {
@@ -111,11 +118,6 @@ std::string describe_halt_conditions(const RenderLoopOptions& options, std::uint
     return parts.size() > 1 ? text + ", whichever comes first" : text;
 }
 
-double rel_mse_estimate(const Film& film, std::uint32_t spp) {
-    // Sample indices 0 .. spp-1: ceil(spp/2) even ones, floor(spp/2) odd ones.
-    return rel_mse_from_halves(film.half_mean(0), film.half_mean(1), spp - spp / 2, spp / 2);
-}
-
 RenderLoop::RenderLoop(const RenderLoopOptions& options, const ViewOptions& view)
     : options_(options), view_(view) {
     if (options_.preview_port < 0)
@@ -133,9 +135,10 @@ RenderLoopResult RenderLoop::run(Film& film, std::uint32_t max_spp, std::uint32_
     const double pixels = static_cast<double>(film.pixel_count());
     const double time_budget = options_.time_budget;
     const double target = options_.target_error;
-    ProgressReport progress(progress_style_for_stderr(options_.quiet));
-    const bool want_estimate =
-        target > 0.0 || preview_ || progress_style_for_stderr(options_.quiet) != ProgressStyle::Off;
+    const ProgressStyle style = progress_style_for_stderr(options_.quiet);
+    ProgressReport progress(style);
+    // Someone reads the estimate: the target, the preview or the progress.
+    const bool want_estimate = target > 0.0 || preview_ || style != ProgressStyle::Off;
     // The spp bound is shown only when it is one the user chose.
     const bool spp_bounded = options_.spp_given || (time_budget <= 0.0 && target <= 0.0);
     const std::uint32_t spp_goal = spp_bounded ? max_spp : 0;

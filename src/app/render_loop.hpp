@@ -96,8 +96,4 @@ class RenderLoop {
     std::unique_ptr<PreviewServer> preview_;
 };
 
-// The estimate from a film of `spp` (>= 2) samples per pixel in every pixel:
-// its even and odd sample indices are the two halves.
-double rel_mse_estimate(const Film& film, std::uint32_t spp);
-
 } // namespace wp
