@@ -55,6 +55,40 @@ double rel_mse_estimate(const Film& film, std::uint32_t spp) {
     return rel_mse_from_halves(film.half_mean(0), film.half_mean(1), spp - spp / 2, spp / 2);
 }
 
+// Why the render stopped, on stderr (the caller reports an interrupt, and
+// reaching the spp bound needs no word unless a target error was missed).
+void print_halt(const RenderLoopResult& result, const RenderLoopOptions& options,
+                std::uint32_t max_spp) {
+    const std::string estimate = result.estimate.spp > 0
+                                     ? "estimated relMSE " +
+                                           format_number("%.4g", result.estimate.rel_mse) + " at " +
+                                           std::to_string(result.estimate.spp) + " spp"
+                                     : "";
+    switch (result.reason) {
+    case HaltReason::TimeBudget:
+        std::cerr << "wavepath: time budget of " << format_number("%g", options.time_budget)
+                  << " s reached: " << result.spp << " spp in "
+                  << format_number("%.2f", result.seconds) << " s\n";
+        break;
+    case HaltReason::TargetError:
+        std::cerr << "wavepath: target error " << format_number("%g", options.target_error)
+                  << " reached: " << estimate;
+        if (result.previous.spp > 0)
+            std::cerr << " (" << format_number("%.4g", result.previous.rel_mse) << " at "
+                      << result.previous.spp << " spp)";
+        std::cerr << ", " << format_number("%.2f", result.seconds) << " s\n";
+        break;
+    case HaltReason::SampleCount:
+        if (options.target_error > 0.0)
+            std::cerr << "wavepath: the target error " << format_number("%g", options.target_error)
+                      << " was not reached within " << max_spp << " spp"
+                      << (estimate.empty() ? "" : ": " + estimate) << "\n";
+        break;
+    case HaltReason::Interrupted:
+        break; // the caller says what the outputs hold
+    }
+}
+
 } // namespace
 
 void add_render_loop_options(CLI::App& render, RenderLoopOptions& options, std::uint32_t& spp) {
@@ -253,34 +287,7 @@ RenderLoopResult RenderLoop::run(Film& film, std::uint32_t max_spp, std::uint32_
         publish_preview(state_at(result.spp, result.seconds),
                         result.interrupted() ? "stopped" : "done");
 
-    const std::string estimate = result.estimate.spp > 0
-                                     ? "estimated relMSE " +
-                                           format_number("%.4g", result.estimate.rel_mse) + " at " +
-                                           std::to_string(result.estimate.spp) + " spp"
-                                     : "";
-    switch (result.reason) {
-    case HaltReason::TimeBudget:
-        std::cerr << "wavepath: time budget of " << format_number("%g", time_budget)
-                  << " s reached: " << result.spp << " spp in "
-                  << format_number("%.2f", result.seconds) << " s\n";
-        break;
-    case HaltReason::TargetError:
-        std::cerr << "wavepath: target error " << format_number("%g", target)
-                  << " reached: " << estimate;
-        if (result.previous.spp > 0)
-            std::cerr << " (" << format_number("%.4g", result.previous.rel_mse) << " at "
-                      << result.previous.spp << " spp)";
-        std::cerr << ", " << format_number("%.2f", result.seconds) << " s\n";
-        break;
-    case HaltReason::SampleCount:
-        if (target > 0.0)
-            std::cerr << "wavepath: the target error " << format_number("%g", target)
-                      << " was not reached within " << max_spp << " spp"
-                      << (estimate.empty() ? "" : ": " + estimate) << "\n";
-        break;
-    case HaltReason::Interrupted:
-        break; // the caller says what the outputs hold
-    }
+    print_halt(result, options_, max_spp);
     return result;
 }
 
