@@ -113,6 +113,7 @@ CLI::App* add_render_subcommand(CLI::App& app, RenderCommand& command) {
     r->add_option("--trace", command.trace,
                   "Write every kernel launch and transfer as a Chrome trace (Perfetto, "
                   "chrome://tracing)");
+    add_checkpoint_options(*r, command.checkpoints);
     return r;
 }
 
@@ -169,7 +170,15 @@ int run_render(const RenderCommand& command) {
     check_output(command.png, kImageExtensions);
     check_output(command.profile_json);
     check_output(command.trace);
+    check_output(command.checkpoints.file);
+    // --checkpoint may be the --resume file (go on saving where it started).
     check_distinct_outputs({{"the scene", command.scene}},
+                           {{"--out", command.out},
+                            {"--png", command.png},
+                            {"--profile-json", command.profile_json},
+                            {"--trace", command.trace},
+                            {"--checkpoint", command.checkpoints.file}});
+    check_distinct_outputs({{"--resume", command.checkpoints.resume}},
                            {{"--out", command.out},
                             {"--png", command.png},
                             {"--profile-json", command.profile_json},
@@ -186,6 +195,9 @@ int run_render(const RenderCommand& command) {
     // zeroing) a film first would take a minute and all host memory before
     // an image too big for the device is refused.
     Film film = allocate_film(scene.camera.width, scene.camera.height);
+    RenderCheckpoints checkpoints(
+        command.checkpoints, checkpoint_identity(scene, options, integrator.program().options));
+    std::uint32_t spp = checkpoints.resume(film, command.spp); // 0 without --resume
     Profiler profiler;
     if (profiling)
         integrator.set_profiler(&profiler);
@@ -201,13 +213,15 @@ int run_render(const RenderCommand& command) {
     // noticed between calls, where every pixel has the same number. Always
     // the same split for the same options, so the image is too.
     const std::uint32_t per_call = samples_per_call(options);
-    std::uint32_t spp = 0;
     {
         ProgressBar progress(command.spp, pixels);
         while (spp < command.spp && (spp == 0 || !interrupt_requested())) {
-            const std::uint32_t part = std::min(per_call, command.spp - spp);
+            // Calls end on multiples of per_call, also after resuming from a
+            // checkpoint that ended short of one (render/checkpoint.hpp).
+            const std::uint32_t part = std::min(per_call - spp % per_call, command.spp - spp);
             integrator.render(spp, part, film, [&](double done) { progress.update(spp + done); });
             spp += part;
+            checkpoints.save_if_due(spp, film);
         }
     }
     const bool interrupted = spp < command.spp;
@@ -219,6 +233,7 @@ int run_render(const RenderCommand& command) {
     write_result_image(command.out, image, command.view);
     if (!command.png.empty())
         write_result_image(command.png, image, command.view);
+    checkpoints.save(spp, film);
 
     const RenderStats& stats = integrator.stats();
     double seconds = stats.render_seconds;
