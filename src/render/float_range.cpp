@@ -9,7 +9,9 @@ FloatFrame float_frame(const Scene& scene) {
     const SceneBox box = scene_box(scene);
     FloatFrame frame;
     double largest = box.largest_coordinate();
-    if (largest > kRecentreDistanceRatio * box.size()) {
+    // (A box of size 0 is a scene without shapes, as kernel tests build: only
+    // the camera, which stays where it is.)
+    if (box.size() > 0.0 && largest > kRecentreDistanceRatio * box.size()) {
         frame.origin = box.centre();
         largest = 0.5 * box.size();
     }

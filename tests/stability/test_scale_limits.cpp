@@ -171,3 +171,26 @@ TEST_CASE("scale limits: the camera's eye and look_at closer than 1e-9 of their 
                   "camera.look_at: must differ from camera.eye by more than 1e-9 of their "
                   "distance from the origin");
 }
+
+TEST_CASE("scale limits: the float frame leaves comfortable scenes exactly where they are",
+          "[stability][scale-limits]") {
+    const Scene room = hexroom(kSize);
+    // In the band, not far from the origin: untouched, so images stay bit for bit.
+    const FloatFrame identity = float_frame(room);
+    CHECK(identity.origin == glm::dvec3(0.0));
+    CHECK(identity.scale == 1.0);
+    CHECK(float_frame(transformed(room, 1.0, glm::dvec3(1e5, -1e5, 1e5))).scale == 1.0);
+    CHECK(float_frame(transformed(room, 1.0, glm::dvec3(1e5, -1e5, 1e5))).origin ==
+          glm::dvec3(0.0));
+    // 2^14 times its size away: moved to the box's centre, not rescaled.
+    const Scene far = transformed(room, 1.0, glm::dvec3(1e6, -1e6, 1e6));
+    const FloatFrame moved = float_frame(far);
+    CHECK(moved.origin == scene_box(far).centre());
+    CHECK(moved.scale == 1.0);
+    CHECK(std::abs(moved.point(far.camera.eye).x) <= 0.5 * scene_box(far).size());
+    // A camera without shapes (a box of size 0) stays where it is.
+    Scene camera_only;
+    camera_only.camera.eye = {1.0, 2.0, 3.0};
+    CHECK(float_frame(camera_only).origin == glm::dvec3(0.0));
+    CHECK(float_frame(camera_only).scale == 1.0);
+}
