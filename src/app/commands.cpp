@@ -105,6 +105,7 @@ CLI::App* add_render_subcommand(CLI::App& app, RenderCommand& command) {
                   "Write every kernel launch and transfer as a Chrome trace (Perfetto, "
                   "chrome://tracing)");
     add_render_loop_options(*r, command.loop, command.spp);
+    add_checkpoint_options(*r, command.checkpoints);
     return r;
 }
 
@@ -161,7 +162,15 @@ int run_render(const RenderCommand& command) {
     check_output(command.png, kImageExtensions);
     check_output(command.profile_json);
     check_output(command.trace);
+    check_output(command.checkpoints.file);
+    // --checkpoint may be the --resume file (go on saving where it started).
     check_distinct_outputs({{"the scene", command.scene}},
+                           {{"--out", command.out},
+                            {"--png", command.png},
+                            {"--profile-json", command.profile_json},
+                            {"--trace", command.trace},
+                            {"--checkpoint", command.checkpoints.file}});
+    check_distinct_outputs({{"--resume", command.checkpoints.resume}},
                            {{"--out", command.out},
                             {"--png", command.png},
                             {"--profile-json", command.profile_json},
@@ -181,6 +190,9 @@ int run_render(const RenderCommand& command) {
     // zeroing) a film first would take a minute and all host memory before
     // an image too big for the device is refused.
     Film film = allocate_film(scene.camera.width, scene.camera.height);
+    RenderCheckpoints checkpoints(
+        command.checkpoints, checkpoint_identity(scene, options, integrator.program().options));
+    const std::uint32_t resumed = checkpoints.resume(film, command.spp); // 0 without --resume
     Profiler profiler;
     if (profiling)
         integrator.set_profiler(&profiler);
@@ -192,15 +204,17 @@ int run_render(const RenderCommand& command) {
 
     const std::uint64_t pixels = static_cast<std::uint64_t>(scene.camera.width) *
                                  static_cast<std::uint64_t>(scene.camera.height);
-    // Samples are rendered a few per call, so that Ctrl-C (interrupt.hpp) and
-    // the halt conditions are checked between calls, where every pixel has
-    // the same number. Always the same split for the same options, so the
-    // image is too.
+    // Samples are rendered a few per call, so that Ctrl-C (interrupt.hpp),
+    // the halt conditions and the checkpoints are dealt with between calls,
+    // where every pixel has the same number. Always the same split for the
+    // same options, so the image is too.
     const RenderLoopResult rendered = loop.run(
         film, command.spp, samples_per_call(options),
         [&](std::uint32_t first, std::uint32_t count, const std::function<void(double)>& progress) {
             integrator.render(first, count, film, progress);
-        });
+            checkpoints.save_if_due(first + count, film);
+        },
+        resumed);
     const std::uint32_t spp = rendered.spp;
     const bool interrupted = rendered.interrupted();
 
@@ -211,16 +225,18 @@ int run_render(const RenderCommand& command) {
                                       .height = scene.camera.height,
                                       .samples_done = spp,
                                       .samples_requested = command.spp,
+                                      .samples_resumed = resumed,
                                       .options = options,
                                       .devices = {device.info.name},
                                       .render_seconds = integrator.stats().render_seconds});
     write_result_image(command.out, image, view);
     if (!command.png.empty())
         write_result_image(command.png, image, view);
+    checkpoints.save(spp, film);
 
     const RenderStats& stats = integrator.stats();
     double seconds = stats.render_seconds;
-    double samples = static_cast<double>(pixels) * spp;
+    double samples = static_cast<double>(pixels) * (spp - resumed); // this run's
     double rays = static_cast<double>(stats.camera_rays + stats.bounce_rays + stats.shadow_rays);
     std::printf("rendered %s: %dx%d, %u spp, %.2f s, %.3g samples/s, %.3g Mrays/s "
                 "(%.0f camera, %.0f bounce, %.0f shadow rays)\n",

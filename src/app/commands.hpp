@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "app/checkpointing.hpp"
 #include "app/render_loop.hpp"
 #include "image/tonemap.hpp"
 #include "render/film.hpp"
@@ -30,7 +31,8 @@ struct RenderCommand {
     std::string profile_json;
     std::string trace;
     ViewOptions view;
-    RenderLoopOptions loop; // --time, --target-error, --quiet, --preview (render_loop.hpp)
+    RenderLoopOptions loop;        // --time, --target-error, --quiet, --preview (render_loop.hpp)
+    CheckpointOptions checkpoints; // --checkpoint, --checkpoint-every, --resume
 };
 
 struct BenchCommand {

@@ -255,7 +255,11 @@ RenderLoopResult RenderLoop::run(Film& film, std::uint32_t max_spp, std::uint32_
         }
         const Clock::time_point call_start = Clock::now();
         const std::uint32_t first = result.spp;
-        const std::uint32_t part = std::min(samples_per_call, max_spp - first);
+        // Calls end on multiples of samples_per_call, also after resuming
+        // from a checkpoint that ended short of one (render/checkpoint.hpp),
+        // so that a resumed film is summed as the uninterrupted one was.
+        const std::uint32_t part =
+            std::min(samples_per_call - first % samples_per_call, max_spp - first);
         render(first, part, [&](double done) {
             progress.update(state_at(first + done, seconds_between(start, Clock::now())));
         });

@@ -31,7 +31,7 @@ std::string file_sha256(const std::string& path) {
 
 Metadata render_metadata(const RenderRecord& record) {
     const double samples = static_cast<double>(record.width) * static_cast<double>(record.height) *
-                           record.samples_done;
+                           (record.samples_done - record.samples_resumed);
     return {
         {"wavepath.version", WAVEPATH_VERSION},
         {"wavepath.commit", WAVEPATH_GIT_DESCRIBE},
@@ -40,6 +40,7 @@ Metadata render_metadata(const RenderRecord& record) {
         {"wavepath.resolution", std::to_string(record.width) + "x" + std::to_string(record.height)},
         {"wavepath.samples_per_pixel", std::to_string(record.samples_done)},
         {"wavepath.samples_requested", std::to_string(record.samples_requested)},
+        {"wavepath.resumed_from", std::to_string(record.samples_resumed)},
         {"wavepath.seed", std::to_string(record.options.seed)},
         {"wavepath.estimator", describe_estimator(record.options)},
         {"wavepath.max_depth", std::to_string(record.options.max_depth)},

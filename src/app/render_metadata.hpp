@@ -23,6 +23,7 @@ struct RenderRecord {
     int height = 0;
     std::uint32_t samples_done = 0; // per pixel; fewer than asked when interrupted
     std::uint32_t samples_requested = 0;
+    std::uint32_t samples_resumed = 0; // per pixel, taken from a checkpoint (--resume)
     IntegratorOptions options;
     std::vector<std::string> devices; // the name of each device that rendered
     double render_seconds = 0.0;      // kernel build excluded
@@ -32,8 +33,9 @@ struct RenderRecord {
 // --always --dirty` at build time, "unknown" outside a git checkout), scene,
 // scene_sha256 (of the scene file's bytes; the mesh files it names are not
 // included), resolution ("WxH"), samples_per_pixel,
-// samples_requested, seed, estimator (describe_estimator), max_depth,
-// devices (joined by "; "), render_seconds and samples_per_second.
+// samples_requested, resumed_from (samples_resumed), seed, estimator (describe_estimator),
+// max_depth, devices (joined by "; "), render_seconds and samples_per_second (of this run's
+// samples: a resumed render's time does not include the checkpoint's).
 Metadata render_metadata(const RenderRecord& record);
 
 } // namespace wp

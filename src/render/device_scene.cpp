@@ -6,6 +6,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "render/float_range.hpp"
+
 namespace wp {
 
 wp_float4 to_float4(const glm::dvec3& v, double w) {
@@ -146,14 +148,17 @@ DeviceScene flatten_scene(const Scene& scene, bool hierarchy) {
         out.materials.push_back(w);
     }
 
+    // Coordinates in float32's comfortable range, exactly (render/float_range.hpp).
+    const FloatFrame frame = float_frame(scene);
+
     std::vector<double> areas;
     double total_area = 0.0;
     for (std::size_t i = 0; i < scene.triangles.size(); ++i) {
         const Triangle& t = scene.triangles[i];
         WpTriangle w{};
-        w.v0 = to_float4(t.v[0]);
-        w.v1 = to_float4(t.v[1]);
-        w.v2 = to_float4(t.v[2]);
+        w.v0 = to_float4(frame.point(t.v[0]));
+        w.v1 = to_float4(frame.point(t.v[1]));
+        w.v2 = to_float4(frame.point(t.v[2]));
         w.material = t.material;
         if (t.has_normals) {
             WpShadingNormals n{};
@@ -165,7 +170,9 @@ DeviceScene flatten_scene(const Scene& scene, bool hierarchy) {
         }
         out.triangles.push_back(w);
         if (scene.materials[t.material].is_emissive()) {
-            double area = 0.5 * glm::length(glm::cross(t.v[1] - t.v[0], t.v[2] - t.v[0]));
+            const glm::dvec3 e1 = frame.scale * (t.v[1] - t.v[0]);
+            const glm::dvec3 e2 = frame.scale * (t.v[2] - t.v[0]);
+            double area = 0.5 * glm::length(glm::cross(e1, e2));
             WpLight light{};
             light.triangle = static_cast<wp_uint>(i);
             out.lights.push_back(light);
@@ -184,7 +191,7 @@ DeviceScene flatten_scene(const Scene& scene, bool hierarchy) {
 
     for (const Sphere& s : scene.spheres) {
         WpSphere w{};
-        w.center_radius = to_float4(s.center, s.radius);
+        w.center_radius = to_float4(frame.point(s.center), frame.scale * s.radius);
         w.material = s.material;
         out.spheres.push_back(w);
     }
@@ -195,7 +202,7 @@ DeviceScene flatten_scene(const Scene& scene, bool hierarchy) {
     glm::dvec3 up = glm::cross(right, forward);
     double half_height = std::tan(0.5 * c.vertical_fov_degrees * M_PI / 180.0);
     double aspect = static_cast<double>(c.width) / static_cast<double>(c.height);
-    out.camera.eye = to_float4(c.eye);
+    out.camera.eye = to_float4(frame.point(c.eye));
     out.camera.forward = to_float4(forward);
     out.camera.right = to_float4(right * (half_height * aspect));
     out.camera.up = to_float4(up * half_height);

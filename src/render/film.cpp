@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <numeric>
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 namespace wp {
 
@@ -10,6 +12,18 @@ Film::Film(int width, int height)
     : width_(width), height_(height), sum_(static_cast<std::size_t>(width) * height * 3, 0.0),
       sum_squares_(sum_.size(), 0.0), odd_sum_(sum_.size(), 0.0), count_(sum_.size() / 3, 0),
       odd_count_(count_.size(), 0) {}
+
+Film::Film(int width, int height, FilmSums sums)
+    : width_(width), height_(height), sum_(std::move(sums.sum)),
+      sum_squares_(std::move(sums.sum_squares)), odd_sum_(std::move(sums.odd_sum)),
+      count_(std::move(sums.count)), odd_count_(std::move(sums.odd_count)) {
+    const std::size_t pixels =
+        width > 0 && height > 0 ? static_cast<std::size_t>(width) * height : 0;
+    if (pixels == 0 || sum_.size() != pixels * 3 || sum_squares_.size() != pixels * 3 ||
+        odd_sum_.size() != pixels * 3 || count_.size() != pixels || odd_count_.size() != pixels)
+        throw std::invalid_argument("Film: the saved sums do not match a " + std::to_string(width) +
+                                    "x" + std::to_string(height) + " film");
+}
 
 std::uint64_t Film::min_samples() const {
     return count_.empty() ? 0 : *std::min_element(count_.begin(), count_.end());

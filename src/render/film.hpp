@@ -14,10 +14,23 @@
 
 namespace wp {
 
+// A film's raw sums and counts, for saving a render and resuming it
+// (render/checkpoint.hpp). The layout of Film's own arrays.
+struct FilmSums {
+    std::vector<double> sum;         // rgb per pixel
+    std::vector<double> sum_squares; // rgb per pixel
+    std::vector<double> odd_sum;     // rgb per pixel, odd sample indices only
+    std::vector<std::uint64_t> count;
+    std::vector<std::uint64_t> odd_count;
+};
+
 class Film {
   public:
     Film() = default;
     Film(int width, int height);
+    // A film holding saved sums; throws std::invalid_argument unless the
+    // arrays have the sizes of a width x height film.
+    Film(int width, int height, FilmSums sums);
 
     int width() const { return width_; }
     int height() const { return height_; }
@@ -36,6 +49,9 @@ class Film {
 
     // Combines another film of disjoint samples (e.g. from another device).
     void merge(const Film& other);
+
+    // Everything the film holds, to be given back to the constructor above.
+    FilmSums sums() const { return {sum_, sum_squares_, odd_sum_, count_, odd_count_}; }
 
     Image mean() const;                // the estimate: sum / samples, per pixel
     Image variance_of_mean() const;    // per pixel and channel: sample variance / samples

@@ -131,7 +131,8 @@ class SceneReader : private json::Reader {
         if (has_look_at) {
             c.look_at = vec3(cam.at("look_at"), p / "look_at", Range::Coordinate);
             if (view_direction_is_degenerate(c.eye, c.look_at))
-                fail(p / "look_at", "must differ from eye (there is no view direction)");
+                fail(p / "look_at", "must differ from eye by more than 1e-9 of their distance from "
+                                    "the origin (there is no usable view direction)");
         } else {
             const glm::dvec3 d = vec3(cam.at("direction"), p / "direction", Range::Coordinate);
             if (d == glm::dvec3(0.0))

@@ -8,6 +8,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "scene/scene_box.hpp"
+
 namespace wp {
 
 bool is_zero_area(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
@@ -36,6 +38,14 @@ namespace {
 std::string fmt(double x) {
     std::array<char, 64> buf{};
     const auto res = std::to_chars(buf.data(), buf.data() + buf.size(), x);
+    return std::string(buf.data(), res.ptr);
+}
+
+// Three significant digits, for derived quantities (sizes, ratios).
+std::string fmt3(double x) {
+    std::array<char, 64> buf{};
+    const auto res =
+        std::to_chars(buf.data(), buf.data() + buf.size(), x, std::chars_format::general, 3);
     return std::string(buf.data(), res.ptr);
 }
 
@@ -82,7 +92,8 @@ class Checker {
         if (c.height < 1 || c.height > scene_limits::max_resolution)
             fail("camera.height", "must be in [1, 16384], got " + std::to_string(c.height));
         if (view_direction_is_degenerate(c.eye, c.look_at))
-            fail("camera.look_at", "must differ from camera.eye");
+            fail("camera.look_at", "must differ from camera.eye by more than 1e-9 of their "
+                                   "distance from the origin (there is no usable view direction)");
         if (up_is_parallel(c.eye, c.look_at, c.up))
             fail("camera.up", "is zero or parallel to the view direction");
 
@@ -106,8 +117,10 @@ class Checker {
             for (int k = 0; k < 3; ++k)
                 point(t.v[static_cast<std::size_t>(k)], f + ".v[" + std::to_string(k) + "]");
             material_index(t.material, f + ".material");
-            if (is_zero_area(t.v[0], t.v[1], t.v[2]))
+            if (is_zero_area(t.v[0], t.v[1], t.v[2])) {
+                extent(); // a scene too far from the origin loses its triangles' areas
                 fail(f, "zero-area triangle (the loader skips these)");
+            }
         }
 
         for (std::size_t i = 0; i < scene_.spheres.size(); ++i) {
@@ -124,9 +137,29 @@ class Checker {
 
         if (scene_.triangles.empty() && scene_.spheres.empty())
             fail("shapes", "the scene has no shapes");
+        extent();
     }
 
   private:
+    // The scene's size and distance from the origin, against what double
+    // input and float32 rendering can resolve (validate.hpp).
+    void extent() const {
+        const SceneBox box = scene_box(scene_);
+        const double size = box.size(), distance = box.largest_coordinate();
+        if (!std::isfinite(size) || !std::isfinite(distance))
+            return; // a non-finite coordinate, which its own check names
+        if (!(size >= scene_limits::min_scene_size))
+            fail("shapes", "the scene's size " + fmt3(size) +
+                               " (its box's longest side) is below " +
+                               fmt3(scene_limits::min_scene_size) +
+                               ", the smallest whose areas squared double holds");
+        if (distance > scene_limits::max_distance_to_size * size)
+            fail("shapes", "the scene lies " + fmt3(distance) + " from the origin, " +
+                               fmt3(distance / size) + " times its size " + fmt3(size) +
+                               "; at most 2^29 = 5.4e8 times its size can be rendered (its "
+                               "coordinates would need more than double's 16 digits)");
+    }
+
     // The checks below, without building the field names that only a failure
     // needs: for a mesh of a million triangles the names took most of the
     // load time.

@@ -9,9 +9,23 @@
 namespace wp {
 
 namespace scene_limits {
-// Largest magnitude accepted for a coordinate or radius: float32 carries it
-// with room to spare for differences and squared lengths in the kernels.
+// Largest magnitude accepted for a coordinate or radius. (The renderer moves
+// and rescales a scene into float32's comfortable range exactly before it
+// renders, render/float_range.hpp, so this is the format's limit, not
+// float32's: every scale within it renders the same image.)
 inline constexpr double max_coordinate = 1e30;
+// Smallest accepted scene size (the longest side of the box around shapes
+// and eye): the zero-area check squares a triangle's doubled area, a length
+// to the fourth power, and for features a millionth of the size that stays
+// a normal double (above 2.2e-308) down to here.
+inline constexpr double min_scene_size = 1e-60;
+// Largest accepted ratio of a scene's distance from the origin (its largest
+// coordinate) to its size: 2^29. Coordinates are held in double (53 bits)
+// and rendered in float32 (24 bits) relative to the scene's own box, so
+// beyond 2^(53 - 24) times its size a coordinate's double rounding alone is
+// coarser than float32's resolution of the scene: its detail is already
+// lost in the input (the coordinates would need more than 16 digits).
+inline constexpr double max_distance_to_size = 536870912.0; // 2^29
 // Largest accepted emitted radiance per channel.
 inline constexpr double max_radiance = 1e30;
 // Largest image side in pixels.
@@ -44,8 +58,10 @@ bool has_emitter(const Scene& scene);
 // within the limits above, reflectance in [0, 1], non-negative emission, positive
 // radius, resolution 1..16384, fov in (0, 180), a usable camera frame, material
 // indices in range, no emissive sphere, no zero-area triangle, at least one
-// shape). Throws SceneError("<source>: <field>: <problem>") naming the field in
-// C++ terms, e.g. "triangles[3].v[1]". parse_scene() calls it as a final check.
+// shape, a scene size and a distance from the origin that float32 rendering
+// can resolve: docs/stability.md, "Accepted range"). Throws SceneError("<source>: <field>:
+// <problem>") naming the field in C++ terms, e.g. "triangles[3].v[1]". parse_scene() calls it as a
+// final check.
 void validate_scene(const Scene& scene);
 
 } // namespace wp

@@ -1,12 +1,13 @@
-// The wavepath executable as a child process that a test talks to while it
-// runs (the live preview), with stdout and stderr in files of the scratch
-// directory.
+// A wavepath process running beside a test, for sending it real signals
+// while it renders (test_cli_interrupt.cpp, test_cli_checkpoint.cpp) or
+// talking to it (the live preview, test_cli_preview.cpp).
 #pragma once
 
 #include <catch2/catch.hpp>
 
 #include <chrono>
 #include <csignal>
+#include <filesystem>
 #include <string>
 #include <thread>
 #include <vector>
@@ -22,9 +23,9 @@ extern char** environ;
 
 namespace wp::test::cli {
 
+// A wavepath process with stdout and stderr in files of the scratch directory.
 class Child {
   public:
-    // Runs wavepath with `arguments` on the test device.
     Child(const std::vector<std::string>& arguments, const Scratch& s)
         : out_(s.dir / "child-stdout.txt"), err_(s.dir / "child-stderr.txt") {
         std::vector<std::string> args = {WAVEPATH_EXE};
@@ -54,8 +55,13 @@ class Child {
     Child(const Child&) = delete;
     Child& operator=(const Child&) = delete;
 
-    // Waits (at most two minutes: the first kernel build is slow) until
-    // stderr holds `text`; returns stderr.
+    // Waits (at most two minutes: the first kernel build is slow) until the
+    // render has started, then a little longer so that some samples are done.
+    void wait_until_rendering() const {
+        wait_for_stderr(" spp on ");
+        std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    }
+    // Waits (at most two minutes) until stderr holds `text`; returns stderr.
     std::string wait_for_stderr(const std::string& text) const {
         const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(2);
         std::string err;
@@ -66,6 +72,7 @@ class Child {
         }
         return err;
     }
+    void signal(int sig) const { REQUIRE(::kill(pid_, sig) == 0); }
 
     // The wait status, within a minute.
     int wait() {
@@ -83,7 +90,7 @@ class Child {
 
   private:
     pid_t pid_ = 0;
-    fs::path out_, err_;
+    std::filesystem::path out_, err_;
 };
 
 } // namespace wp::test::cli
