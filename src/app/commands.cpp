@@ -14,10 +14,13 @@
 #include "app/cli_options.hpp"
 #include "app/interrupt.hpp"
 #include "app/progress.hpp"
+#include "app/render_devices.hpp"
 #include "cl/context.hpp"
 #include "cl/device.hpp"
 #include "image/image_io.hpp"
+#include "render/multi_device.hpp"
 #include "render/wavefront.hpp"
+#include "report/device_profile.hpp"
 #include "report/profile_report.hpp"
 #include "scene/load.hpp"
 #include "scene/validate.hpp"
@@ -165,6 +168,8 @@ std::uint32_t samples_per_call(const IntegratorOptions& options) {
 }
 
 int run_render(const RenderCommand& command) {
+    if (const std::optional<int> status = run_render_as_mpi_worker(command))
+        return *status; // a rank other than 0 of an MPI job (render_devices.hpp)
     check_output(command.out, kImageExtensions);
     check_output(command.png, kImageExtensions);
     check_output(command.profile_json);
@@ -179,28 +184,26 @@ int run_render(const RenderCommand& command) {
 
     const bool profiling =
         command.profile || !command.profile_json.empty() || !command.trace.empty();
-    DeviceContext device(select_device(command.device), profiling);
     const IntegratorOptions& options = command.integrator;
-    WavefrontIntegrator integrator(device, scene, options);
+    // Every device of --device, and with MPI the other ranks' (render_devices.hpp).
+    std::unique_ptr<MultiDeviceRenderer> renderer = open_renderer(command, scene, profiling);
+    MultiDeviceRenderer& integrator = *renderer;
     // After the integrator, whose device check is arithmetic: allocating (and
     // zeroing) a film first would take a minute and all host memory before
     // an image too big for the device is refused.
     Film film = allocate_film(scene.camera.width, scene.camera.height);
-    Profiler profiler;
-    if (profiling)
-        integrator.set_profiler(&profiler);
 
     std::cerr << "wavepath: " << scene.camera.width << "x" << scene.camera.height << " at "
-              << command.spp << " spp on " << device.info.name << " (kernels built in "
-              << integrator.program().build_seconds
-              << " s; features: " << integrator.features().describe() << ")\n";
+              << command.spp << " spp on " << integrator.describe() << " (kernels built in "
+              << integrator.integrator().program().build_seconds
+              << " s; features: " << integrator.integrator().features().describe() << ")\n";
 
     const std::uint64_t pixels = static_cast<std::uint64_t>(scene.camera.width) *
                                  static_cast<std::uint64_t>(scene.camera.height);
     // Samples are rendered a few per call, so that Ctrl-C (interrupt.hpp) is
     // noticed between calls, where every pixel has the same number. Always
     // the same split for the same options, so the image is too.
-    const std::uint32_t per_call = samples_per_call(options);
+    const std::uint32_t per_call = integrator.samples_per_call(samples_per_call(options));
     std::uint32_t spp = 0;
     {
         ProgressBar progress(command.spp, pixels);
@@ -220,7 +223,8 @@ int run_render(const RenderCommand& command) {
     if (!command.png.empty())
         write_result_image(command.png, image, command.view);
 
-    const RenderStats& stats = integrator.stats();
+    integrator.finish(); // the MPI ranks' shares arrive
+    const RenderStats stats = integrator.stats();
     double seconds = stats.render_seconds;
     double samples = static_cast<double>(pixels) * spp;
     double rays = static_cast<double>(stats.camera_rays + stats.bounce_rays + stats.shadow_rays);
@@ -234,21 +238,23 @@ int run_render(const RenderCommand& command) {
                 static_cast<unsigned long long>(stats.nonfinite_samples));
     if (profiling) {
         ProfileContext context;
-        context.device = device.info.name;
+        context.device = integrator.describe();
         context.scene = command.scene;
         context.width = scene.camera.width;
         context.height = scene.camera.height;
         context.spp = spp;
-        context.build_options = integrator.program().options;
-        context.build_seconds = integrator.program().build_seconds;
+        context.build_options = integrator.integrator().program().options;
+        context.build_seconds = integrator.integrator().program().build_seconds;
         context.regeneration = options.regeneration;
-        context.pool_size = integrator.pool_size();
+        context.pool_size = integrator.integrator().pool_size();
         if (command.profile)
-            std::printf("\n%s", profile_table(profiler, stats, context).c_str());
+            std::printf("\n%s", multi_device_profile_table(integrator, context).c_str());
         if (!command.profile_json.empty())
-            write_profile_json(command.profile_json, profiler, stats, context);
+            write_multi_device_profile_json(command.profile_json, integrator, context);
         if (!command.trace.empty())
-            profiler.write_trace(command.trace, device.info.name);
+            write_multi_device_trace(command.trace, integrator);
+    } else {
+        print_device_shares(integrator); // with several devices
     }
     if (interrupted) {
         std::fflush(stdout);
