@@ -82,6 +82,13 @@ void ChunkSource::give_back(SampleRange range) {
     changed_.notify_all();
 }
 
+void ChunkSource::cancel() {
+    std::lock_guard lock(mutex_);
+    exhausted_ = true;
+    given_back_.clear();
+    changed_.notify_all();
+}
+
 std::uint64_t ChunkSource::samples_given_back() const {
     std::lock_guard lock(mutex_);
     std::uint64_t samples = 0;

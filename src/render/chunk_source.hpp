@@ -42,6 +42,10 @@ class ChunkSource {
     // The device failed: the chunk goes to the next device that asks.
     void give_back(SampleRange range);
 
+    // Hands out nothing more (the render is being abandoned): the devices
+    // stop after their current chunks.
+    void cancel();
+
     // Ranges given back and not taken since (when every device failed).
     std::uint64_t samples_given_back() const;
 

@@ -51,6 +51,37 @@ void Film::merge(const Film& other) {
     }
 }
 
+std::vector<double> Film::packed_sums() const {
+    std::vector<double> out(sum_);
+    out.insert(out.end(), sum_squares_.begin(), sum_squares_.end());
+    out.insert(out.end(), odd_sum_.begin(), odd_sum_.end());
+    return out;
+}
+
+std::vector<std::uint64_t> Film::packed_counts() const {
+    std::vector<std::uint64_t> out(count_);
+    out.insert(out.end(), odd_count_.begin(), odd_count_.end());
+    return out;
+}
+
+Film Film::from_packed(int width, int height, const std::vector<double>& sums,
+                       const std::vector<std::uint64_t>& counts) {
+    Film film(width, height);
+    const std::size_t n = film.sum_.size(), pixels = film.count_.size();
+    if (sums.size() != 3 * n || counts.size() != 2 * pixels)
+        throw std::logic_error("Film::from_packed: sizes do not match the film");
+    std::copy(sums.begin(), sums.begin() + static_cast<std::ptrdiff_t>(n), film.sum_.begin());
+    std::copy(sums.begin() + static_cast<std::ptrdiff_t>(n),
+              sums.begin() + static_cast<std::ptrdiff_t>(2 * n), film.sum_squares_.begin());
+    std::copy(sums.begin() + static_cast<std::ptrdiff_t>(2 * n), sums.end(),
+              film.odd_sum_.begin());
+    std::copy(counts.begin(), counts.begin() + static_cast<std::ptrdiff_t>(pixels),
+              film.count_.begin());
+    std::copy(counts.begin() + static_cast<std::ptrdiff_t>(pixels), counts.end(),
+              film.odd_count_.begin());
+    return film;
+}
+
 Image Film::mean() const {
     Image image(width_, height_);
     for (std::size_t i = 0; i < sum_.size(); ++i) {

@@ -37,6 +37,14 @@ class Film {
     // Combines another film of disjoint samples (e.g. from another device).
     void merge(const Film& other);
 
+    // The film's numbers as they are, to send to another process (MPI):
+    // the rgb sums, sums of squares and odd sums end to end, and the counts
+    // then the odd counts. from_packed makes a film of them again.
+    std::vector<double> packed_sums() const;
+    std::vector<std::uint64_t> packed_counts() const;
+    static Film from_packed(int width, int height, const std::vector<double>& sums,
+                            const std::vector<std::uint64_t>& counts);
+
     Image mean() const;                // the estimate: sum / samples, per pixel
     Image variance_of_mean() const;    // per pixel and channel: sample variance / samples
     Image half_mean(int parity) const; // mean over even (0) or odd (1) sample indices

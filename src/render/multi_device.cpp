@@ -148,7 +148,7 @@ void MultiDeviceRenderer::finish() {
     if (!peers_)
         return;
     std::unique_ptr<RenderPeers> peers = std::move(peers_);
-    peer_shares_ = peers->finish();
+    peer_shares_ = peers->finish(peer_stats_);
 }
 
 void MultiDeviceRenderer::fail_after_chunks(std::size_t device, std::uint32_t chunks) {
@@ -274,6 +274,7 @@ void MultiDeviceRenderer::run(ChunkSource& source, ChunkQueue* for_peers, Film& 
     // other ranks; it polls often when there are peers, as they wait on it.
     const auto poll = peers_ ? std::chrono::milliseconds(1) : std::chrono::milliseconds(100);
     bool peers_done = !peers_;
+    std::exception_ptr abandoned; // a peer's failure: the render cannot go on
     for (;;) {
         bool local_done = false;
         {
@@ -281,19 +282,27 @@ void MultiDeviceRenderer::run(ChunkSource& source, ChunkQueue* for_peers, Film& 
             wakeup.changed.wait_for(lock, poll);
             local_done = wakeup.running == 0;
         }
-        if (peers_ && !peers_done)
-            peers_done = peers_->serve(*for_peers);
-        if (on_progress) {
-            double done = peers_ ? peers_->samples_done() : 0.0;
-            for (Device* device : working)
-                done += device->samples_done.load() + device->samples_partial.load();
-            on_progress(done);
+        try {
+            if (peers_ && !peers_done)
+                peers_done = peers_->serve(*for_peers);
+            if (on_progress) {
+                double done = peers_ ? peers_->samples_done() : 0.0;
+                for (Device* device : working)
+                    done += device->samples_done.load() + device->samples_partial.load();
+                on_progress(done);
+            }
+        } catch (...) {
+            abandoned = std::current_exception();
+            source.cancel(); // the devices stop after their current chunks
+            peers_done = true;
         }
         if (local_done && peers_done)
             break;
     }
     for (std::thread& thread : threads)
         thread.join();
+    if (abandoned)
+        std::rethrow_exception(abandoned);
 
     const double call_seconds = seconds_since(start);
     for (Device* device : working) {
@@ -339,7 +348,7 @@ std::vector<DeviceShare> MultiDeviceRenderer::shares() const {
 }
 
 RenderStats MultiDeviceRenderer::stats() const {
-    RenderStats total;
+    RenderStats total = peer_stats_;
     for (const auto& device : devices_)
         if (device->integrator)
             add_stats(total, device->integrator->stats());
@@ -375,7 +384,7 @@ std::string MultiDeviceRenderer::describe() const {
     std::string text;
     for (const auto& device : devices_)
         text += (text.empty() ? "" : " + ") + device->share.name + " (" + device->share.index + ")";
-    return text;
+    return peers_ ? text + " + " + peers_->describe() : text;
 }
 
 } // namespace wp

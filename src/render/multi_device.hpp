@@ -67,8 +67,11 @@ class RenderPeers {
     virtual double samples_done() const = 0;
     // Adds this call's films to `film`, in rank order, and forgets them.
     virtual void merge_into(Film& film) = 0;
-    // Tells the peers the render is over; their devices' shares.
-    virtual std::vector<DeviceShare> finish() = 0;
+    // Tells the peers the render is over; their devices' shares, and their
+    // ray and sample counts added to `stats`.
+    virtual std::vector<DeviceShare> finish(RenderStats& stats) = 0;
+    // "3 devices on 2 other ranks", for the start-up line.
+    virtual std::string describe() const = 0;
 };
 
 class MultiDeviceRenderer {
@@ -141,6 +144,7 @@ class MultiDeviceRenderer {
     std::vector<std::unique_ptr<Device>> devices_;
     std::unique_ptr<RenderPeers> peers_;
     std::vector<DeviceShare> peer_shares_;
+    RenderStats peer_stats_;
     int width_ = 0;
     int height_ = 0;
     double render_seconds_ = 0.0;
