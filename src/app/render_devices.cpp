@@ -15,22 +15,25 @@ std::optional<int> run_render_as_mpi_worker(const RenderCommand& command) {
 #ifdef WAVEPATH_HAVE_MPI
     MpiJob& job = MpiJob::get();
     if (job.size() > 1 && job.rank() != 0)
-        return run_mpi_worker(job, [&] {
-            Scene scene = load_scene(command.scene);
-            if (command.width > 0)
-                scene.camera.width = command.width;
-            if (command.height > 0)
-                scene.camera.height = command.height;
-            return scene;
-        }, command.device, command.integrator);
+        return run_mpi_worker(
+            job,
+            [&] {
+                Scene scene = load_scene(command.scene);
+                if (command.width > 0)
+                    scene.camera.width = command.width;
+                if (command.height > 0)
+                    scene.camera.height = command.height;
+                return scene;
+            },
+            command.device, command.integrator);
 #else
     (void)command;
 #endif
     return std::nullopt;
 }
 
-std::unique_ptr<MultiDeviceRenderer> open_renderer(const RenderCommand& command,
-                                                   const Scene& scene, bool profiling) {
+std::unique_ptr<MultiDeviceRenderer> open_renderer(const RenderCommand& command, const Scene& scene,
+                                                   bool profiling) {
 #ifdef WAVEPATH_HAVE_MPI
     MpiJob& job = MpiJob::get();
     if (job.size() > 1)

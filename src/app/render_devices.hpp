@@ -20,8 +20,8 @@ std::optional<int> run_render_as_mpi_worker(const RenderCommand& command);
 // The renderer for --device (select_devices), with the other ranks attached
 // on rank 0 of an MPI job; throws the first error of any rank that could not
 // open its devices or the scene.
-std::unique_ptr<MultiDeviceRenderer> open_renderer(const RenderCommand& command,
-                                                   const Scene& scene, bool profiling);
+std::unique_ptr<MultiDeviceRenderer> open_renderer(const RenderCommand& command, const Scene& scene,
+                                                   bool profiling);
 
 // With more than one device: a line per device, its share of the samples,
 // samples/s and idle time (stdout).

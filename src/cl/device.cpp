@@ -212,8 +212,7 @@ std::vector<DeviceInfo> select_devices(const std::string& requested) {
     std::vector<DeviceInfo> picked;
     for (const std::string& entry : split_list(selector)) {
         if (entry.empty())
-            throw DeviceError("the device list '" + selector + "'" + from +
-                              " has an empty entry");
+            throw DeviceError("the device list '" + selector + "'" + from + " has an empty entry");
         if (lowercase(entry) == "all")
             throw DeviceError("'all' in the device list '" + selector + "'" + from +
                               " must stand alone");

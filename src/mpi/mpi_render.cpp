@@ -31,11 +31,9 @@ std::string error_text(const std::exception_ptr& error) {
 }
 
 nlohmann::json share_json(const DeviceShare& s) {
-    return {{"name", s.name},       {"index", s.index},
-            {"rank", s.rank},       {"host", s.host},
-            {"samples", s.samples}, {"chunks", s.chunks},
-            {"busy", s.busy_seconds}, {"idle", s.idle_seconds},
-            {"error", s.error}};
+    return {{"name", s.name},         {"index", s.index},       {"rank", s.rank},
+            {"host", s.host},         {"samples", s.samples},   {"chunks", s.chunks},
+            {"busy", s.busy_seconds}, {"idle", s.idle_seconds}, {"error", s.error}};
 }
 
 DeviceShare share_from_json(const nlohmann::json& j) {
@@ -90,8 +88,8 @@ class MpiPeers : public RenderPeers {
     MpiPeers(MpiJob& job, std::vector<std::uint32_t> devices, std::vector<std::string> hosts,
              int width, int height)
         : job_(job), devices_(std::move(devices)), hosts_(std::move(hosts)), width_(width),
-          height_(height),
-          films_(job.size()), film_arrived_(job.size(), false), done_(job.size(), 0.0) {}
+          height_(height), films_(job.size()), film_arrived_(job.size(), false),
+          done_(job.size(), 0.0) {}
 
     std::uint32_t device_count() const override {
         std::uint32_t total = 0;
@@ -136,8 +134,9 @@ class MpiPeers : public RenderPeers {
     }
 
     std::string describe() const override {
-        return std::to_string(device_count()) + (device_count() == 1 ? " device" : " devices") + " on " + std::to_string(job_.size() - 1) +
-               " other rank" + (job_.size() > 2 ? "s" : "");
+        return std::to_string(device_count()) + (device_count() == 1 ? " device" : " devices") +
+               " on " + std::to_string(job_.size() - 1) + " other rank" +
+               (job_.size() > 2 ? "s" : "");
     }
 
     std::vector<DeviceShare> finish(RenderStats& stats) override {

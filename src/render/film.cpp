@@ -73,8 +73,7 @@ Film Film::from_packed(int width, int height, const std::vector<double>& sums,
     std::copy(sums.begin(), sums.begin() + static_cast<std::ptrdiff_t>(n), film.sum_.begin());
     std::copy(sums.begin() + static_cast<std::ptrdiff_t>(n),
               sums.begin() + static_cast<std::ptrdiff_t>(2 * n), film.sum_squares_.begin());
-    std::copy(sums.begin() + static_cast<std::ptrdiff_t>(2 * n), sums.end(),
-              film.odd_sum_.begin());
+    std::copy(sums.begin() + static_cast<std::ptrdiff_t>(2 * n), sums.end(), film.odd_sum_.begin());
     std::copy(counts.begin(), counts.begin() + static_cast<std::ptrdiff_t>(pixels),
               film.count_.begin());
     std::copy(counts.begin() + static_cast<std::ptrdiff_t>(pixels), counts.end(),

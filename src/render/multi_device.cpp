@@ -84,9 +84,8 @@ struct MultiDeviceRenderer::Wakeup {
     std::uint32_t running = 0;
 };
 
-MultiDeviceRenderer::MultiDeviceRenderer(const std::vector<DeviceInfo>& devices,
-                                         const Scene& scene, IntegratorOptions options,
-                                         bool profiling)
+MultiDeviceRenderer::MultiDeviceRenderer(const std::vector<DeviceInfo>& devices, const Scene& scene,
+                                         IntegratorOptions options, bool profiling)
     : width_(scene.camera.width), height_(scene.camera.height),
       wakeup_(std::make_unique<Wakeup>()) {
     if (devices.empty())
@@ -217,8 +216,7 @@ void MultiDeviceRenderer::run_device(Device& device, ChunkSource& source) {
                 notify();
                 if (inject && spp >= 0.75 * count)
                     throw InjectedFailure("device lost (test hook: made to fail after " +
-                                          std::to_string(*device.fail_after_chunks) +
-                                          " chunks)");
+                                          std::to_string(*device.fail_after_chunks) + " chunks)");
             });
             if (inject) // the chunk ended before the hook fired
                 throw InjectedFailure("device lost (test hook)");

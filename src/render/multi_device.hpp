@@ -37,9 +37,9 @@ namespace wp {
 // One device's part in a render.
 struct DeviceShare {
     std::string name;
-    std::string index; // "P:D" on its machine
-    int rank = 0;      // the MPI rank it belongs to (0 without MPI)
-    std::string host;  // with MPI: the machine's name
+    std::string index;         // "P:D" on its machine
+    int rank = 0;              // the MPI rank it belongs to (0 without MPI)
+    std::string host;          // with MPI: the machine's name
     std::uint64_t samples = 0; // pixel samples rendered: pixels x samples per pixel of its chunks
     std::uint32_t chunks = 0;
     double busy_seconds = 0.0; // rendering chunks

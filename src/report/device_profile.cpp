@@ -31,16 +31,14 @@ std::string device_share_table(const std::vector<DeviceShare>& shares) {
     std::uint64_t total = 0;
     for (const DeviceShare& share : shares)
         total += share.samples;
-    std::string out = line("%-4s %-5s %-40s %12s %7s %11s %9s %9s %6s\n", "rank", "index",
-                           "device", "samples", "share", "samples/s", "busy s", "idle s", "chunks");
+    std::string out = line("%-4s %-5s %-40s %12s %7s %11s %9s %9s %6s\n", "rank", "index", "device",
+                           "samples", "share", "samples/s", "busy s", "idle s", "chunks");
     for (const DeviceShare& share : shares) {
-        out += line("%-4d %-5s %-40.40s %12llu %6.1f%% %11.4g %9.3f %9.3f %6u\n", share.rank,
-                    share.index.c_str(), share.name.c_str(),
-                    static_cast<unsigned long long>(share.samples),
-                    total ? 100.0 * static_cast<double>(share.samples) / static_cast<double>(total)
-                          : 0.0,
-                    share.samples_per_second(), share.busy_seconds, share.idle_seconds,
-                    share.chunks);
+        out += line(
+            "%-4d %-5s %-40.40s %12llu %6.1f%% %11.4g %9.3f %9.3f %6u\n", share.rank,
+            share.index.c_str(), share.name.c_str(), static_cast<unsigned long long>(share.samples),
+            total ? 100.0 * static_cast<double>(share.samples) / static_cast<double>(total) : 0.0,
+            share.samples_per_second(), share.busy_seconds, share.idle_seconds, share.chunks);
         if (!share.error.empty())
             out += "     failed: " + share.error + "\n";
     }
@@ -59,8 +57,8 @@ nlohmann::json device_share_json(const std::vector<DeviceShare>& shares) {
              {"index", share.index},
              {"name", share.name},
              {"samples", share.samples},
-             {"share", total ? static_cast<double>(share.samples) / static_cast<double>(total)
-                             : 0.0},
+             {"share",
+              total ? static_cast<double>(share.samples) / static_cast<double>(total) : 0.0},
              {"samples_per_second", share.samples_per_second()},
              {"busy_seconds", share.busy_seconds},
              {"idle_seconds", share.idle_seconds},
@@ -82,8 +80,9 @@ std::string multi_device_profile_table(const MultiDeviceRenderer& renderer,
         own.device = shares[d].name + " (" + shares[d].index + ")";
         out += profile_table(renderer.profiler(d), renderer.device_stats(d), own) + "\n";
     }
-    return out + line("split of %dx%d at %u spp over %zu devices (by demand, in chunks of samples):\n",
-                      context.width, context.height, context.spp, shares.size()) +
+    return out +
+           line("split of %dx%d at %u spp over %zu devices (by demand, in chunks of samples):\n",
+                context.width, context.height, context.spp, shares.size()) +
            device_share_table(shares);
 }
 
@@ -133,12 +132,11 @@ void write_multi_device_trace(const std::filesystem::path& path,
         const int pid = static_cast<int>(d) + 1;
         const std::vector<LaunchRecord>& records = renderer.profiler(d).records();
         const std::uint64_t origin = records.empty() ? 0 : records.front().queued_ns;
-        events.push_back({{"name", "process_name"},
-                          {"ph", "M"},
-                          {"pid", pid},
-                          {"args",
-                           {{"name", "wavepath on " + shares[d].name + " (" + shares[d].index +
-                                         ")"}}}});
+        events.push_back(
+            {{"name", "process_name"},
+             {"ph", "M"},
+             {"pid", pid},
+             {"args", {{"name", "wavepath on " + shares[d].name + " (" + shares[d].index + ")"}}}});
         for (const LaunchRecord& r : records) {
             if (r.end_ns == 0)
                 continue;
