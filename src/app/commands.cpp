@@ -92,7 +92,7 @@ CLI::App* add_render_subcommand(CLI::App& app, RenderCommand& command) {
     r->add_option("--spp,-s", command.spp, "Samples per pixel")
         ->capture_default_str()
         ->check(CLI::Range(1u, cli_limits::max_samples_per_pixel));
-    add_device_option(*r, command.device);
+    add_device_list_option(*r, command.device);
     add_image_size_options(*r, command.width, command.height);
     add_integrator_options(*r, command.integrator);
     r->add_option_function<std::string>(
