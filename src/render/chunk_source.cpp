@@ -101,7 +101,9 @@ ChunkQueue::ChunkQueue(std::uint32_t first, std::uint32_t count, std::uint32_t w
     : next_(first), end_(first + count), workers_(std::max(1u, workers)) {}
 
 std::uint32_t ChunkQueue::chunk_size(std::uint32_t left, std::uint32_t workers) {
-    return std::max(1u, left / (2 * std::max(1u, workers)));
+    if (workers <= 1)
+        return left; // alone, the whole range at once (no wave ends early)
+    return std::max(1u, left / (2 * workers));
 }
 
 std::optional<SampleRange> ChunkQueue::next_range(std::uint64_t) {

@@ -71,7 +71,7 @@ class ChunkSource {
 
 // The samples [first, first + count) in guided chunks for `workers` devices:
 // each chunk is what is left divided by twice the number of workers, at
-// least one sample per pixel.
+// least one sample per pixel (one worker takes everything at once).
 class ChunkQueue : public ChunkSource {
   public:
     ChunkQueue(std::uint32_t first, std::uint32_t count, std::uint32_t workers);

@@ -107,7 +107,6 @@ MultiDeviceRenderer::MultiDeviceRenderer(const std::vector<DeviceInfo>& devices,
                 d->integrator = std::make_unique<WavefrontIntegrator>(*d->context, scene, options);
                 if (profiling)
                     d->integrator->set_profiler(&d->profiler);
-                d->film = Film(width_, height_);
             } catch (...) {
                 d->failure = std::current_exception();
             }
@@ -170,6 +169,21 @@ std::uint32_t MultiDeviceRenderer::samples_per_call(std::uint32_t one_device) co
 
 void MultiDeviceRenderer::render(std::uint32_t first_sample, std::uint32_t count, Film& film,
                                  const std::function<void(double)>& on_progress) {
+    if (devices_.size() == 1 && !peers_ && !devices_[0]->failure &&
+        !devices_[0]->fail_after_chunks) {
+        // One device: straight into the caller's film, as WavefrontIntegrator
+        // alone would (the same image bit for bit, and no film of its own);
+        // if it fails, the render fails, so no chunk needs to be redone.
+        Device& device = *devices_[0];
+        const auto start = Clock::now();
+        device.integrator->render(first_sample, count, film, on_progress);
+        const double seconds = seconds_since(start);
+        device.share.busy_seconds += seconds;
+        device.share.chunks += 1;
+        device.share.samples += static_cast<std::uint64_t>(width_) * height_ * count;
+        render_seconds_ += seconds;
+        return;
+    }
     ChunkQueue queue(first_sample, count, device_count());
     run(queue, peers_ ? &queue : nullptr, film, on_progress);
 }
@@ -220,7 +234,10 @@ void MultiDeviceRenderer::run_device(Device& device, ChunkSource& source) {
             });
             if (inject) // the chunk ended before the hook fired
                 throw InjectedFailure("device lost (test hook)");
-            device.film.merge(chunk);
+            if (!device.film_has_samples)
+                device.film = std::move(chunk);
+            else
+                device.film.merge(chunk);
         } catch (...) {
             device.samples_partial.store(0.0);
             device.call_busy_seconds += seconds_since(chunk_start);
@@ -330,7 +347,7 @@ void MultiDeviceRenderer::run(ChunkSource& source, ChunkQueue* for_peers, Film& 
         if (!device->film_has_samples)
             continue;
         film.merge(device->film);
-        device->film = Film(width_, height_);
+        device->film = Film();
         device->film_has_samples = false;
     }
     if (peers_)
