@@ -15,6 +15,8 @@
 #include "app/interrupt.hpp"
 #include "app/progress.hpp"
 #include "app/render_devices.hpp"
+#include "app/render_metadata.hpp"
+#include "app/view_cli.hpp"
 #include "cl/context.hpp"
 #include "cl/device.hpp"
 #include "image/image_io.hpp"
@@ -95,18 +97,7 @@ CLI::App* add_render_subcommand(CLI::App& app, RenderCommand& command) {
     add_device_list_option(*r, command.device);
     add_image_size_options(*r, command.width, command.height);
     add_integrator_options(*r, command.integrator);
-    r->add_option_function<std::string>(
-         "--tonemap",
-         [&command](const std::string& name) {
-             command.view.tonemap = name == "seed" ? ToneMap::Seed : ToneMap::Srgb;
-         },
-         "PNG view: 'srgb' (exposure, then the sRGB curve) or 'seed' (the report's: sqrt, "
-         "divided by the image maximum, times 255.99)")
-        ->default_str("srgb")
-        ->check(CLI::IsMember({"srgb", "seed"}));
-    r->add_option("--exposure", command.view.exposure_stops, "PNG exposure in stops (srgb view)")
-        ->capture_default_str()
-        ->check(finite_number);
+    add_view_options(*r, command.view);
     r->add_flag(
         "--profile", command.profile,
         "Print per-stage device times, items and rates at the end (OpenCL event profiling)");
@@ -181,6 +172,7 @@ int run_render(const RenderCommand& command) {
                             {"--trace", command.trace}});
 
     Scene scene = load_scene_for_render(command.scene, command.width, command.height);
+    const std::string scene_sha256 = file_sha256(command.scene); // for the metadata
 
     const bool profiling =
         command.profile || !command.profile_json.empty() || !command.trace.empty();
@@ -215,15 +207,22 @@ int run_render(const RenderCommand& command) {
     }
     const bool interrupted = spp < command.spp;
 
-    Image image = film.mean();
-    image.metadata = {{"wavepath.samples_per_pixel", std::to_string(spp)},
-                      {"wavepath.samples_requested", std::to_string(command.spp)},
-                      {"wavepath.seed", std::to_string(options.seed)}};
-    write_result_image(command.out, image, command.view);
-    if (!command.png.empty())
-        write_result_image(command.png, image, command.view);
-
     integrator.finish(); // the MPI ranks' shares arrive
+    Image image = film.mean();
+    image.metadata = render_metadata({.scene_file = command.scene,
+                                      .scene_sha256 = scene_sha256,
+                                      .width = scene.camera.width,
+                                      .height = scene.camera.height,
+                                      .samples_done = spp,
+                                      .samples_requested = command.spp,
+                                      .options = options,
+                                      .devices = device_names(integrator),
+                                      .render_seconds = integrator.stats().render_seconds});
+    const ViewOptions view = view_for_scene(command.view, scene);
+    write_result_image(command.out, image, view);
+    if (!command.png.empty())
+        write_result_image(command.png, image, view);
+
     const RenderStats stats = integrator.stats();
     double seconds = stats.render_seconds;
     double samples = static_cast<double>(pixels) * spp;

@@ -57,6 +57,7 @@ struct ConvergeCommand {
     int width = 0;
     int height = 0;
     IntegratorOptions integrator;
+    ViewOptions view; // of --out, when it is a .png
 };
 
 struct CompareCommand {
@@ -83,6 +84,18 @@ struct InfoCommand {
 };
 CLI::App* add_info_subcommand(CLI::App& app, InfoCommand& command);
 int run_info(const InfoCommand& command);
+
+// `wavepath export-mitsuba` (export_mitsuba.cpp): the scene as a Mitsuba 3
+// scene (docs/mitsuba-export.md).
+struct ExportMitsubaCommand {
+    std::string scene;
+    std::string out; // .xml; the meshes go beside it
+    std::uint32_t spp = 64;
+    int width = 0; // 0 keeps the scene's resolution
+    int height = 0;
+};
+CLI::App* add_export_mitsuba_subcommand(CLI::App& app, ExportMitsubaCommand& command);
+int run_export_mitsuba(const ExportMitsubaCommand& command);
 
 // The extensions write_image knows.
 inline const std::vector<std::string> kImageExtensions = {".exr", ".pfm", ".png"};

@@ -86,7 +86,8 @@ int run_compare(const CompareCommand& command) {
     if (!command.diff.empty()) {
         const Image map = rel_error_map(image, reference);
         if (lower_extension(command.diff) == ".png") {
-            write_image(command.diff, false_colour(map));
+            // The false colours are display values: shown as they are, never exposed.
+            write_image(command.diff, false_colour(map), ViewOptions::fixed(0.0));
             std::printf("wrote %s: log10 relative squared error, %g (black) to %g (yellow); "
                         "magenta: NaN/Inf\n",
                         command.diff.c_str(), kLogMin, kLogMax);

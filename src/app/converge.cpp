@@ -7,6 +7,8 @@
 
 #include "app/cli_options.hpp"
 #include "app/commands.hpp"
+#include "app/render_metadata.hpp"
+#include "app/view_cli.hpp"
 #include "cl/context.hpp"
 #include "cl/device.hpp"
 #include "image/image_io.hpp"
@@ -49,6 +51,7 @@ CLI::App* add_converge_subcommand(CLI::App& app, ConvergeCommand& command) {
     c->add_flag("--replot", command.replot,
                 "Render nothing: draw --plot from the --overlay CSVs alone");
     c->add_option("--out,-o", command.out, "Write the final image (.exr, .pfm or .png)");
+    add_view_options(*c, command.view); // for an --out .png
     c->add_option("--title", command.title, "The plot's title (default: scene, size, device)");
     add_device_option(*c, command.device);
     add_image_size_options(*c, command.width, command.height);
@@ -85,6 +88,7 @@ int run_converge(const ConvergeCommand& command) {
         throw std::runtime_error("converge needs a scene file (or --replot)");
 
     Scene scene = load_scene_for_render(command.scene, command.width, command.height);
+    const std::string scene_sha256 = file_sha256(command.scene); // for --out's metadata
 
     Image reference;
     if (!command.reference.empty()) {
@@ -143,8 +147,21 @@ int run_converge(const ConvergeCommand& command) {
                                             std::to_string(run.height) + ", " + device.info.name;
         write_svg(command.plot, convergence_plot(runs, title));
     }
-    if (!command.out.empty())
-        write_result_image(command.out, film.mean(), ViewOptions{});
+    if (!command.out.empty() && !run.checkpoints.empty()) {
+        Image image = film.mean();
+        const Checkpoint& last = run.checkpoints.back();
+        image.metadata = render_metadata(
+            {.scene_file = command.scene,
+             .scene_sha256 = scene_sha256,
+             .width = run.width,
+             .height = run.height,
+             .samples_done = last.spp,
+             .samples_requested = settings.max_spp > 0 ? settings.max_spp : last.spp,
+             .options = options,
+             .devices = {device.info.name},
+             .render_seconds = last.seconds});
+        write_result_image(command.out, image, view_for_scene(command.view, scene));
+    }
     const RenderStats& stats = integrator.stats();
     if (stats.nonfinite_samples > 0 || stats.capped_paths > 0)
         std::cerr << "wavepath: warning: " << stats.nonfinite_samples

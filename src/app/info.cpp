@@ -1,5 +1,6 @@
 // `wavepath info`: what a scene contains, which kernels it gets, and what
-// building them costs (docs/specialization.md).
+// building them costs (docs/specialization.md); or, given an image, how the
+// image was made (its metadata, docs/images-and-metadata.md).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -17,9 +18,11 @@
 #include "cl/error.hpp"
 #include "cl/program.hpp"
 #include "cl/stages.hpp"
+#include "image/image_io.hpp"
 #include "render/device_scene.hpp"
 #include "render/wavefront.hpp"
 #include "scene/load.hpp"
+#include "util/file.hpp"
 
 namespace wp {
 namespace {
@@ -208,13 +211,43 @@ void print_scene(const std::string& path, const Scene& scene) {
         std::printf("  warning: %s\n", warning.c_str());
 }
 
+bool is_image_path(const std::string& path) {
+    const std::string ext = lower_extension(path);
+    return ext == ".exr" || ext == ".png" || ext == ".pfm";
+}
+
+// An image's format, size and metadata, one entry a line.
+int print_image_info(const std::string& path) {
+    const ImageSummary summary = read_image_summary(path);
+    std::printf("image: %s (%s, %dx%d)\n", path.c_str(), summary.format.c_str(), summary.width,
+                summary.height);
+    if (!summary.has_metadata_place) {
+        std::printf("metadata: none (%s files have no place for it)\n", summary.format.c_str());
+        return 0;
+    }
+    if (summary.metadata.empty()) {
+        std::printf("metadata: none\n");
+        return 0;
+    }
+    std::size_t width = 0;
+    for (const auto& entry : summary.metadata)
+        width = std::max(width, entry.first.size());
+    std::printf("metadata:\n");
+    for (const auto& [name, text] : summary.metadata)
+        std::printf("  %-*s  %s\n", static_cast<int>(width), name.c_str(), text.c_str());
+    return 0;
+}
+
 } // namespace
 
 CLI::App* add_info_subcommand(CLI::App& app, InfoCommand& command) {
     CLI::App* i = app.add_subcommand(
         "info", "Print a scene's counts, its kernel features and build options, each build's "
-                "time cold and cached, and what the driver reports of each kernel");
-    i->add_option("scene", command.scene, "Scene file (JSON)")->required();
+                "time cold and cached, and what the driver reports of each kernel; or an "
+                "image's metadata (how it was made)");
+    i->add_option("scene", command.scene,
+                  "Scene file (JSON), or an image (.exr, .png, .pfm) whose metadata to print")
+        ->required();
     add_device_option(*i, command.device);
     // All of them, since the estimator's options are build options too.
     add_integrator_options(*i, command.integrator);
@@ -222,6 +255,8 @@ CLI::App* add_info_subcommand(CLI::App& app, InfoCommand& command) {
 }
 
 int run_info(const InfoCommand& command) {
+    if (is_image_path(command.scene))
+        return print_image_info(command.scene);
     Scene scene = load_scene(command.scene);
     print_scene(command.scene, scene);
 

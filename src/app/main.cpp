@@ -2,7 +2,7 @@
 //
 // This file only parses the command line and turns every failure into one
 // line on stderr and a non-zero exit; the subcommands live in commands.cpp,
-// bench.cpp, converge.cpp, compare.cpp and info.cpp.
+// bench.cpp, converge.cpp, compare.cpp, info.cpp and export_mitsuba.cpp.
 #include <cerrno>
 #include <cstdio>
 #include <iostream>
@@ -77,6 +77,8 @@ int main(int argc, char** argv) {
     CLI::App* compare_app = wp::add_compare_subcommand(app, compare);
     wp::InfoCommand info;
     CLI::App* info_app = wp::add_info_subcommand(app, info);
+    wp::ExportMitsubaCommand export_mitsuba;
+    CLI::App* export_app = wp::add_export_mitsuba_subcommand(app, export_mitsuba);
 
     try {
         app.parse(argc, argv);
@@ -113,6 +115,8 @@ int main(int argc, char** argv) {
             status = wp::run_compare(compare);
         else if (info_app->parsed())
             status = wp::run_info(info);
+        else if (export_app->parsed())
+            status = wp::run_export_mitsuba(export_mitsuba);
         else
             status = wp::run_render(render);
     } catch (const wp::BuildError& e) {

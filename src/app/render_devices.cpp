@@ -43,6 +43,13 @@ std::unique_ptr<MultiDeviceRenderer> open_renderer(const RenderCommand& command,
                                                  command.integrator, profiling);
 }
 
+std::vector<std::string> device_names(const MultiDeviceRenderer& renderer) {
+    std::vector<std::string> names;
+    for (const DeviceShare& share : renderer.shares())
+        names.push_back(share.name);
+    return names;
+}
+
 void print_device_shares(const MultiDeviceRenderer& renderer) {
     const std::vector<DeviceShare> shares = renderer.shares();
     if (shares.size() > 1)

@@ -5,6 +5,8 @@
 
 #include <memory>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "app/commands.hpp"
 #include "render/multi_device.hpp"
@@ -22,6 +24,9 @@ std::optional<int> run_render_as_mpi_worker(const RenderCommand& command);
 // open its devices or the scene.
 std::unique_ptr<MultiDeviceRenderer> open_renderer(const RenderCommand& command, const Scene& scene,
                                                    bool profiling);
+
+// Every device's name, in the order of shares() (for the image's metadata).
+std::vector<std::string> device_names(const MultiDeviceRenderer& renderer);
 
 // With more than one device: a line per device, its share of the samples,
 // samples/s and idle time (stdout).

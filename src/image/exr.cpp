@@ -111,6 +111,44 @@ struct MallocFree {
     void operator()(unsigned char* p) const noexcept { std::free(p); }
 };
 
+// The string attributes of a parsed header: the metadata write_exr wrote.
+Metadata string_attributes(const EXRHeader& header) {
+    Metadata metadata;
+    for (int a = 0; a < header.num_custom_attributes; ++a) {
+        const EXRAttribute& attribute = header.custom_attributes[a];
+        if (std::string(attribute.type) == "string" && attribute.value != nullptr &&
+            attribute.size >= 0)
+            metadata.emplace_back(attribute.name,
+                                  std::string(reinterpret_cast<const char*>(attribute.value),
+                                              static_cast<std::size_t>(attribute.size)));
+    }
+    return metadata;
+}
+
+// Checks the version and parses the header of the EXR file in bytes.
+void parse_header(const std::vector<unsigned char>& bytes, HeaderGuard& header,
+                  const std::string& context) {
+    EXRVersion version;
+    if (ParseEXRVersionFromMemory(&version, bytes.data(), bytes.size()) != TINYEXR_SUCCESS) {
+        throw ImageError(context + ": not an OpenEXR file");
+    }
+    if (version.multipart || version.non_image) {
+        throw ImageError(context + ": multi-part and deep EXR files are not supported");
+    }
+    if (version.tiled) {
+        throw ImageError(context + ": tiled EXR files are not supported");
+    }
+
+    const char* err = nullptr;
+    if (ParseEXRHeaderFromMemory(&header.header, &version, bytes.data(), bytes.size(), &err) !=
+        TINYEXR_SUCCESS) {
+        throw ImageError(context + ": invalid EXR header: " + take_error(err, "unknown error"));
+    }
+    if (header.header.tiled) {
+        throw ImageError(context + ": tiled EXR files are not supported");
+    }
+}
+
 } // namespace
 
 void write_exr(const std::filesystem::path& path, const Image& img) {
@@ -191,30 +229,25 @@ void write_exr(const std::filesystem::path& path, const Image& img) {
     write_bytes_atomically(path, memory, size);
 }
 
+ImageSummary read_exr_summary(const std::filesystem::path& path) {
+    const std::string context = "cannot read '" + path.string() + "'";
+    HeaderGuard header;
+    parse_header(read_file_bytes(path), header, context);
+    ImageSummary summary;
+    summary.format = "OpenEXR";
+    const EXRBox2i& window = header.header.data_window;
+    summary.width = window.max_x - window.min_x + 1;
+    summary.height = window.max_y - window.min_y + 1;
+    summary.metadata = string_attributes(header.header);
+    return summary;
+}
+
 Image read_exr(const std::filesystem::path& path) {
     const std::string context = "cannot read '" + path.string() + "'";
     const std::vector<unsigned char> bytes = read_file_bytes(path);
-
-    EXRVersion version;
-    if (ParseEXRVersionFromMemory(&version, bytes.data(), bytes.size()) != TINYEXR_SUCCESS) {
-        throw ImageError(context + ": not an OpenEXR file");
-    }
-    if (version.multipart || version.non_image) {
-        throw ImageError(context + ": multi-part and deep EXR files are not supported");
-    }
-    if (version.tiled) {
-        throw ImageError(context + ": tiled EXR files are not supported");
-    }
-
     HeaderGuard header;
+    parse_header(bytes, header, context);
     const char* err = nullptr;
-    if (ParseEXRHeaderFromMemory(&header.header, &version, bytes.data(), bytes.size(), &err) !=
-        TINYEXR_SUCCESS) {
-        throw ImageError(context + ": invalid EXR header: " + take_error(err, "unknown error"));
-    }
-    if (header.header.tiled) {
-        throw ImageError(context + ": tiled EXR files are not supported");
-    }
 
     // Find R, G and B; ask tinyexr to convert half channels to float while decoding.
     int channel_index[3] = {-1, -1, -1};
@@ -267,14 +300,7 @@ Image read_exr(const std::filesystem::path& path) {
             img.rgb[i * 3 + static_cast<std::size_t>(slot)] = plane[i];
         }
     }
-    for (int a = 0; a < header.header.num_custom_attributes; ++a) {
-        const EXRAttribute& attribute = header.header.custom_attributes[a];
-        if (std::string(attribute.type) == "string" && attribute.value != nullptr &&
-            attribute.size >= 0)
-            img.metadata.emplace_back(attribute.name,
-                                      std::string(reinterpret_cast<const char*>(attribute.value),
-                                                  static_cast<std::size_t>(attribute.size)));
-    }
+    img.metadata = string_attributes(header.header);
     return img;
 }
 

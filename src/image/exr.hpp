@@ -17,4 +17,8 @@ void write_exr(const std::filesystem::path& path, const Image& img);
 // data) is an ImageError naming the file.
 Image read_exr(const std::filesystem::path& path);
 
+// The size (of the data window) and string attributes of an EXR file, from
+// its header alone. Errors as read_exr's for the header.
+ImageSummary read_exr_summary(const std::filesystem::path& path);
+
 } // namespace wp

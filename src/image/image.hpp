@@ -17,15 +17,19 @@ class ImageError : public std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+// Name and text pairs about how an image was made, in order.
+using Metadata = std::vector<std::pair<std::string, std::string>>;
+
 struct Image {
     int width = 0;
     int height = 0;
     // Row-major, top row first, 3 floats (r, g, b) per pixel: linear radiance.
     std::vector<float> rgb;
-    // Name and text pairs about how the image was made (e.g. the samples per
-    // pixel of a render cut short). EXR files keep them as string attributes;
-    // PFM and PNG have no place for them.
-    std::vector<std::pair<std::string, std::string>> metadata;
+    // How the image was made (app/render_metadata.hpp: the version, the
+    // scene, the samples per pixel of a render cut short...). EXR files keep
+    // it as string attributes, PNG files as text chunks (png_text.hpp); PFM
+    // has no place for it.
+    Metadata metadata;
 
     Image() = default;
     Image(int w, int h) : width(w), height(h), rgb(static_cast<std::size_t>(w) * h * 3, 0.0f) {}
@@ -41,6 +45,15 @@ struct Image {
         return width >= 0 && height >= 0 &&
                rgb.size() == static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3;
     }
+};
+
+// What an image file says about itself, read without decoding its pixels.
+struct ImageSummary {
+    std::string format; // "OpenEXR", "PNG", "PFM"
+    int width = 0;
+    int height = 0;
+    bool has_metadata_place = true; // false for PFM
+    Metadata metadata;
 };
 
 // Throws ImageError("<context>: ...") unless the image has a valid shape and, when

@@ -18,4 +18,9 @@ void write_image(const std::filesystem::path& path, const Image& img, const View
 // malformed one ImageError.
 Image read_image(const std::filesystem::path& path);
 
+// The format, size and metadata of an .exr, .png or .pfm file (case-insensitive),
+// without decoding the pixels of an .exr or .png. PFM has no place for metadata:
+// its summary says so (has_metadata_place false). Errors as read_image's.
+ImageSummary read_image_summary(const std::filesystem::path& path);
+
 } // namespace wp

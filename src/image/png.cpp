@@ -1,5 +1,6 @@
 #include "image/png.hpp"
 
+#include "image/png_text.hpp"
 #include "util/file.hpp"
 
 #include <stb_image_write.h>
@@ -35,7 +36,11 @@ void write_png(const std::filesystem::path& path, const Image& img, const ViewOp
         png.empty()) {
         throw ImageError(context + ": PNG encoding failed");
     }
-    write_bytes_atomically(path, png.data(), png.size());
+    // The metadata, and how this view of the image was made.
+    Metadata text = img.metadata;
+    text.emplace_back("wavepath.view", describe_view(img, view));
+    const std::vector<unsigned char> file = add_png_text(png, text, context);
+    write_bytes_atomically(path, file.data(), file.size());
 }
 
 } // namespace wp

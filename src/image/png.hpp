@@ -8,7 +8,8 @@
 
 namespace wp {
 
-// Tone maps img with view (see to_rgb8) and writes an 8-bit RGB PNG. Atomic.
+// Tone maps img with view (see to_rgb8) and writes an 8-bit RGB PNG with
+// img.metadata, and "wavepath.view" (describe_view), as text chunks. Atomic.
 void write_png(const std::filesystem::path& path, const Image& img, const ViewOptions& view = {});
 
 } // namespace wp

@@ -118,3 +118,18 @@ TEST_CASE("read_exr rejects files that are not EXR and reports missing files", "
     CHECK_THROWS_WITH(wp::read_exr(missing),
                       "cannot open '" + missing.string() + "': No such file or directory");
 }
+
+TEST_CASE("EXR metadata: string attributes read back with or without the pixels", "[exr]") {
+    TempDir dir;
+    Image img(5, 2);
+    img.metadata = {{"wavepath.seed", "9"}, {"wavepath.scene", "sc\xc3\xa8ne.json"}};
+    wp::write_exr(dir / "m.exr", img);
+    CHECK(wp::read_exr(dir / "m.exr").metadata == img.metadata);
+    const wp::ImageSummary summary = wp::read_exr_summary(dir / "m.exr");
+    CHECK(summary.format == "OpenEXR");
+    CHECK(summary.width == 5);
+    CHECK(summary.height == 2);
+    CHECK(summary.metadata == img.metadata);
+    wp::write_exr(dir / "none.exr", Image(1, 1));
+    CHECK(wp::read_exr_summary(dir / "none.exr").metadata.empty());
+}

@@ -20,8 +20,9 @@ TEST_CASE("write_png stores the tone-mapped bytes, top row first", "[png]") {
     for (std::size_t i = 0; i < img.rgb.size(); ++i) {
         img.rgb[i] = static_cast<float>(i) / 17.0f; // distinct bytes per pixel and channel
     }
-    for (const wp::ViewOptions view : {wp::ViewOptions{}, wp::ViewOptions{wp::ToneMap::Seed, 0.0},
-                                       wp::ViewOptions{wp::ToneMap::Srgb, -1.5}}) {
+    for (const wp::ViewOptions view :
+         {wp::ViewOptions{}, wp::ViewOptions::fixed(0.0, wp::ToneMap::Seed),
+          wp::ViewOptions::fixed(-1.5), wp::ViewOptions::fixed(0.5, wp::ToneMap::Filmic)}) {
         wp::write_png(dir / "v.png", img, view);
         const std::vector<unsigned char> file = wp::test::read_bytes(dir / "v.png");
         int w = 0;

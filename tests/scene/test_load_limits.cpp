@@ -3,6 +3,7 @@
 // 10^5 materials loads in linear time, and a scene without light is known.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <ctime>
 #include <string>
 #include <vector>
@@ -59,26 +60,58 @@ TEST_CASE("loader: deeply nested values fail with the nesting limit, not a crash
     CHECK_NOTHROW(wp::json::parse(std::string(64, '[') + std::string(64, ']'), "a.json"));
 }
 
-TEST_CASE("loader: 10^5 materials load in linear time", "[scene][load]") {
-    constexpr int kMaterials = 100000;
+namespace {
+
+// A scene of `count` diffuse materials (m0 ... m<count-1>) and a light, with
+// triangles that use the last, the first and the light.
+std::string many_materials_scene(int count) {
     std::string text = R"({"camera": )" + kCamera + R"(, "materials": {)";
-    for (int i = 0; i < kMaterials; ++i) {
+    for (int i = 0; i < count; ++i) {
         text.append(i ? ", \"m" : "\"m").append(std::to_string(i));
         text.append(R"(": {"type": "diffuse", "reflectance": [0.5, 0.5, 0.5]})");
     }
-    text += R"(, "light": {"type": "emitter", "radiance": [1, 1, 1]}}, "shapes": [)" +
-            triangle("m99999") + ", " + triangle("m0") + ", " + triangle("light") + "]}";
-    // Processor time, not wall time: the test must not fail because other
-    // processes share the machine (the loader is single-threaded).
-    const std::clock_t start = std::clock();
+    return text + R"(, "light": {"type": "emitter", "radiance": [1, 1, 1]}}, "shapes": [)" +
+           triangle("m" + std::to_string(count - 1)) + ", " + triangle("m0") + ", " +
+           triangle("light") + "]}";
+}
+
+// Processor seconds of the fastest of three loads: processor time, not wall
+// time, and the fastest, so that other processes sharing the machine inflate
+// it as little as possible (the loader is single-threaded).
+double fastest_load_seconds(const std::string& text) {
+    double fastest = 1e30;
+    for (int round = 0; round < 3; ++round) {
+        const std::clock_t start = std::clock();
+        const std::size_t materials = wp::parse_scene(text, "many.json").materials.size();
+        REQUIRE(materials > 0);
+        fastest = std::min(fastest, static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC);
+    }
+    return fastest;
+}
+
+} // namespace
+
+TEST_CASE("loader: 10^5 materials load in linear time", "[scene][load]") {
+    constexpr int kMaterials = 100000;
+    const std::string text = many_materials_scene(kMaterials);
     const wp::Scene scene = wp::parse_scene(text, "many.json");
-    const double seconds = static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
     REQUIRE(scene.materials.size() == kMaterials + 1);
     CHECK(scene.materials[12345].name == "m12345"); // the file's order
     CHECK(scene.triangles[0].material == 99999);
     CHECK(scene.triangles[2].material == kMaterials);
-    // About 0.3 s when linear; the quadratic version took minutes.
-    CHECK(seconds < 1.0);
+
+    // The growth, not a time limit (which a loaded machine would break): ten
+    // times the materials take about ten times as long when loading is
+    // linear, a hundred times when it is quadratic (as it was: minutes for
+    // 10^5). The bound sits between the two on a log scale.
+    const double large = fastest_load_seconds(text);
+    const double small = fastest_load_seconds(many_materials_scene(kMaterials / 10));
+    INFO("10^5 materials: " << large << " s, 10^4: " << small << " s");
+    CHECK(large < 30.0 * small);
+    // About 0.3 s on this project's machine when it is quiet: reported, not
+    // asserted.
+    if (large > 1.0)
+        WARN("10^5 materials took " << large << " s of processor time (over 1 s)");
 }
 
 TEST_CASE("loader: has_emitter tells a lit scene from a black one", "[scene][load]") {

@@ -1,0 +1,367 @@
+// The Mitsuba 3 export (mitsuba_export.hpp; what maps to what is in
+// docs/mitsuba-export.md).
+#include "scene/mitsuba_export.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <map>
+
+#include <glm/geometric.hpp>
+
+#include "util/file.hpp"
+
+namespace wp {
+namespace {
+
+// ---- Text ------------------------------------------------------------------
+
+// The shortest text that reads back as the same double (0.7, not
+// 0.69999999999999996); Mitsuba rounds it to its own precision (float32 in
+// the scalar_rgb variant) when it parses. -0 is written 0.
+std::string number(double value) {
+    char text[32];
+    const auto result = std::to_chars(text, text + sizeof text, value + 0.0);
+    return std::string(text, result.ptr);
+}
+
+std::string triple(const glm::dvec3& v) {
+    return number(v.x) + ", " + number(v.y) + ", " + number(v.z);
+}
+
+std::string xml_attribute(const std::string& text) {
+    std::string out;
+    for (char c : text) {
+        switch (c) {
+        case '&':
+            out += "&amp;";
+            break;
+        case '<':
+            out += "&lt;";
+            break;
+        case '>':
+            out += "&gt;";
+            break;
+        case '"':
+            out += "&quot;";
+            break;
+        case '\'':
+            out += "&apos;";
+            break;
+        default:
+            out += c;
+        }
+    }
+    return out;
+}
+
+// XML comments may hold anything but "--" (and must not end in "-") and the
+// control characters XML forbids everywhere; a line break would only make
+// the comment longer than its line.
+std::string xml_comment(const std::string& text) {
+    std::string out;
+    for (char c : text) {
+        if (c == '-' && !out.empty() && out.back() == '-')
+            out += ' ';
+        out += static_cast<unsigned char>(c) < 0x20 ? ' ' : c;
+    }
+    if (!out.empty() && out.back() == '-')
+        out += ' ';
+    return "<!-- " + out + " -->";
+}
+
+// A material name as part of a file name: ASCII letters and digits, the rest
+// (spaces, slashes, any other byte) as '_'; at most 40 characters.
+std::string file_name_part(const std::string& name) {
+    std::string out;
+    for (char c : name.substr(0, 40)) {
+        const bool plain =
+            (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9');
+        out += plain ? c : '_';
+    }
+    return out.empty() ? "unnamed" : out;
+}
+
+// ---- PLY -------------------------------------------------------------------
+
+void append_le32(std::vector<unsigned char>& out, std::uint32_t bits) {
+    for (int shift = 0; shift < 32; shift += 8)
+        out.push_back(static_cast<unsigned char>(bits >> shift));
+}
+
+void append_float(std::vector<unsigned char>& out, double value) {
+    // The same rounding as the device scene's to_float4: a static_cast.
+    const float f = static_cast<float>(value);
+    std::uint32_t bits;
+    std::memcpy(&bits, &f, sizeof bits);
+    append_le32(out, bits);
+}
+
+void append_vector(std::vector<unsigned char>& out, const glm::dvec3& v) {
+    append_float(out, v.x);
+    append_float(out, v.y);
+    append_float(out, v.z);
+}
+
+// Binary little-endian PLY, the format Mitsuba's `ply` shape reads natively:
+// three vertices per triangle (positions, and normals when asked) and faces
+// (0, 1, 2), (3, 4, 5), ... that keep each triangle's winding, hence its
+// front face, which is the side Mitsuba's area emitters emit on.
+std::vector<unsigned char> encode_ply(const Scene& scene, const std::vector<std::size_t>& triangles,
+                                      bool with_normals) {
+    const std::size_t vertices = 3 * triangles.size();
+    const Material& material = scene.materials[scene.triangles[triangles.front()].material];
+    std::string header = "ply\nformat binary_little_endian 1.0\n";
+    header += "comment wavepath export: material '" + file_name_part(material.name) + "', " +
+              std::to_string(triangles.size()) + " triangles\n";
+    header += "element vertex " + std::to_string(vertices) + "\n";
+    header += "property float x\nproperty float y\nproperty float z\n";
+    if (with_normals)
+        header += "property float nx\nproperty float ny\nproperty float nz\n";
+    header += "element face " + std::to_string(triangles.size()) + "\n";
+    header += "property list uchar int vertex_indices\nend_header\n";
+
+    std::vector<unsigned char> out(header.begin(), header.end());
+    out.reserve(out.size() + vertices * (with_normals ? 24 : 12) + triangles.size() * 13);
+    for (std::size_t index : triangles) {
+        const Triangle& t = scene.triangles[index];
+        // A flat triangle among smooth ones keeps its facet: all three vertex
+        // normals are the winding normal.
+        const glm::dvec3 facet = glm::normalize(glm::cross(t.v[1] - t.v[0], t.v[2] - t.v[0]));
+        for (std::size_t k = 0; k < 3; ++k) {
+            append_vector(out, t.v[k]);
+            if (with_normals)
+                append_vector(out, t.has_normals ? t.normals[k] : facet);
+        }
+    }
+    for (std::size_t f = 0; f < triangles.size(); ++f) {
+        out.push_back(3);
+        for (std::uint32_t k = 0; k < 3; ++k)
+            append_le32(out, static_cast<std::uint32_t>(3 * f + k));
+    }
+    return out;
+}
+
+// ---- XML -------------------------------------------------------------------
+
+std::string rgb(const std::string& name, const glm::dvec3& value) {
+    return "<rgb name=\"" + name + "\" value=\"" + triple(value) + "\"/>";
+}
+
+std::string material_id(std::size_t index) {
+    return "material-" + std::to_string(index);
+}
+
+// A material's BSDF. wavepath's diffuse and mirror surfaces reflect alike on
+// both sides (kernels/shade.cl flips the normal to the side the ray came
+// from); Mitsuba's reflect on the front only unless wrapped in `twosided`.
+std::string bsdf(const Material& m, std::size_t index) {
+    const std::string in = "    ";
+    std::string inner;
+    switch (m.kind) {
+    case MaterialKind::Diffuse:
+        inner = in + "    <bsdf type=\"diffuse\">\n" + in + "        " +
+                rgb("reflectance", m.reflectance) + "\n" + in + "    </bsdf>\n";
+        break;
+    case MaterialKind::Mirror:
+        // Material "none": the perfect mirror (reflectance 1 at every angle,
+        // no Fresnel term), scaled by wavepath's reflectance.
+        inner = in + "    <bsdf type=\"conductor\">\n" + in +
+                "        <string name=\"material\" value=\"none\"/>\n" + in + "        " +
+                rgb("specular_reflectance", m.reflectance) + "\n" + in + "    </bsdf>\n";
+        break;
+    case MaterialKind::Emitter:
+        // Reflects nothing, on either side: black, and one-sided will do.
+        return in + xml_comment("material '" + m.name + "' (emitter: reflects nothing)") + "\n" +
+               in + "<bsdf type=\"diffuse\" id=\"" + material_id(index) + "\">\n" + in + "    " +
+               rgb("reflectance", glm::dvec3(0.0)) + "\n" + in + "</bsdf>\n";
+    }
+    return in + xml_comment("material '" + m.name + "'") + "\n" + in +
+           "<bsdf type=\"twosided\" id=\"" + material_id(index) + "\">\n" + inner + in +
+           "</bsdf>\n";
+}
+
+// wavepath emits from the front face (the winding normal's side) only, as
+// Mitsuba's `area` emitter does from the side its surface normal faces.
+std::string area_emitter(const Material& m) {
+    if (!m.is_emissive())
+        return {};
+    return "        <emitter type=\"area\">\n            " + rgb("radiance", m.emission) +
+           "\n        </emitter>\n";
+}
+
+std::string integrator() {
+    // wavepath ends paths by Russian roulette and cuts them at 1024 bounces as
+    // a guard against lossless mirror corridors; no path reaches the cap in a
+    // scene that absorbs anything. Mitsuba's `path` with no depth limit (-1)
+    // and its own roulette (from depth rr_depth = 5) estimates the same
+    // integral: both are unbiased, so the images agree in expectation.
+    return "    <integrator type=\"path\">\n"
+           "        <integer name=\"max_depth\" value=\"-1\"/>\n"
+           "    </integrator>\n";
+}
+
+std::string sensor(const Scene& scene, const MitsubaExportOptions& options) {
+    const MitsubaCamera c = mitsuba_camera(scene);
+    std::string s =
+        "    " +
+        xml_comment("wavepath's camera: vertical fov " + number(scene.camera.vertical_fov_degrees) +
+                    " degrees; " + std::to_string(scene.camera.width) + "x" +
+                    std::to_string(scene.camera.height) + " pixels") +
+        "\n";
+    s += "    <sensor type=\"perspective\">\n";
+    s += "        <string name=\"fov_axis\" value=\"x\"/>\n";
+    s += "        <float name=\"fov\" value=\"" + number(c.fov_x_degrees) + "\"/>\n";
+    s += "        <float name=\"near_clip\" value=\"" + number(c.near_clip) + "\"/>\n";
+    s += "        <float name=\"far_clip\" value=\"" + number(c.far_clip) + "\"/>\n";
+    s += "        <transform name=\"to_world\">\n";
+    s += "            <lookat origin=\"" + triple(c.origin) + "\" target=\"" + triple(c.target) +
+         "\" up=\"" + triple(c.up) + "\"/>\n";
+    s += "        </transform>\n";
+    s += "        <sampler type=\"independent\">\n";
+    s += "            <integer name=\"sample_count\" value=\"" +
+         std::to_string(options.sample_count) + "\"/>\n";
+    s += "        </sampler>\n";
+    // A one-pixel box filter: wavepath averages samples jittered uniformly
+    // over each pixel (kernels/generate.cl).
+    s += "        <film type=\"hdrfilm\">\n";
+    s += "            <integer name=\"width\" value=\"" + std::to_string(scene.camera.width) +
+         "\"/>\n";
+    s += "            <integer name=\"height\" value=\"" + std::to_string(scene.camera.height) +
+         "\"/>\n";
+    s += "            <string name=\"pixel_format\" value=\"rgb\"/>\n";
+    s += "            <rfilter type=\"box\"/>\n";
+    s += "        </film>\n";
+    s += "    </sensor>\n";
+    return s;
+}
+
+} // namespace
+
+MitsubaCamera mitsuba_camera(const Scene& scene) {
+    const Camera& c = scene.camera;
+    // wavepath's camera frame, as device_scene.cpp builds it.
+    const glm::dvec3 forward = glm::normalize(c.look_at - c.eye);
+    const glm::dvec3 right = glm::normalize(glm::cross(forward, c.up));
+    const glm::dvec3 up = glm::cross(right, forward);
+    const double half_height = std::tan(0.5 * c.vertical_fov_degrees * M_PI / 180.0);
+    const double aspect = static_cast<double>(c.width) / static_cast<double>(c.height);
+
+    double farthest = 0.0; // from the eye, over the whole scene
+    for (const Triangle& t : scene.triangles)
+        for (const glm::dvec3& v : t.v)
+            farthest = std::max(farthest, glm::length(v - c.eye));
+    for (const Sphere& s : scene.spheres)
+        farthest = std::max(farthest, glm::length(s.center - c.eye) + s.radius);
+
+    MitsubaCamera m;
+    m.origin = c.eye;
+    // Mitsuba takes target - origin in its own precision; a target at least
+    // as far from the origin as the origin is from 0 keeps that difference
+    // as accurate as the numbers themselves.
+    m.target =
+        c.eye + forward * std::max({glm::length(c.look_at - c.eye), glm::length(c.eye), 1.0});
+    m.up = up;
+    m.fov_x_degrees = 2.0 * std::atan(half_height * aspect) * 180.0 / M_PI;
+    // Mitsuba's default planes (0.01 and 10^4) would cut scenes in small or
+    // large units; these keep everything, with Mitsuba's ratio of 10^6.
+    m.far_clip = 2.0 * std::max(farthest, 1e-30);
+    m.near_clip = 1e-6 * m.far_clip;
+    return m;
+}
+
+MitsubaExport export_mitsuba(const Scene& scene, const std::string& mesh_prefix,
+                             const MitsubaExportOptions& options) {
+    MitsubaExport out;
+
+    // The triangles of each material, in the scene's order.
+    std::map<std::uint32_t, std::vector<std::size_t>> groups;
+    for (std::size_t i = 0; i < scene.triangles.size(); ++i)
+        groups[scene.triangles[i].material].push_back(i);
+
+    std::size_t smooth_triangles = 0;
+    for (auto& [material_index, triangles] : groups) {
+        const Material& material = scene.materials[material_index];
+        const std::size_t smooth = static_cast<std::size_t>(
+            std::count_if(triangles.begin(), triangles.end(),
+                          [&](std::size_t i) { return scene.triangles[i].has_normals; }));
+        // Mitsuba's area emitter emits on the side of the interpolated normal
+        // where a mesh has vertex normals, wavepath's on the winding's side.
+        // An emissive material's triangles are therefore written flat; for an
+        // emitter, which reflects nothing, that changes nothing.
+        const bool with_normals = smooth > 0 && !material.is_emissive();
+        if (smooth > 0 && material.is_emissive() && material.kind != MaterialKind::Emitter)
+            out.warnings.push_back("material '" + material.name + "': " + std::to_string(smooth) +
+                                   " triangles with shading normals are emissive; they are "
+                                   "exported flat, since Mitsuba would emit by the normals");
+        if (with_normals)
+            smooth_triangles += smooth;
+
+        MitsubaMesh mesh;
+        mesh.file_name = mesh_prefix + "-" + std::to_string(out.meshes.size()) + "-" +
+                         file_name_part(material.name) + ".ply";
+        mesh.material = material_index;
+        mesh.triangle_count = triangles.size();
+        mesh.has_normals = with_normals;
+        mesh.ply = encode_ply(scene, triangles, with_normals);
+        out.meshes.push_back(std::move(mesh));
+    }
+    if (smooth_triangles > 0)
+        out.warnings.push_back(
+            std::to_string(smooth_triangles) +
+            " triangles have shading normals: Mitsuba interpolates them as wavepath does, but "
+            "without wavepath's shadow-terminator fix (docs/meshes.md), so the images differ "
+            "slightly where the normals bend away from the facets");
+
+    std::string& x = out.xml;
+    x = "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n";
+    x += xml_comment("Written by wavepath export-mitsuba from " + scene.source +
+                     "; render with Mitsuba 3 (docs/mitsuba-export.md)") +
+         "\n";
+    x += "<scene version=\"3.0.0\">\n";
+    x += integrator();
+    x += sensor(scene, options);
+    for (std::size_t i = 0; i < scene.materials.size(); ++i)
+        x += bsdf(scene.materials[i], i);
+    for (const MitsubaMesh& mesh : out.meshes) {
+        const Material& material = scene.materials[mesh.material];
+        x += "    <shape type=\"ply\">\n";
+        x +=
+            "        <string name=\"filename\" value=\"" + xml_attribute(mesh.file_name) + "\"/>\n";
+        // Without vertex normals Mitsuba would compute smooth ones; wavepath
+        // shades these triangles by their facets.
+        x += std::string("        <boolean name=\"face_normals\" value=\"") +
+             (mesh.has_normals ? "false" : "true") + "\"/>\n";
+        x += "        <ref id=\"" + material_id(mesh.material) + "\"/>\n";
+        x += area_emitter(material);
+        x += "    </shape>\n";
+    }
+    for (const Sphere& s : scene.spheres) {
+        x += "    <shape type=\"sphere\">\n";
+        x += "        <point name=\"center\" value=\"" + triple(s.center) + "\"/>\n";
+        x += "        <float name=\"radius\" value=\"" + number(s.radius) + "\"/>\n";
+        x += "        <ref id=\"" + material_id(s.material) + "\"/>\n";
+        x += "    </shape>\n";
+    }
+    x += "</scene>\n";
+    return out;
+}
+
+std::vector<std::filesystem::path> mitsuba_mesh_paths(const MitsubaExport& exported,
+                                                      const std::filesystem::path& xml_path) {
+    std::vector<std::filesystem::path> paths;
+    for (const MitsubaMesh& mesh : exported.meshes)
+        paths.push_back(xml_path.parent_path() / mesh.file_name);
+    return paths;
+}
+
+void write_mitsuba(const MitsubaExport& exported, const std::filesystem::path& xml_path) {
+    const std::vector<std::filesystem::path> paths = mitsuba_mesh_paths(exported, xml_path);
+    for (std::size_t i = 0; i < paths.size(); ++i)
+        write_bytes_atomically(paths[i], exported.meshes[i].ply.data(),
+                               exported.meshes[i].ply.size());
+    write_bytes_atomically(xml_path, exported.xml.data(), exported.xml.size());
+}
+
+} // namespace wp
