@@ -197,6 +197,8 @@ void MultiDeviceRenderer::fail(Device& device, std::exception_ptr error,
                                const std::string& while_doing) {
     device.failure = error;
     device.share.error = error_text(error);
+    static std::mutex reporting; // devices fail on their own threads
+    std::lock_guard lock(reporting);
     if (devices_.size() > 1 || peers_)
         report_("device " + device.share.index + " (" + device.share.name + ") failed" +
                 while_doing + ": " + device.share.error + "; its work goes to the other devices");
