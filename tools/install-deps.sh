@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Installs the Debian packages wavepath needs, when any is missing. Idempotent:
 # on a machine that has them all it does nothing and needs no network.
-# --ci adds what CI checks with beyond the build (.ci/run): clang-format 14.
+# --ci adds what CI checks with beyond the build (.ci/run): clang-format 14, and
+# chromium for the live preview's browser test (tests/app/test_cli_preview.cpp,
+# skipped without it; docs/preview.md gives its download and unpack times).
 # --bench adds what the benchmark against Embree needs (bench/, docs/performance.md):
 # libembree-dev; neither the default nor --ci installs it.
 set -euo pipefail
@@ -9,11 +11,11 @@ packages=(
   build-essential cmake pkg-config
   pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers clinfo oclgrind
   libglm-dev libstb-dev catch2 nlohmann-json3-dev libtinyexr-dev libcli11-dev
-  libtinyobjloader-dev libexpat1-dev
+  libtinyobjloader-dev libexpat1-dev libcpp-httplib-dev
   libopenmpi-dev openmpi-bin # MPI renders (docs/multi-device.md); optional to the build
 )
 if [[ "${1:-}" == "--ci" ]]; then
-  packages+=(clang-format-14)
+  packages+=(clang-format-14 chromium)
 fi
 if [[ "${1:-}" == "--bench" ]]; then
   packages+=(libembree-dev)

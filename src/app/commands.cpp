@@ -13,8 +13,8 @@
 
 #include "app/cli_options.hpp"
 #include "app/interrupt.hpp"
-#include "app/progress.hpp"
 #include "app/render_devices.hpp"
+#include "app/render_loop.hpp"
 #include "app/render_metadata.hpp"
 #include "app/view_cli.hpp"
 #include "cl/context.hpp"
@@ -107,6 +107,7 @@ CLI::App* add_render_subcommand(CLI::App& app, RenderCommand& command) {
     r->add_option("--trace", command.trace,
                   "Write every kernel launch and transfer as a Chrome trace (Perfetto, "
                   "chrome://tracing)");
+    add_render_loop_options(*r, command.loop, command.spp);
     return r;
 }
 
@@ -173,6 +174,8 @@ int run_render(const RenderCommand& command) {
 
     Scene scene = load_scene_for_render(command.scene, command.width, command.height);
     const std::string scene_sha256 = file_sha256(command.scene); // for the metadata
+    const ViewOptions view = view_for_scene(command.view, scene);
+    RenderLoop loop(command.loop, view); // a preview port in use fails here
 
     const bool profiling =
         command.profile || !command.profile_json.empty() || !command.trace.empty();
@@ -185,27 +188,25 @@ int run_render(const RenderCommand& command) {
     // an image too big for the device is refused.
     Film film = allocate_film(scene.camera.width, scene.camera.height);
 
-    std::cerr << "wavepath: " << scene.camera.width << "x" << scene.camera.height << " at "
-              << command.spp << " spp on " << integrator.describe() << " (kernels built in "
+    std::cerr << "wavepath: " << scene.camera.width << "x" << scene.camera.height << " "
+              << describe_halt_conditions(command.loop, command.spp) << " on "
+              << integrator.describe() << " (kernels built in "
               << integrator.integrator().program().build_seconds
               << " s; features: " << integrator.integrator().features().describe() << ")\n";
 
     const std::uint64_t pixels = static_cast<std::uint64_t>(scene.camera.width) *
                                  static_cast<std::uint64_t>(scene.camera.height);
-    // Samples are rendered a few per call, so that Ctrl-C (interrupt.hpp) is
-    // noticed between calls, where every pixel has the same number. Always
-    // the same split for the same options, so the image is too.
-    const std::uint32_t per_call = integrator.samples_per_call(samples_per_call(options));
-    std::uint32_t spp = 0;
-    {
-        ProgressBar progress(command.spp, pixels);
-        while (spp < command.spp && (spp == 0 || !interrupt_requested())) {
-            const std::uint32_t part = std::min(per_call, command.spp - spp);
-            integrator.render(spp, part, film, [&](double done) { progress.update(spp + done); });
-            spp += part;
-        }
-    }
-    const bool interrupted = spp < command.spp;
+    // Samples are rendered a few per call, so that Ctrl-C (interrupt.hpp) and
+    // the halt conditions are checked between calls, where every pixel has
+    // the same number. Always the same split for the same options, so the
+    // image is too.
+    const RenderLoopResult rendered = loop.run(
+        film, command.spp, integrator.samples_per_call(samples_per_call(options)),
+        [&](std::uint32_t first, std::uint32_t count, const std::function<void(double)>& progress) {
+            integrator.render(first, count, film, progress);
+        });
+    const std::uint32_t spp = rendered.spp;
+    const bool interrupted = rendered.interrupted();
 
     integrator.finish(); // the MPI ranks' shares arrive
     Image image = film.mean();
@@ -218,7 +219,6 @@ int run_render(const RenderCommand& command) {
                                       .options = options,
                                       .devices = device_names(integrator),
                                       .render_seconds = integrator.stats().render_seconds});
-    const ViewOptions view = view_for_scene(command.view, scene);
     write_result_image(command.out, image, view);
     if (!command.png.empty())
         write_result_image(command.png, image, view);

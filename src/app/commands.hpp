@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "app/render_loop.hpp"
 #include "image/tonemap.hpp"
 #include "render/film.hpp"
 #include "render/integrator_options.hpp"
@@ -29,6 +30,7 @@ struct RenderCommand {
     std::string profile_json;
     std::string trace;
     ViewOptions view;
+    RenderLoopOptions loop; // --time, --target-error, --quiet, --preview (render_loop.hpp)
 };
 
 struct BenchCommand {

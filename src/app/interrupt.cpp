@@ -1,5 +1,6 @@
 #include "app/interrupt.hpp"
 
+#include <atomic>
 #include <csignal>
 
 #include <signal.h>
@@ -11,13 +12,15 @@
 namespace wp {
 namespace {
 
-// Written by the handler, read by the render loop: lock-free atomics are
-// the only shared state a handler may touch.
-volatile std::sig_atomic_t g_signal = 0;
+// Written by the handler (or by request_interrupt, on the preview server's
+// thread), read by the render loop: lock-free atomics are the only shared
+// state a handler may touch, and they are safe across threads too.
+std::atomic<int> g_signal{0};
+static_assert(std::atomic<int>::is_always_lock_free);
 
 void on_signal(int sig) {
-    if (g_signal == 0) {
-        g_signal = sig;
+    int none = 0;
+    if (g_signal.compare_exchange_strong(none, sig)) {
         static const char message[] =
             "\nwavepath: interrupted: finishing the current wave and writing the outputs "
             "(again to quit at once)\n";
@@ -41,6 +44,11 @@ void install_interrupt_handlers() {
     action.sa_flags = SA_RESTART; // blocking reads and writes carry on after the first one
     sigaction(SIGINT, &action, nullptr);
     sigaction(SIGTERM, &action, nullptr);
+}
+
+bool request_interrupt() {
+    int none = 0;
+    return g_signal.compare_exchange_strong(none, SIGINT);
 }
 
 bool interrupt_requested() {

@@ -10,7 +10,13 @@ namespace wp {
 // Installs the SIGINT and SIGTERM handlers; call once, before any work.
 void install_interrupt_handlers();
 
-// Whether a first signal has arrived, and which (0: none).
+// The first signal's effect without a signal (the preview's stop button):
+// the render stops at the next wave boundary, writes its outputs and exits
+// as after Ctrl-C (interrupt_signal() is then SIGINT). Callable from any
+// thread; returns false if a stop was already asked for.
+bool request_interrupt();
+
+// Whether a first signal (or request) has arrived, and which (0: none).
 bool interrupt_requested();
 int interrupt_signal();
 

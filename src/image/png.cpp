@@ -12,8 +12,8 @@
 namespace wp {
 namespace {
 
-// stb hands over the encoded PNG in pieces; collect them so the file can be written
-// atomically in one go.
+// stb hands over the encoded PNG in pieces; collect them so that the file can be
+// written atomically in one go.
 void append_bytes(void* context, void* data, int size) {
     auto* out = static_cast<std::vector<unsigned char>*>(context);
     const auto* bytes = static_cast<const unsigned char*>(data);
@@ -22,8 +22,8 @@ void append_bytes(void* context, void* data, int size) {
 
 } // namespace
 
-void write_png(const std::filesystem::path& path, const Image& img, const ViewOptions& view) {
-    const std::string context = "cannot write '" + path.string() + "'";
+std::vector<unsigned char> encode_png(const Image& img, const ViewOptions& view,
+                                      const std::string& context) {
     check_image_shape(img, context);
     // stb_image_write uses int for sizes and strides.
     if (img.width > INT_MAX / 3 || img.height > INT_MAX / (img.width * 3)) {
@@ -39,8 +39,13 @@ void write_png(const std::filesystem::path& path, const Image& img, const ViewOp
     // The metadata, and how this view of the image was made.
     Metadata text = img.metadata;
     text.emplace_back("wavepath.view", describe_view(img, view));
-    const std::vector<unsigned char> file = add_png_text(png, text, context);
-    write_bytes_atomically(path, file.data(), file.size());
+    return add_png_text(png, text, context);
+}
+
+void write_png(const std::filesystem::path& path, const Image& img, const ViewOptions& view) {
+    const std::vector<unsigned char> png =
+        encode_png(img, view, "cannot write '" + path.string() + "'");
+    write_bytes_atomically(path, png.data(), png.size());
 }
 
 } // namespace wp

@@ -1,0 +1,43 @@
+// The live preview of `wavepath render --preview`: a small web server on its
+// own thread that serves a page (preview_page.hpp) showing the image as it
+// converges, with its samples per pixel, speed and error estimate, and a
+// stop button that ends the render as Ctrl-C does.
+//
+//   GET  /             the page
+//   GET  /image.png    the latest published image (503 before the first)
+//   GET  /status.json  the latest published status
+//   POST /stop         request_interrupt() (interrupt.hpp)
+//
+// The render thread publishes; the server's threads only copy out what was
+// last published, under a mutex, so a slow browser never holds up the render.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace wp {
+
+class PreviewServer {
+  public:
+    // Listens on address:port (port 0: a free one, see port()). Throws
+    // std::runtime_error "cannot serve the preview on ADDRESS:PORT: ..." when
+    // it cannot.
+    PreviewServer(const std::string& address, int port);
+    ~PreviewServer(); // stops serving and joins the thread
+    PreviewServer(const PreviewServer&) = delete;
+    PreviewServer& operator=(const PreviewServer&) = delete;
+
+    int port() const;
+    std::string url() const; // http://ADDRESS:PORT/
+
+    // `png`: an encoded PNG (image/png.hpp encode_png); `status`: a JSON object.
+    void publish(std::vector<unsigned char> png, std::string status);
+    void publish_status(std::string status);
+
+  private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+} // namespace wp
