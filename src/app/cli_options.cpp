@@ -83,6 +83,14 @@ void add_device_option(CLI::App& command, std::string& device) {
                        "(default: $WAVEPATH_DEVICE, else first GPU, else first CPU)");
 }
 
+void add_device_list_option(CLI::App& command, std::string& devices) {
+    command.add_option("--device,-d", devices,
+                       "OpenCL devices: an index P:D from `wavepath devices` or part of a name, "
+                       "a comma-separated list of them (0:0,1:0) or 'all'; several devices "
+                       "share the samples (default: $WAVEPATH_DEVICE, else first GPU, else "
+                       "first CPU)");
+}
+
 void add_image_size_options(CLI::App& command, int& width, int& height) {
     const auto size = CLI::Range(1, scene_limits::max_resolution);
     command.add_option("--width", width, "Image width (default: the scene's)")->check(size);

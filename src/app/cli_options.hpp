@@ -30,6 +30,9 @@ void add_integrator_options(CLI::App& command, IntegratorOptions& options);
 
 // --device: an index P:D or part of a device's name.
 void add_device_option(CLI::App& command, std::string& device);
+// --device for render: also a comma-separated list of them, or "all"
+// (select_devices; docs/multi-device.md).
+void add_device_list_option(CLI::App& command, std::string& devices);
 
 // --width and --height, each within the scene loader's resolution limit; 0
 // (not given) keeps the scene's resolution.

@@ -13,13 +13,16 @@
 
 #include "app/cli_options.hpp"
 #include "app/interrupt.hpp"
+#include "app/render_devices.hpp"
 #include "app/render_loop.hpp"
 #include "app/render_metadata.hpp"
 #include "app/view_cli.hpp"
 #include "cl/context.hpp"
 #include "cl/device.hpp"
 #include "image/image_io.hpp"
+#include "render/multi_device.hpp"
 #include "render/wavefront.hpp"
+#include "report/device_profile.hpp"
 #include "report/profile_report.hpp"
 #include "scene/load.hpp"
 #include "scene/validate.hpp"
@@ -91,7 +94,7 @@ CLI::App* add_render_subcommand(CLI::App& app, RenderCommand& command) {
     r->add_option("--spp,-s", command.spp, "Samples per pixel")
         ->capture_default_str()
         ->check(CLI::Range(1u, cli_limits::max_samples_per_pixel));
-    add_device_option(*r, command.device);
+    add_device_list_option(*r, command.device);
     add_image_size_options(*r, command.width, command.height);
     add_integrator_options(*r, command.integrator);
     add_view_options(*r, command.view);
@@ -158,6 +161,8 @@ std::uint32_t samples_per_call(const IntegratorOptions& options) {
 }
 
 int run_render(const RenderCommand& command) {
+    if (const std::optional<int> status = run_render_as_mpi_worker(command))
+        return *status; // a rank other than 0 of an MPI job (render_devices.hpp)
     check_output(command.out, kImageExtensions);
     check_output(command.png, kImageExtensions);
     check_output(command.profile_json);
@@ -183,24 +188,24 @@ int run_render(const RenderCommand& command) {
 
     const bool profiling =
         command.profile || !command.profile_json.empty() || !command.trace.empty();
-    DeviceContext device(select_device(command.device), profiling);
     const IntegratorOptions& options = command.integrator;
-    WavefrontIntegrator integrator(device, scene, options);
+    // Every device of --device, and with MPI the other ranks' (render_devices.hpp).
+    std::unique_ptr<MultiDeviceRenderer> renderer = open_renderer(command, scene, profiling);
+    MultiDeviceRenderer& integrator = *renderer;
     // After the integrator, whose device check is arithmetic: allocating (and
     // zeroing) a film first would take a minute and all host memory before
     // an image too big for the device is refused.
     Film film = allocate_film(scene.camera.width, scene.camera.height);
     RenderCheckpoints checkpoints(
-        command.checkpoints, checkpoint_identity(scene, options, integrator.program().options));
+        command.checkpoints,
+        checkpoint_identity(scene, options, integrator.integrator().program().options));
     const std::uint32_t resumed = checkpoints.resume(film, command.spp); // 0 without --resume
-    Profiler profiler;
-    if (profiling)
-        integrator.set_profiler(&profiler);
 
     std::cerr << "wavepath: " << scene.camera.width << "x" << scene.camera.height << " "
-              << describe_halt_conditions(command.loop, command.spp) << " on " << device.info.name
-              << " (kernels built in " << integrator.program().build_seconds
-              << " s; features: " << integrator.features().describe() << ")\n";
+              << describe_halt_conditions(command.loop, command.spp) << " on "
+              << integrator.describe() << " (kernels built in "
+              << integrator.integrator().program().build_seconds
+              << " s; features: " << integrator.integrator().features().describe() << ")\n";
 
     const std::uint64_t pixels = static_cast<std::uint64_t>(scene.camera.width) *
                                  static_cast<std::uint64_t>(scene.camera.height);
@@ -209,7 +214,7 @@ int run_render(const RenderCommand& command) {
     // where every pixel has the same number. Always the same split for the
     // same options, so the image is too.
     const RenderLoopResult rendered = loop.run(
-        film, command.spp, samples_per_call(options),
+        film, command.spp, integrator.samples_per_call(samples_per_call(options)),
         [&](std::uint32_t first, std::uint32_t count, const std::function<void(double)>& progress) {
             integrator.render(first, count, film, progress);
             checkpoints.save_if_due(first + count, film);
@@ -218,6 +223,7 @@ int run_render(const RenderCommand& command) {
     const std::uint32_t spp = rendered.spp;
     const bool interrupted = rendered.interrupted();
 
+    integrator.finish(); // the MPI ranks' shares arrive
     Image image = film.mean();
     image.metadata = render_metadata({.scene_file = command.scene,
                                       .scene_sha256 = scene_sha256,
@@ -227,14 +233,14 @@ int run_render(const RenderCommand& command) {
                                       .samples_requested = command.spp,
                                       .samples_resumed = resumed,
                                       .options = options,
-                                      .devices = {device.info.name},
+                                      .devices = device_names(integrator),
                                       .render_seconds = integrator.stats().render_seconds});
     write_result_image(command.out, image, view);
     if (!command.png.empty())
         write_result_image(command.png, image, view);
     checkpoints.save(spp, film);
 
-    const RenderStats& stats = integrator.stats();
+    const RenderStats stats = integrator.stats();
     double seconds = stats.render_seconds;
     double samples = static_cast<double>(pixels) * (spp - resumed); // this run's
     double rays = static_cast<double>(stats.camera_rays + stats.bounce_rays + stats.shadow_rays);
@@ -248,21 +254,23 @@ int run_render(const RenderCommand& command) {
                 static_cast<unsigned long long>(stats.nonfinite_samples));
     if (profiling) {
         ProfileContext context;
-        context.device = device.info.name;
+        context.device = integrator.describe();
         context.scene = command.scene;
         context.width = scene.camera.width;
         context.height = scene.camera.height;
         context.spp = spp;
-        context.build_options = integrator.program().options;
-        context.build_seconds = integrator.program().build_seconds;
+        context.build_options = integrator.integrator().program().options;
+        context.build_seconds = integrator.integrator().program().build_seconds;
         context.regeneration = options.regeneration;
-        context.pool_size = integrator.pool_size();
+        context.pool_size = integrator.integrator().pool_size();
         if (command.profile)
-            std::printf("\n%s", profile_table(profiler, stats, context).c_str());
+            std::printf("\n%s", multi_device_profile_table(integrator, context).c_str());
         if (!command.profile_json.empty())
-            write_profile_json(command.profile_json, profiler, stats, context);
+            write_multi_device_profile_json(command.profile_json, integrator, context);
         if (!command.trace.empty())
-            profiler.write_trace(command.trace, device.info.name);
+            write_multi_device_trace(command.trace, integrator);
+    } else {
+        print_device_shares(integrator); // with several devices
     }
     if (interrupted) {
         std::fflush(stdout);

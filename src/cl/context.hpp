@@ -1,8 +1,8 @@
 // One OpenCL device with its own context and in-order command queue.
 //
 // Everything that renders holds one of these per device, so that a render can
-// later span several devices by giving each its own context, programs,
-// buffers and film (see docs/architecture.md).
+// span several devices by giving each its own context, programs, buffers and
+// film (render/multi_device.hpp, docs/multi-device.md).
 #pragma once
 
 #include "cl/cl.hpp"

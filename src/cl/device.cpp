@@ -103,49 +103,128 @@ std::string describe_devices(const std::vector<DeviceInfo>& devices) {
     return out.str();
 }
 
-DeviceInfo select_device(const std::string& requested) {
-    std::string selector = requested, from;
-    if (const char* variable = std::getenv("WAVEPATH_DEVICE"); selector.empty() && variable) {
-        selector = variable;
+namespace {
+
+// The selector the user meant: `requested`, else WAVEPATH_DEVICE; `from` says
+// which, for messages.
+std::string effective_selector(const std::string& requested, std::string& from) {
+    from.clear();
+    if (const char* variable = std::getenv("WAVEPATH_DEVICE"); requested.empty() && variable) {
         from = " (from WAVEPATH_DEVICE)";
+        return variable;
     }
+    return requested;
+}
+
+std::vector<DeviceInfo> available_devices() {
     std::vector<DeviceInfo> devices = list_devices();
     if (devices.empty())
         throw DeviceError("no OpenCL device found (is an ICD such as pocl-opencl-icd installed?)");
+    return devices;
+}
 
-    auto fail = [&](const std::string& why) -> DeviceError {
-        std::ostringstream out;
-        out << why << "; available devices:";
+DeviceError no_match(const std::vector<DeviceInfo>& devices, const std::string& why) {
+    std::ostringstream out;
+    out << why << "; available devices:";
+    for (const DeviceInfo& d : devices)
+        out << " [" << d.index_string() << "] " << d.name << ";";
+    std::string message = out.str();
+    message.pop_back();
+    return DeviceError(message);
+}
+
+const DeviceInfo& default_device(const std::vector<DeviceInfo>& devices) {
+    for (const char* wanted : {"GPU", "CPU"})
         for (const DeviceInfo& d : devices)
-            out << " [" << d.index_string() << "] " << d.name << ";";
-        std::string message = out.str();
-        message.pop_back();
-        return DeviceError(message);
-    };
+            if (d.type == wanted)
+                return d;
+    return devices.front();
+}
 
-    if (selector.empty()) {
-        for (const char* wanted : {"GPU", "CPU"})
-            for (const DeviceInfo& d : devices)
-                if (d.type == wanted)
-                    return d;
-        return devices.front();
-    }
-
-    int platform = -1, device = -1;
+bool parse_index(const std::string& selector, int& platform, int& device) {
     char colon = 0, extra = 0;
     std::istringstream parse(selector);
-    if ((parse >> platform >> colon >> device) && colon == ':' && !(parse >> extra)) {
+    return (parse >> platform >> colon >> device) && colon == ':' && !(parse >> extra);
+}
+
+// The device one (non-empty) selector names, skipping those `taken` says
+// are already picked when the selector is a name.
+const DeviceInfo& match_device(const std::vector<DeviceInfo>& devices, const std::string& selector,
+                               const std::string& from, const std::vector<bool>& taken) {
+    int platform = -1, device = -1;
+    if (parse_index(selector, platform, device)) {
         for (const DeviceInfo& d : devices)
             if (d.platform_index == platform && d.device_index == device)
                 return d;
-        throw fail("no OpenCL device has index '" + selector + "'" + from);
+        throw no_match(devices, "no OpenCL device has index '" + selector + "'" + from);
     }
+    const std::string needle = lowercase(selector);
+    bool matched = false;
+    for (std::size_t i = 0; i < devices.size(); ++i) {
+        if (lowercase(devices[i].name).find(needle) == std::string::npos)
+            continue;
+        matched = true;
+        if (!taken[i])
+            return devices[i];
+    }
+    if (matched)
+        throw no_match(devices, "every OpenCL device whose name contains '" + selector +
+                                    "' is already in the list" + from);
+    throw no_match(devices, "no OpenCL device name contains '" + selector + "'" + from);
+}
 
-    std::string needle = lowercase(selector);
-    for (const DeviceInfo& d : devices)
-        if (lowercase(d.name).find(needle) != std::string::npos)
-            return d;
-    throw fail("no OpenCL device name contains '" + selector + "'" + from);
+std::vector<std::string> split_list(const std::string& text) {
+    std::vector<std::string> items;
+    std::size_t start = 0;
+    for (;;) {
+        const std::size_t comma = text.find(',', start);
+        items.push_back(trim(text.substr(start, comma - start)));
+        if (comma == std::string::npos)
+            return items;
+        start = comma + 1;
+    }
+}
+
+} // namespace
+
+DeviceInfo select_device(const std::string& requested) {
+    std::string from;
+    const std::string selector = effective_selector(requested, from);
+    if (selector.find(',') != std::string::npos || lowercase(trim(selector)) == "all")
+        throw DeviceError("this command runs on one device, but '" + selector + "'" + from +
+                          " names several");
+    std::vector<DeviceInfo> devices = available_devices();
+    if (selector.empty())
+        return default_device(devices);
+    return match_device(devices, selector, from, std::vector<bool>(devices.size(), false));
+}
+
+std::vector<DeviceInfo> select_devices(const std::string& requested) {
+    std::string from;
+    const std::string selector = effective_selector(requested, from);
+    std::vector<DeviceInfo> devices = available_devices();
+    if (selector.empty())
+        return {default_device(devices)};
+    if (lowercase(trim(selector)) == "all")
+        return devices;
+
+    std::vector<bool> taken(devices.size(), false);
+    std::vector<DeviceInfo> picked;
+    for (const std::string& entry : split_list(selector)) {
+        if (entry.empty())
+            throw DeviceError("the device list '" + selector + "'" + from + " has an empty entry");
+        if (lowercase(entry) == "all")
+            throw DeviceError("'all' in the device list '" + selector + "'" + from +
+                              " must stand alone");
+        const DeviceInfo& device = match_device(devices, entry, from, taken);
+        const auto position = static_cast<std::size_t>(&device - devices.data());
+        if (taken[position])
+            throw DeviceError("device " + device.index_string() + " (" + device.name +
+                              ") appears twice in the device list '" + selector + "'" + from);
+        taken[position] = true;
+        picked.push_back(device);
+    }
+    return picked;
 }
 
 } // namespace wp

@@ -43,7 +43,17 @@ std::vector<DeviceInfo> list_devices();
 // selector means the environment variable WAVEPATH_DEVICE (same syntax) when
 // it is set and not empty, else the first GPU, else the first CPU, else the
 // first device.
+// A selector that lists several devices (see select_devices) is refused:
+// the commands that call this one run on one device.
 DeviceInfo select_device(const std::string& selector);
+
+// Picks the devices of one render: a comma-separated list of selectors as
+// select_device takes them ("0:0,0:1", "gpu,cpu"), or "all" for every
+// device. An index may appear once; a name takes the first matching device
+// not already picked, so "pthread,pthread" picks two devices of that name.
+// An empty selector means WAVEPATH_DEVICE (same syntax), else the default
+// device of select_device. The result is in the list's order.
+std::vector<DeviceInfo> select_devices(const std::string& selector);
 
 // One line per device, as `wavepath devices` prints them.
 std::string describe_devices(const std::vector<DeviceInfo>& devices);

@@ -50,7 +50,8 @@ class Film {
     // Combines another film of disjoint samples (e.g. from another device).
     void merge(const Film& other);
 
-    // Everything the film holds, to be given back to the constructor above.
+    // Everything the film holds, to be given back to the constructor above
+    // (a checkpoint, or another MPI rank's film).
     FilmSums sums() const { return {sum_, sum_squares_, odd_sum_, count_, odd_count_}; }
 
     Image mean() const;                // the estimate: sum / samples, per pixel

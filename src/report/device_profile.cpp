@@ -1,0 +1,158 @@
+#include "report/device_profile.hpp"
+
+#include <cstdio>
+
+#include <nlohmann/json.hpp>
+
+#include "util/file.hpp"
+
+namespace wp {
+namespace {
+
+std::string line(const char* format, auto... values) {
+    char text[512];
+    std::snprintf(text, sizeof text, format, values...);
+    return text;
+}
+
+nlohmann::json stage_totals_json(const std::vector<StageTotals>& totals) {
+    nlohmann::json stages = nlohmann::json::array();
+    for (int s = 0; s < kStageCount; ++s)
+        stages.push_back({{"stage", stage_name(static_cast<Stage>(s))},
+                          {"launches", totals[s].launches},
+                          {"items", totals[s].items},
+                          {"device_seconds", totals[s].device_seconds}});
+    return stages;
+}
+
+} // namespace
+
+std::string device_share_table(const std::vector<DeviceShare>& shares) {
+    std::uint64_t total = 0;
+    for (const DeviceShare& share : shares)
+        total += share.samples;
+    std::string out = line("%-4s %-5s %-40s %12s %7s %11s %9s %9s %6s\n", "rank", "index", "device",
+                           "samples", "share", "samples/s", "busy s", "idle s", "chunks");
+    for (const DeviceShare& share : shares) {
+        out += line(
+            "%-4d %-5s %-40.40s %12llu %6.1f%% %11.4g %9.3f %9.3f %6u\n", share.rank,
+            share.index.c_str(), share.name.c_str(), static_cast<unsigned long long>(share.samples),
+            total ? 100.0 * static_cast<double>(share.samples) / static_cast<double>(total) : 0.0,
+            share.samples_per_second(), share.busy_seconds, share.idle_seconds, share.chunks);
+        if (!share.error.empty())
+            out += "     failed: " + share.error + "\n";
+    }
+    return out;
+}
+
+nlohmann::json device_share_json(const std::vector<DeviceShare>& shares) {
+    std::uint64_t total = 0;
+    for (const DeviceShare& share : shares)
+        total += share.samples;
+    nlohmann::json out = nlohmann::json::array();
+    for (const DeviceShare& share : shares)
+        out.push_back(
+            {{"rank", share.rank},
+             {"host", share.host},
+             {"index", share.index},
+             {"name", share.name},
+             {"samples", share.samples},
+             {"share",
+              total ? static_cast<double>(share.samples) / static_cast<double>(total) : 0.0},
+             {"samples_per_second", share.samples_per_second()},
+             {"busy_seconds", share.busy_seconds},
+             {"idle_seconds", share.idle_seconds},
+             {"chunks", share.chunks},
+             {"failed", !share.error.empty()},
+             {"error", share.error}});
+    return out;
+}
+
+std::string multi_device_profile_table(const MultiDeviceRenderer& renderer,
+                                       const ProfileContext& context) {
+    const std::vector<DeviceShare> shares = renderer.shares();
+    if (shares.size() == 1)
+        return profile_table(renderer.profiler(0), renderer.device_stats(0), context) + "\n" +
+               device_share_table(shares);
+    std::string out;
+    for (std::size_t d = 0; d < renderer.local_device_count(); ++d) {
+        ProfileContext own = context;
+        own.device = shares[d].name + " (" + shares[d].index + ")";
+        out += profile_table(renderer.profiler(d), renderer.device_stats(d), own) + "\n";
+    }
+    return out +
+           line("split of %dx%d at %u spp over %zu devices (by demand, in chunks of samples):\n",
+                context.width, context.height, context.spp, shares.size()) +
+           device_share_table(shares);
+}
+
+nlohmann::json multi_device_profile_json(const MultiDeviceRenderer& renderer,
+                                         const ProfileContext& context) {
+    const std::vector<DeviceShare> shares = renderer.shares();
+    const std::size_t local = renderer.local_device_count();
+    nlohmann::json out = profile_json(renderer.profiler(0), renderer.stats(), context);
+    nlohmann::json devices = device_share_json(shares);
+    std::vector<StageTotals> sum(kStageCount);
+    double busy = 0.0;
+    for (std::size_t d = 0; d < local; ++d) {
+        const Profiler& profiler = renderer.profiler(d);
+        std::vector<StageTotals> totals = profiler.totals();
+        for (int s = 0; s < kStageCount; ++s) {
+            sum[s].launches += totals[s].launches;
+            sum[s].items += totals[s].items;
+            sum[s].device_seconds += totals[s].device_seconds;
+        }
+        busy += profiler.device_busy_seconds();
+        devices[d]["stages"] = stage_totals_json(totals);
+        devices[d]["device_busy_seconds"] = profiler.device_busy_seconds();
+    }
+    out["stages"] = stage_totals_json(sum);
+    out["device_busy_seconds"] = busy;
+    out["devices"] = devices;
+    return out;
+}
+
+void write_multi_device_profile_json(const std::filesystem::path& path,
+                                     const MultiDeviceRenderer& renderer,
+                                     const ProfileContext& context) {
+    std::string text = multi_device_profile_json(renderer, context).dump(2) + "\n";
+    write_bytes_atomically(path, text.data(), text.size());
+}
+
+void write_multi_device_trace(const std::filesystem::path& path,
+                              const MultiDeviceRenderer& renderer) {
+    const std::vector<DeviceShare> shares = renderer.shares();
+    if (renderer.local_device_count() == 1) {
+        renderer.profiler(0).write_trace(path, shares[0].name);
+        return;
+    }
+    nlohmann::json events = nlohmann::json::array();
+    for (std::size_t d = 0; d < renderer.local_device_count(); ++d) {
+        // Each device has its own clock: its time starts at its first record.
+        const int pid = static_cast<int>(d) + 1;
+        const std::vector<LaunchRecord>& records = renderer.profiler(d).records();
+        const std::uint64_t origin = records.empty() ? 0 : records.front().queued_ns;
+        events.push_back(
+            {{"name", "process_name"},
+             {"ph", "M"},
+             {"pid", pid},
+             {"args", {{"name", "wavepath on " + shares[d].name + " (" + shares[d].index + ")"}}}});
+        for (const LaunchRecord& r : records) {
+            if (r.end_ns == 0)
+                continue;
+            events.push_back({{"name", stage_name(r.stage)},
+                              {"cat", r.stage == Stage::Transfer ? "transfer" : "kernel"},
+                              {"ph", "X"},
+                              {"pid", pid},
+                              {"tid", 1},
+                              {"ts", static_cast<double>(r.start_ns - origin) * 1e-3},
+                              {"dur", static_cast<double>(r.end_ns - r.start_ns) * 1e-3},
+                              {"args", {{"items", r.items}}}});
+        }
+    }
+    nlohmann::json trace = {{"traceEvents", events}, {"displayTimeUnit", "ms"}};
+    std::string text = trace.dump();
+    write_bytes_atomically(path, text.data(), text.size());
+}
+
+} // namespace wp

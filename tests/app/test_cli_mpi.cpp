@@ -1,0 +1,88 @@
+// `mpirun -np 2 wavepath render ...`: two ranks render the image one process
+// renders, only rank 0 writes, and a rank that cannot start ends the job with
+// its error. Skipped when wavepath was built without MPI or mpirun is absent.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <string>
+
+#include <unistd.h>
+
+#include "app/cli_run.hpp"
+#include "app/same_samples.hpp"
+#include "image/image_io.hpp"
+
+using namespace wp::test::cli;
+namespace fs = std::filesystem;
+
+namespace {
+
+// mpirun with two ranks on this machine (more ranks than cores is fine), as
+// root too (CI runs as root).
+std::string mpirun() {
+    const std::string path = WAVEPATH_MPIRUN;
+    if (path.empty() || !fs::exists(path))
+        return {};
+    return "'" + path + "' --oversubscribe" + (::geteuid() == 0 ? " --allow-run-as-root" : "");
+}
+
+} // namespace
+
+TEST_CASE("cli mpi: two ranks render the image one process renders") {
+    const std::string launcher = mpirun();
+    if (launcher.empty()) {
+        WARN("skipped: wavepath was built without MPI, or mpirun is absent");
+        return;
+    }
+    Scratch s;
+    const std::uint32_t spp = 16;
+    const std::string arguments = "render " + kHexroom + " --spp " + std::to_string(spp) +
+                                  " --width 40 --height 30 --seed 4 --out ";
+    const fs::path one = s.dir / "one.exr", two = s.dir / "two.exr";
+    Run single = wavepath(arguments + "'" + one.string() + "'", s);
+    INFO(single.err);
+    REQUIRE(single.exit_code == 0);
+
+    // cli_run's wavepath() runs the executable; here mpirun runs it twice.
+    const fs::path out = s.dir / "mpi-out.txt", err = s.dir / "mpi-err.txt";
+    const std::string command = "WAVEPATH_DEVICE='" + test_device_index() + "' " + launcher +
+                                " -np 2 '" + WAVEPATH_EXE + "' " + arguments + "'" + two.string() +
+                                "' >'" + out.string() + "' 2>'" + err.string() + "'";
+    const int status = std::system(command.c_str());
+    const std::string stdout_text = slurp(out), stderr_text = slurp(err);
+    INFO(stderr_text);
+    REQUIRE(status == 0);
+    check_same_samples(wp::read_image(two), wp::read_image(one), spp);
+    // Both ranks took part, and rank 0 printed the split (once).
+    CHECK(stdout_text.find("\n1    ") != std::string::npos);
+    CHECK(stdout_text.find("rendered ") == stdout_text.rfind("rendered "));
+    // Rank 1 wrote nothing: the directory holds the two images and the logs.
+    int files = 0;
+    for (const auto& entry : fs::directory_iterator(s.dir))
+        files += entry.is_regular_file();
+    CHECK(files == 4);
+}
+
+TEST_CASE("cli mpi: a rank that cannot open its device ends the job with its error") {
+    const std::string launcher = mpirun();
+    if (launcher.empty()) {
+        WARN("skipped: wavepath was built without MPI, or mpirun is absent");
+        return;
+    }
+    Scratch s;
+    const fs::path image = s.dir / "never.exr", err = s.dir / "mpi-err.txt";
+    const std::string arguments =
+        " render " + kHexroom + " --spp 2 --width 8 --height 8 --out '" + image.string() + "'";
+    // Rank 1 alone looks for a device that does not exist.
+    const std::string command = "WAVEPATH_DEVICE='" + test_device_index() + "' " + launcher +
+                                " -np 1 '" + WAVEPATH_EXE + "'" + arguments +
+                                " : -np 1 -x WAVEPATH_DEVICE=no-such-device '" + WAVEPATH_EXE +
+                                "'" + arguments + " >/dev/null 2>'" + err.string() + "'";
+    const int status = std::system(command.c_str());
+    const std::string stderr_text = slurp(err);
+    INFO(stderr_text);
+    CHECK(status != 0);
+    CHECK(stderr_text.rfind("wavepath: error: rank 1 of 2 (", 0) == 0); // the first line
+    CHECK(stderr_text.find("no-such-device") != std::string::npos);
+    CHECK_FALSE(fs::exists(image));
+}
