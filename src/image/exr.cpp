@@ -71,7 +71,7 @@ std::uint64_t load_le(const unsigned char* p, int bytes) {
 // 1.0.1 detects a cut-off chunk too, but only after allocating the channel buffers,
 // which it then leaks; checking first avoids that for the common damage (a truncated
 // file) and gives a clearer message. Mirrors tinyexr's block count for scanline files.
-void check_chunks_complete(const std::vector<unsigned char>& bytes, const EXRHeader& header,
+void check_chunks_complete(std::span<const unsigned char> bytes, const EXRHeader& header,
                            const std::string& context) {
     const std::uint64_t size = bytes.size();
     const std::uint64_t table = 8 + static_cast<std::uint64_t>(header.header_len);
@@ -192,8 +192,11 @@ void write_exr(const std::filesystem::path& path, const Image& img) {
 }
 
 Image read_exr(const std::filesystem::path& path) {
-    const std::string context = "cannot read '" + path.string() + "'";
-    const std::vector<unsigned char> bytes = read_file_bytes(path);
+    return decode_exr(read_file_bytes(path), path.string());
+}
+
+Image decode_exr(std::span<const unsigned char> bytes, const std::string& file_name) {
+    const std::string context = "cannot read '" + file_name + "'";
 
     EXRVersion version;
     if (ParseEXRVersionFromMemory(&version, bytes.data(), bytes.size()) != TINYEXR_SUCCESS) {

@@ -4,6 +4,8 @@
 #include "image/image.hpp"
 
 #include <filesystem>
+#include <span>
+#include <string>
 
 namespace wp {
 
@@ -16,5 +18,9 @@ void write_exr(const std::filesystem::path& path, const Image& img);
 // channels, tiled, multi-part or deep files, integer channels, corrupt or truncated
 // data) is an ImageError naming the file.
 Image read_exr(const std::filesystem::path& path);
+
+// read_exr on a file's bytes already in memory; `file_name` stands for the path in
+// messages. The fuzz targets (fuzz/) and their regression tests read through here.
+Image decode_exr(std::span<const unsigned char> bytes, const std::string& file_name);
 
 } // namespace wp

@@ -47,6 +47,16 @@ std::string read_whole_file(const std::filesystem::path& path) {
     }
 }
 
+// Throws unless the name has a mesh extension; checked before the file is read.
+void check_mesh_extension(const std::filesystem::path& path) {
+    const std::string ext = lower_extension(path);
+    if (ext != ".obj" && ext != ".ply")
+        throw MeshError::in_file(path, ext.empty() ? "unknown mesh format: the file name has no "
+                                                     "extension (expected .obj or .ply)"
+                                                   : "unknown mesh format '" + ext +
+                                                         "' (expected .obj or .ply)");
+}
+
 std::string format_number(double x) {
     std::array<char, 32> buf{};
     const auto end = std::to_chars(buf.data(), buf.data() + buf.size(), x).ptr;
@@ -130,16 +140,17 @@ TriangleMesh finish(const std::filesystem::path& file, PolygonMesh&& poly,
 } // namespace
 
 TriangleMesh load_mesh(const std::filesystem::path& path, const MeshLoadOptions& options) {
-    const std::string ext = lower_extension(path);
-    if (ext != ".obj" && ext != ".ply")
-        throw MeshError::in_file(path, ext.empty() ? "unknown mesh format: the file name has no "
-                                                     "extension (expected .obj or .ply)"
-                                                   : "unknown mesh format '" + ext +
-                                                         "' (expected .obj or .ply)");
-    const std::string bytes = read_whole_file(path);
-    PolygonMesh poly = ext == ".obj" ? read_obj(path, bytes, options.normals == NormalSource::File)
-                                     : read_ply(path, bytes);
-    return finish(path, std::move(poly), options);
+    check_mesh_extension(path);
+    return parse_mesh(read_whole_file(path), path, options);
+}
+
+TriangleMesh parse_mesh(const std::string& bytes, const std::filesystem::path& name,
+                        const MeshLoadOptions& options) {
+    check_mesh_extension(name);
+    PolygonMesh poly = lower_extension(name) == ".obj"
+                           ? read_obj(name, bytes, options.normals == NormalSource::File)
+                           : read_ply(name, bytes);
+    return finish(name, std::move(poly), options);
 }
 
 std::vector<std::uint32_t> resolve_materials(const TriangleMesh& mesh,

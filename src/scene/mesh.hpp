@@ -83,6 +83,12 @@ struct TriangleMesh {
 // once transformed, truncated binary data, no faces left).
 TriangleMesh load_mesh(const std::filesystem::path& path, const MeshLoadOptions& options = {});
 
+// load_mesh on a file's bytes already in memory: `name` chooses the format (by
+// its extension) and names the mesh in messages, as the path does for load_mesh.
+// The fuzz targets (fuzz/) and their regression tests read meshes through here.
+TriangleMesh parse_mesh(const std::string& bytes, const std::filesystem::path& name,
+                        const MeshLoadOptions& options = {});
+
 // Maps each triangle's material name to an index into `materials` (by
 // Material::name). Triangles of material_names[0] ("") and triangles whose name is
 // not a scene material get object_material; each unknown name adds one line to
