@@ -16,6 +16,7 @@
 #include "scene/polygon_triangulation.hpp"
 #include "scene/validate.hpp"
 #include "util/file.hpp"
+#include "util/one_line.hpp"
 
 namespace wp {
 
@@ -166,8 +167,9 @@ std::vector<std::uint32_t> resolve_materials(const TriangleMesh& mesh,
         if (it != by_name.end())
             scene_index[m] = it->second;
         else
-            warnings.push_back(mesh.source + ": usemtl '" + mesh.material_names[m] +
-                               "' is not a scene material; its faces get the object's material");
+            warnings.push_back(one_line(mesh.source + ": usemtl '" + mesh.material_names[m] +
+                                        "' is not a scene material; its faces get the object's "
+                                        "material"));
     }
     std::vector<std::uint32_t> out(mesh.triangle_materials.size());
     for (std::size_t t = 0; t < out.size(); ++t)

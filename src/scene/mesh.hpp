@@ -19,6 +19,7 @@
 
 #include "scene/scene.hpp"
 #include "scene/transform.hpp"
+#include "util/one_line.hpp"
 
 namespace wp {
 
@@ -27,9 +28,12 @@ namespace wp {
 //   "bunny.obj:1207: face index 40000 out of range (35947 vertices)"   (text line)
 //   "bunny.ply: face 12: file ends early (truncated?)"                 (PLY element, 0-based)
 //   "missing.obj: cannot open mesh file: No such file or directory"    (whole file)
+// Messages quote the file's bytes (a token that is not a number, a header line),
+// so the constructor passes them through one_line (util/one_line.hpp): a carriage
+// return, an escape or invalid UTF-8 in the file becomes '?'.
 class MeshError : public std::runtime_error {
   public:
-    using std::runtime_error::runtime_error;
+    explicit MeshError(const std::string& message) : std::runtime_error(one_line(message)) {}
 
     static MeshError in_file(const std::filesystem::path& file, const std::string& message);
     static MeshError at_line(const std::filesystem::path& file, std::size_t line,
