@@ -249,6 +249,12 @@ Image decode_exr(std::span<const unsigned char> bytes, const std::string& file_n
     check_chunks_complete(bytes, header.header, context);
 
     ImageGuard image;
+    // tinyexr 1.0.1 sets the image's channel count only once every chunk has
+    // decoded; when one fails, its cleanup (FreeEXRImage) frees the channel
+    // pointer array but, seeing no channels, none of the channel buffers, and
+    // those leak. With the count set first, the same cleanup frees them too:
+    // the image has exactly the header's channels.
+    image.image.num_channels = header.header.num_channels;
     err = nullptr;
     if (LoadEXRImageFromMemory(&image.image, &header.header, bytes.data(), bytes.size(), &err) !=
         TINYEXR_SUCCESS) {
