@@ -107,6 +107,20 @@ void check_chunks_complete(std::span<const unsigned char> bytes, const EXRHeader
     }
 }
 
+// Throws unless the data window's width and height are positive and fit an
+// int. tinyexr 1.0.1 computes them as max - min + 1 in int, which overflows
+// (undefined behaviour) for a window such as x in [-2^31, 4]: found by
+// exr_fuzzer under UndefinedBehaviorSanitizer. No such window is an image.
+void check_data_window(const EXRBox2i& w, const std::string& context) {
+    const std::int64_t width = static_cast<std::int64_t>(w.max_x) - w.min_x + 1;
+    const std::int64_t height = static_cast<std::int64_t>(w.max_y) - w.min_y + 1;
+    const std::int64_t limit = std::numeric_limits<int>::max();
+    if (width <= 0 || height <= 0 || width > limit || height > limit)
+        throw ImageError(context + ": invalid EXR data window (" + std::to_string(w.min_x) + ", " +
+                         std::to_string(w.min_y) + ") to (" + std::to_string(w.max_x) + ", " +
+                         std::to_string(w.max_y) + ")");
+}
+
 struct MallocFree {
     void operator()(unsigned char* p) const noexcept { std::free(p); }
 };
@@ -246,6 +260,7 @@ Image decode_exr(std::span<const unsigned char> bytes, const std::string& file_n
                          (found.empty() ? std::string("none") : found) + ")");
     }
 
+    check_data_window(header.header.data_window, context);
     check_chunks_complete(bytes, header.header, context);
 
     ImageGuard image;
