@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
 # Installs the Debian packages wavepath needs, when any is missing. Idempotent:
 # on a machine that has them all it does nothing and needs no network.
-# --ci adds what CI checks with beyond the build (.ci/run): clang-format 14.
+# --ci adds what CI checks with beyond the build (.ci/run): clang-format 14,
+# and zlib's headers for the sanitizer build's own tinyexr (docs/fuzzing.md).
 # --bench adds what the benchmark against Embree needs (bench/, docs/performance.md):
 # libembree-dev; neither the default nor --ci installs it.
+# --fuzz adds what the libFuzzer build needs (fuzz/, docs/fuzzing.md): clang 14
+# with its fuzzer runtime, and zlib's headers.
 set -euo pipefail
 packages=(
   build-essential cmake pkg-config
@@ -12,10 +15,13 @@ packages=(
   libtinyobjloader-dev
 )
 if [[ "${1:-}" == "--ci" ]]; then
-  packages+=(clang-format-14)
+  packages+=(clang-format-14 zlib1g-dev)
 fi
 if [[ "${1:-}" == "--bench" ]]; then
   packages+=(libembree-dev)
+fi
+if [[ "${1:-}" == "--fuzz" ]]; then
+  packages+=(clang-14 libclang-rt-14-dev zlib1g-dev)
 fi
 missing=()
 for p in "${packages[@]}"; do
