@@ -4,6 +4,7 @@
 
 #include <tinyexr.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <cstdlib>
@@ -67,6 +68,37 @@ std::uint64_t load_le(const unsigned char* p, int bytes) {
     return v;
 }
 
+// Throws unless a PIZ chunk's own lengths stay inside the chunk. tinyexr 1.0.1's
+// PIZ decoder trusts them: it copies the bitmap range [min, max] and reads the
+// Huffman length and the Huffman header after it without comparing with the
+// chunk's size, so a damaged chunk makes it read up to 8 KiB past the end of
+// the file's buffer (found by exr_fuzzer under AddressSanitizer). `chunk` is
+// the chunk's data after its line number and length; a chunk as long as its
+// raw pixels is stored uncompressed, which tinyexr copies as it is.
+void check_piz_chunk(std::span<const unsigned char> chunk, std::int64_t line,
+                     const EXRHeader& header, const std::string& where) {
+    const std::int64_t end_line = std::min<std::int64_t>(line + 32, header.data_window.max_y + 1);
+    std::int64_t pixel_bytes = 0;
+    for (int c = 0; c < header.num_channels; ++c)
+        pixel_bytes += header.channels[c].pixel_type == TINYEXR_PIXELTYPE_HALF ? 2 : 4;
+    const std::int64_t width =
+        static_cast<std::int64_t>(header.data_window.max_x) - header.data_window.min_x + 1;
+    if (end_line <= line ||
+        static_cast<std::int64_t>(chunk.size()) == width * (end_line - line) * pixel_bytes)
+        return; // no lines (tinyexr rejects the chunk before decoding) or stored raw
+    const std::uint64_t size = chunk.size();
+    std::uint64_t at = 4; // past the bitmap's first and last byte index
+    if (size >= 4) {
+        const std::uint64_t first = load_le(chunk.data(), 2), last = load_le(chunk.data() + 2, 2);
+        if (first <= last)
+            at += last - first + 1;
+    }
+    // The Huffman data: its length, then at least its 20-byte header.
+    const std::uint64_t length = size >= at + 4 ? load_le(chunk.data() + at, 4) : 0;
+    if (size < at + 4 || length < 20 || length > size - at - 4)
+        throw ImageError(where + " is a corrupt PIZ chunk (its lengths reach past its end)");
+}
+
 // Checks that every chunk listed in the offset table lies inside the file. tinyexr
 // 1.0.1 detects a cut-off chunk too, but only after allocating the channel buffers,
 // which it then leaks; checking first avoids that for the common damage (a truncated
@@ -95,8 +127,14 @@ void check_chunks_complete(std::span<const unsigned char> bytes, const EXRHeader
     }
     for (std::uint64_t i = 0; i < blocks; ++i) {
         const std::uint64_t offset = load_le(bytes.data() + table + i * 8, 8);
+        const bool piz = header.compression_type == TINYEXR_COMPRESSIONTYPE_PIZ;
         if (offset == 0) {
-            return; // incomplete table that tinyexr rebuilds by scanning; let it decide
+            // An incomplete table, which tinyexr rebuilds by scanning; let it
+            // decide, except for PIZ, whose chunks must all be checked first.
+            if (piz)
+                throw ImageError(context + ": PIZ-compressed EXR file with an incomplete offset "
+                                           "table (damaged or truncated)");
+            return;
         }
         const bool header_fits = offset <= size && size - offset >= 8;
         const std::uint64_t data_len = header_fits ? load_le(bytes.data() + offset + 4, 4) : 0;
@@ -104,6 +142,11 @@ void check_chunks_complete(std::span<const unsigned char> bytes, const EXRHeader
             throw ImageError(context + ": truncated EXR file (chunk " + std::to_string(i + 1) +
                              " of " + std::to_string(blocks) + " ends past the end of the file)");
         }
+        if (piz)
+            check_piz_chunk(bytes.subspan(offset + 8, data_len),
+                            static_cast<std::int32_t>(load_le(bytes.data() + offset, 4)), header,
+                            context + ": chunk " + std::to_string(i + 1) + " of " +
+                                std::to_string(blocks));
     }
 }
 
