@@ -37,5 +37,12 @@ if(WAVEPATH_SANITIZE)
     add_compile_options(-fsanitize=float-cast-overflow -fno-sanitize-recover=all)
     add_link_options(-fsanitize=float-cast-overflow)
   endif()
+  if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+    # gcc 12 warns "may be used uninitialized" inside <regex>'s std::function
+    # moves when the sanitizers instrument them (a false positive; the Release
+    # build compiles the same file clean). The one file that uses <regex>:
+    set_source_files_properties(${CMAKE_SOURCE_DIR}/tests/app/test_cli_interrupt.cpp
+                                PROPERTIES COMPILE_OPTIONS -Wno-maybe-uninitialized)
+  endif()
   message(STATUS "wavepath: sanitizers ${WAVEPATH_SANITIZE}")
 endif()
