@@ -19,4 +19,19 @@ inline constexpr double kTimeLimitScale = 1.0;
 inline constexpr double kTimeLimitScale = 1.0;
 #endif
 
+// Whether AddressSanitizer is on. Its shadow memory reserves terabytes of
+// address space, so a test that limits the address space (ulimit -v) cannot
+// run under it.
+#if defined(__SANITIZE_ADDRESS__)
+inline constexpr bool kAddressSanitizer = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+inline constexpr bool kAddressSanitizer = true;
+#else
+inline constexpr bool kAddressSanitizer = false;
+#endif
+#else
+inline constexpr bool kAddressSanitizer = false;
+#endif
+
 } // namespace wp::test
