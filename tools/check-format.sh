@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Fails, listing the files, if any C++ or OpenCL source under src/, kernels/
-# or tests/ differs from what clang-format 14 makes of it (.clang-format at
+# Fails, listing the files, if any C++ or OpenCL source under src/, kernels/,
+# tests/ or fuzz/ differs from what clang-format 14 makes of it (.clang-format at
 # the top). The version is pinned: other versions format some constructs
 # differently. Fix with: clang-format-14 -i FILE...
 set -euo pipefail
@@ -13,7 +13,7 @@ if ! command -v "$format" >/dev/null; then
     exit 2
   fi
 fi
-mapfile -t files < <(find src kernels tests -type f \
+mapfile -t files < <(find src kernels tests fuzz -type f \
   \( -name '*.cpp' -o -name '*.hpp' -o -name '*.h' -o -name '*.cl' \) | sort)
 unformatted=()
 for f in "${files[@]}"; do

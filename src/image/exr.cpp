@@ -4,6 +4,7 @@
 
 #include <tinyexr.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <cstdlib>
@@ -67,11 +68,42 @@ std::uint64_t load_le(const unsigned char* p, int bytes) {
     return v;
 }
 
+// Throws unless a PIZ chunk's own lengths stay inside the chunk. tinyexr 1.0.1's
+// PIZ decoder trusts them: it copies the bitmap range [min, max] and reads the
+// Huffman length and the Huffman header after it without comparing with the
+// chunk's size, so a damaged chunk makes it read up to 8 KiB past the end of
+// the file's buffer (found by exr_fuzzer under AddressSanitizer). `chunk` is
+// the chunk's data after its line number and length; a chunk as long as its
+// raw pixels is stored uncompressed, which tinyexr copies as it is.
+void check_piz_chunk(std::span<const unsigned char> chunk, std::int64_t line,
+                     const EXRHeader& header, const std::string& where) {
+    const std::int64_t end_line = std::min<std::int64_t>(line + 32, header.data_window.max_y + 1);
+    std::int64_t pixel_bytes = 0;
+    for (int c = 0; c < header.num_channels; ++c)
+        pixel_bytes += header.channels[c].pixel_type == TINYEXR_PIXELTYPE_HALF ? 2 : 4;
+    const std::int64_t width =
+        static_cast<std::int64_t>(header.data_window.max_x) - header.data_window.min_x + 1;
+    if (end_line <= line ||
+        static_cast<std::int64_t>(chunk.size()) == width * (end_line - line) * pixel_bytes)
+        return; // no lines (tinyexr rejects the chunk before decoding) or stored raw
+    const std::uint64_t size = chunk.size();
+    std::uint64_t at = 4; // past the bitmap's first and last byte index
+    if (size >= 4) {
+        const std::uint64_t first = load_le(chunk.data(), 2), last = load_le(chunk.data() + 2, 2);
+        if (first <= last)
+            at += last - first + 1;
+    }
+    // The Huffman data: its length, then at least its 20-byte header.
+    const std::uint64_t length = size >= at + 4 ? load_le(chunk.data() + at, 4) : 0;
+    if (size < at + 4 || length < 20 || length > size - at - 4)
+        throw ImageError(where + " is a corrupt PIZ chunk (its lengths reach past its end)");
+}
+
 // Checks that every chunk listed in the offset table lies inside the file. tinyexr
 // 1.0.1 detects a cut-off chunk too, but only after allocating the channel buffers,
 // which it then leaks; checking first avoids that for the common damage (a truncated
 // file) and gives a clearer message. Mirrors tinyexr's block count for scanline files.
-void check_chunks_complete(const std::vector<unsigned char>& bytes, const EXRHeader& header,
+void check_chunks_complete(std::span<const unsigned char> bytes, const EXRHeader& header,
                            const std::string& context) {
     const std::uint64_t size = bytes.size();
     const std::uint64_t table = 8 + static_cast<std::uint64_t>(header.header_len);
@@ -95,8 +127,14 @@ void check_chunks_complete(const std::vector<unsigned char>& bytes, const EXRHea
     }
     for (std::uint64_t i = 0; i < blocks; ++i) {
         const std::uint64_t offset = load_le(bytes.data() + table + i * 8, 8);
+        const bool piz = header.compression_type == TINYEXR_COMPRESSIONTYPE_PIZ;
         if (offset == 0) {
-            return; // incomplete table that tinyexr rebuilds by scanning; let it decide
+            // An incomplete table, which tinyexr rebuilds by scanning; let it
+            // decide, except for PIZ, whose chunks must all be checked first.
+            if (piz)
+                throw ImageError(context + ": PIZ-compressed EXR file with an incomplete offset "
+                                           "table (damaged or truncated)");
+            return;
         }
         const bool header_fits = offset <= size && size - offset >= 8;
         const std::uint64_t data_len = header_fits ? load_le(bytes.data() + offset + 4, 4) : 0;
@@ -104,7 +142,26 @@ void check_chunks_complete(const std::vector<unsigned char>& bytes, const EXRHea
             throw ImageError(context + ": truncated EXR file (chunk " + std::to_string(i + 1) +
                              " of " + std::to_string(blocks) + " ends past the end of the file)");
         }
+        if (piz)
+            check_piz_chunk(bytes.subspan(offset + 8, data_len),
+                            static_cast<std::int32_t>(load_le(bytes.data() + offset, 4)), header,
+                            context + ": chunk " + std::to_string(i + 1) + " of " +
+                                std::to_string(blocks));
     }
+}
+
+// Throws unless the data window's width and height are positive and fit an
+// int. tinyexr 1.0.1 computes them as max - min + 1 in int, which overflows
+// (undefined behaviour) for a window such as x in [-2^31, 4]: found by
+// exr_fuzzer under UndefinedBehaviorSanitizer. No such window is an image.
+void check_data_window(const EXRBox2i& w, const std::string& context) {
+    const std::int64_t width = static_cast<std::int64_t>(w.max_x) - w.min_x + 1;
+    const std::int64_t height = static_cast<std::int64_t>(w.max_y) - w.min_y + 1;
+    const std::int64_t limit = std::numeric_limits<int>::max();
+    if (width <= 0 || height <= 0 || width > limit || height > limit)
+        throw ImageError(context + ": invalid EXR data window (" + std::to_string(w.min_x) + ", " +
+                         std::to_string(w.min_y) + ") to (" + std::to_string(w.max_x) + ", " +
+                         std::to_string(w.max_y) + ")");
 }
 
 struct MallocFree {
@@ -126,7 +183,7 @@ Metadata string_attributes(const EXRHeader& header) {
 }
 
 // Checks the version and parses the header of the EXR file in bytes.
-void parse_header(const std::vector<unsigned char>& bytes, HeaderGuard& header,
+void parse_header(std::span<const unsigned char> bytes, HeaderGuard& header,
                   const std::string& context) {
     EXRVersion version;
     if (ParseEXRVersionFromMemory(&version, bytes.data(), bytes.size()) != TINYEXR_SUCCESS) {
@@ -236,6 +293,7 @@ ImageSummary read_exr_summary(const std::filesystem::path& path) {
     ImageSummary summary;
     summary.format = "OpenEXR";
     const EXRBox2i& window = header.header.data_window;
+    check_data_window(window, context);
     summary.width = window.max_x - window.min_x + 1;
     summary.height = window.max_y - window.min_y + 1;
     summary.metadata = string_attributes(header.header);
@@ -243,8 +301,11 @@ ImageSummary read_exr_summary(const std::filesystem::path& path) {
 }
 
 Image read_exr(const std::filesystem::path& path) {
-    const std::string context = "cannot read '" + path.string() + "'";
-    const std::vector<unsigned char> bytes = read_file_bytes(path);
+    return decode_exr(read_file_bytes(path), path.string());
+}
+
+Image decode_exr(std::span<const unsigned char> bytes, const std::string& file_name) {
+    const std::string context = "cannot read '" + file_name + "'";
     HeaderGuard header;
     parse_header(bytes, header, context);
     const char* err = nullptr;
@@ -276,9 +337,16 @@ Image read_exr(const std::filesystem::path& path) {
                          (found.empty() ? std::string("none") : found) + ")");
     }
 
+    check_data_window(header.header.data_window, context);
     check_chunks_complete(bytes, header.header, context);
 
     ImageGuard image;
+    // tinyexr 1.0.1 sets the image's channel count only once every chunk has
+    // decoded; when one fails, its cleanup (FreeEXRImage) frees the channel
+    // pointer array but, seeing no channels, none of the channel buffers, and
+    // those leak. With the count set first, the same cleanup frees them too:
+    // the image has exactly the header's channels.
+    image.image.num_channels = header.header.num_channels;
     err = nullptr;
     if (LoadEXRImageFromMemory(&image.image, &header.header, bytes.data(), bytes.size(), &err) !=
         TINYEXR_SUCCESS) {

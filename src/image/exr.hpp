@@ -4,6 +4,8 @@
 #include "image/image.hpp"
 
 #include <filesystem>
+#include <span>
+#include <string>
 
 namespace wp {
 
@@ -20,5 +22,9 @@ Image read_exr(const std::filesystem::path& path);
 // The size (of the data window) and string attributes of an EXR file, from
 // its header alone. Errors as read_exr's for the header.
 ImageSummary read_exr_summary(const std::filesystem::path& path);
+
+// read_exr on a file's bytes already in memory; `file_name` stands for the path in
+// messages. The fuzz targets (fuzz/) and their regression tests read through here.
+Image decode_exr(std::span<const unsigned char> bytes, const std::string& file_name);
 
 } // namespace wp

@@ -7,14 +7,19 @@
 #include <utility>
 #include <vector>
 
+#include "util/one_line.hpp"
+
 namespace wp {
 
 // Thrown for malformed image files and images that cannot be encoded; one-line
 // message naming the file and the problem. A file that cannot be opened, read
-// or written throws FileError (util/file.hpp).
+// or written throws FileError (util/file.hpp). Messages can quote the file (a
+// header token, a channel name, tinyexr's words), so the constructor passes them
+// through one_line (util/one_line.hpp): control characters and invalid UTF-8
+// become '?'.
 class ImageError : public std::runtime_error {
   public:
-    using std::runtime_error::runtime_error;
+    explicit ImageError(const std::string& message) : std::runtime_error(one_line(message)) {}
 };
 
 // Name and text pairs about how an image was made, in order.

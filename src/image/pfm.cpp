@@ -50,7 +50,7 @@ void store_float_le(unsigned char* p, float v) {
 // Tokenizer for the three header fields; every failure names the file.
 class HeaderParser {
   public:
-    HeaderParser(const std::vector<unsigned char>& bytes, std::string context)
+    HeaderParser(std::span<const unsigned char> bytes, std::string context)
         : bytes_(bytes), context_(std::move(context)) {}
 
     [[noreturn]] void fail(const std::string& why) const {
@@ -114,7 +114,7 @@ class HeaderParser {
     std::size_t position() const { return pos_; }
 
   private:
-    const std::vector<unsigned char>& bytes_;
+    std::span<const unsigned char> bytes_;
     std::string context_;
     std::size_t pos_ = 0;
 };
@@ -142,8 +142,11 @@ void write_pfm(const std::filesystem::path& path, const Image& img) {
 }
 
 Image read_pfm(const std::filesystem::path& path) {
-    const std::vector<unsigned char> bytes = read_file_bytes(path);
-    HeaderParser header(bytes, "cannot read '" + path.string() + "'");
+    return decode_pfm(read_file_bytes(path), path.string());
+}
+
+Image decode_pfm(std::span<const unsigned char> bytes, const std::string& file_name) {
+    HeaderParser header(bytes, "cannot read '" + file_name + "'");
     header.expect_magic();
     const int width = header.dimension("width");
     const int height = header.dimension("height");

@@ -5,6 +5,8 @@
 #include "image/image.hpp"
 
 #include <filesystem>
+#include <span>
+#include <string>
 
 namespace wp {
 
@@ -16,5 +18,9 @@ void write_pfm(const std::filesystem::path& path, const Image& img);
 // first. Strict: a malformed header, a grayscale "Pf" file, or pixel data shorter or
 // longer than width * height * 12 bytes is an ImageError naming the file.
 Image read_pfm(const std::filesystem::path& path);
+
+// read_pfm on a file's bytes already in memory; `file_name` stands for the path in
+// messages. The fuzz targets (fuzz/) and their regression tests read through here.
+Image decode_pfm(std::span<const unsigned char> bytes, const std::string& file_name);
 
 } // namespace wp

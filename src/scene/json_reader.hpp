@@ -15,6 +15,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "util/one_line.hpp"
+
 namespace wp::json {
 
 // ordered_json keeps the file's order, so that (for example) materials get
@@ -44,8 +46,8 @@ std::string number_text(double x);
 std::string describe(const Json& v);
 
 // Messages are one line of valid UTF-8: control characters and bytes that
-// are not well-formed UTF-8 (from keys or names) become '?'.
-std::string one_line(std::string s);
+// are not well-formed UTF-8 (from keys or names) become '?' (util/one_line.hpp).
+using wp::one_line;
 
 // s shortened to at most n bytes plus "...", without cutting a UTF-8 sequence.
 std::string shorten(const std::string& s, std::size_t n);

@@ -198,9 +198,11 @@ class SceneReader : private json::Reader {
                 check_keys(m, pm, {"type", "radiance"});
                 mat.reflectance = glm::dvec3(0.0);
                 mat.emission = vec3(require(m, pm, "radiance"), pm / "radiance", Range::Radiance);
+                // one_line: the pointer holds the material's name as the file spells it.
                 if (!mat.is_emissive())
-                    scene_.warnings.push_back(pointer_text(pm / "radiance") +
-                                              ": emitter with zero radiance emits nothing");
+                    scene_.warnings.push_back(
+                        one_line(pointer_text(pm / "radiance") +
+                                 ": emitter with zero radiance emits nothing"));
             } else {
                 fail(pm / "type", "unknown material type '" + shorten(type, 40) +
                                       "' (expected diffuse, mirror or emitter)");

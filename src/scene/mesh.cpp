@@ -16,6 +16,7 @@
 #include "scene/polygon_triangulation.hpp"
 #include "scene/validate.hpp"
 #include "util/file.hpp"
+#include "util/one_line.hpp"
 
 namespace wp {
 
@@ -45,6 +46,16 @@ std::string read_whole_file(const std::filesystem::path& path) {
     } catch (const FileError& error) {
         throw MeshError::in_file(path, "cannot open mesh file: " + error.reason());
     }
+}
+
+// Throws unless the name has a mesh extension; checked before the file is read.
+void check_mesh_extension(const std::filesystem::path& path) {
+    const std::string ext = lower_extension(path);
+    if (ext != ".obj" && ext != ".ply")
+        throw MeshError::in_file(path, ext.empty() ? "unknown mesh format: the file name has no "
+                                                     "extension (expected .obj or .ply)"
+                                                   : "unknown mesh format '" + ext +
+                                                         "' (expected .obj or .ply)");
 }
 
 std::string format_number(double x) {
@@ -130,16 +141,17 @@ TriangleMesh finish(const std::filesystem::path& file, PolygonMesh&& poly,
 } // namespace
 
 TriangleMesh load_mesh(const std::filesystem::path& path, const MeshLoadOptions& options) {
-    const std::string ext = lower_extension(path);
-    if (ext != ".obj" && ext != ".ply")
-        throw MeshError::in_file(path, ext.empty() ? "unknown mesh format: the file name has no "
-                                                     "extension (expected .obj or .ply)"
-                                                   : "unknown mesh format '" + ext +
-                                                         "' (expected .obj or .ply)");
-    const std::string bytes = read_whole_file(path);
-    PolygonMesh poly = ext == ".obj" ? read_obj(path, bytes, options.normals == NormalSource::File)
-                                     : read_ply(path, bytes);
-    return finish(path, std::move(poly), options);
+    check_mesh_extension(path);
+    return parse_mesh(read_whole_file(path), path, options);
+}
+
+TriangleMesh parse_mesh(const std::string& bytes, const std::filesystem::path& name,
+                        const MeshLoadOptions& options) {
+    check_mesh_extension(name);
+    PolygonMesh poly = lower_extension(name) == ".obj"
+                           ? read_obj(name, bytes, options.normals == NormalSource::File)
+                           : read_ply(name, bytes);
+    return finish(name, std::move(poly), options);
 }
 
 std::vector<std::uint32_t> resolve_materials(const TriangleMesh& mesh,
@@ -155,8 +167,9 @@ std::vector<std::uint32_t> resolve_materials(const TriangleMesh& mesh,
         if (it != by_name.end())
             scene_index[m] = it->second;
         else
-            warnings.push_back(mesh.source + ": usemtl '" + mesh.material_names[m] +
-                               "' is not a scene material; its faces get the object's material");
+            warnings.push_back(one_line(mesh.source + ": usemtl '" + mesh.material_names[m] +
+                                        "' is not a scene material; its faces get the object's "
+                                        "material"));
     }
     std::vector<std::uint32_t> out(mesh.triangle_materials.size());
     for (std::size_t t = 0; t < out.size(); ++t)

@@ -19,6 +19,7 @@
 
 #include "scene/scene.hpp"
 #include "scene/transform.hpp"
+#include "util/one_line.hpp"
 
 namespace wp {
 
@@ -27,9 +28,12 @@ namespace wp {
 //   "bunny.obj:1207: face index 40000 out of range (35947 vertices)"   (text line)
 //   "bunny.ply: face 12: file ends early (truncated?)"                 (PLY element, 0-based)
 //   "missing.obj: cannot open mesh file: No such file or directory"    (whole file)
+// Messages quote the file's bytes (a token that is not a number, a header line),
+// so the constructor passes them through one_line (util/one_line.hpp): a carriage
+// return, an escape or invalid UTF-8 in the file becomes '?'.
 class MeshError : public std::runtime_error {
   public:
-    using std::runtime_error::runtime_error;
+    explicit MeshError(const std::string& message) : std::runtime_error(one_line(message)) {}
 
     static MeshError in_file(const std::filesystem::path& file, const std::string& message);
     static MeshError at_line(const std::filesystem::path& file, std::size_t line,
@@ -82,6 +86,12 @@ struct TriangleMesh {
 // vertices, non-finite coordinates, coordinates beyond scene_limits::max_coordinate
 // once transformed, truncated binary data, no faces left).
 TriangleMesh load_mesh(const std::filesystem::path& path, const MeshLoadOptions& options = {});
+
+// load_mesh on a file's bytes already in memory: `name` chooses the format (by
+// its extension) and names the mesh in messages, as the path does for load_mesh.
+// The fuzz targets (fuzz/) and their regression tests read meshes through here.
+TriangleMesh parse_mesh(const std::string& bytes, const std::filesystem::path& name,
+                        const MeshLoadOptions& options = {});
 
 // Maps each triangle's material name to an index into `materials` (by
 // Material::name). Triangles of material_names[0] ("") and triangles whose name is

@@ -57,12 +57,27 @@ class ObjCheck {
             std::size_t end = text_.find('\n', pos);
             if (end == std::string::npos)
                 end = text_.size();
+            const std::size_t line_start = pos;
             std::string_view line(text_.data() + pos, end - pos);
             pos = end + 1;
             ++line_number;
             if (!line.empty() && line.back() == '\r')
                 line.remove_suffix(1);
-            check_line(line, line_number);
+            const bool used = check_line(line, line_number);
+            const bool inner_return = line.find('\r') != std::string_view::npos;
+            if (!copied_ && (!used || inner_return)) {
+                copied_ = true;
+                copy_.assign(text_, 0, line_start);
+            }
+            if (copied_) {
+                if (used) {
+                    const std::size_t at = copy_.size();
+                    copy_ += line;
+                    std::replace(copy_.begin() + static_cast<std::ptrdiff_t>(at), copy_.end(), '\r',
+                                 ' ');
+                }
+                copy_ += '\n';
+            }
         }
         // A positive index may point forwards (tinyobjloader allows it), so those
         // past the count at their line are settled once the totals are known.
@@ -79,6 +94,16 @@ class ObjCheck {
     std::vector<std::string> material_names{""};
     bool every_corner_has_normal = true;
 
+    // What tinyobjloader reads: the file itself, or, when the file has a
+    // statement that is not used (see check_line) or a carriage return inside
+    // a line (tinyobjloader ends a line there, the check does not), a copy with
+    // those lines blank and those returns spaces. So tinyobjloader sees exactly
+    // the lines the check saw, and none of the statements whose parsers have
+    // undefined behaviour on hostile numbers (a `vw` skin weight's joint id of
+    // 1e309 is converted to int: found by obj_fuzzer). Blank lines keep the
+    // line numbers.
+    const std::string& text_for_tinyobjloader() const { return copied_ ? copy_ : text_; }
+
   private:
     struct Forward {
         std::size_t line;
@@ -90,7 +115,11 @@ class ObjCheck {
         throw MeshError::at_line(file_, line, message);
     }
 
-    void check_line(std::string_view line, std::size_t n) {
+    // Checks one line; returns whether tinyobjloader is to read it: the
+    // statements wavepath uses or that only name things (v, vn, vt, f, usemtl,
+    // mtllib, o, g, s), comments and blank lines. Everything else (vw, l, p, t,
+    // curves, unknown words) is of no use to a triangle mesh.
+    bool check_line(std::string_view line, std::size_t n) {
         std::string_view rest = line;
         const std::string_view keyword = next_token(rest);
         if (keyword == "v") {
@@ -112,7 +141,11 @@ class ObjCheck {
             if (inserted)
                 material_names.push_back(name);
             current_material_ = it->second;
+        } else if (!(keyword.empty() || keyword.front() == '#' || keyword == "mtllib" ||
+                     keyword == "o" || keyword == "g" || keyword == "s")) {
+            return false;
         }
+        return true;
     }
 
     // Reads x y z (anything after them, such as a w or a colour, is left to
@@ -186,6 +219,8 @@ class ObjCheck {
     std::uint32_t current_material_ = 0;
     std::unordered_map<std::string, std::uint32_t> material_index_{{"", 0}};
     std::vector<Forward> forward_;
+    bool copied_ = false;
+    std::string copy_;
 };
 
 // Lets tinyobjloader read the text already in memory instead of a second copy.
@@ -211,7 +246,7 @@ PolygonMesh read_obj(const std::filesystem::path& file, const std::string& text,
     std::vector<tinyobj::material_t> materials;
     std::string warnings; // all about things the check covers, or about .mtl files
     std::string errors;
-    MemoryBuffer buffer(text);
+    MemoryBuffer buffer(check.text_for_tinyobjloader());
     std::istream in(&buffer);
     if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &warnings, &errors, &in,
                           /*readMatFn=*/nullptr, /*triangulate=*/false)) {

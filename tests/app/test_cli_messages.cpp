@@ -9,6 +9,7 @@
 #include <string>
 
 #include "app/cli_run.hpp"
+#include "support/sanitizer.hpp"
 
 using namespace wp::test::cli;
 namespace fs = std::filesystem;
@@ -116,6 +117,11 @@ TEST_CASE("cli: the program cache and PoCL's kernel cache stay bounded") {
 }
 
 TEST_CASE("cli: out of host memory names the allocation and its size") {
+    if (wp::test::kAddressSanitizer) {
+        WARN("skipped under AddressSanitizer: its shadow memory needs more address space "
+             "than the ulimit -v this test sets");
+        return;
+    }
     Scratch s;
     const fs::path out = s.dir / "x.exr";
     // 3 GB of address space: enough to start and for the device's buffers of
