@@ -18,18 +18,6 @@ namespace {
 enum Tag : int { kStart = 1, kGo, kRequest, kReply, kFilm, kFailed, kBye };
 enum ReplyKind : std::uint32_t { kChunk = 0, kDone = 1, kEnd = 2 };
 
-std::string error_text(const std::exception_ptr& error) {
-    try {
-        std::rethrow_exception(error);
-    } catch (const cl::Error& e) {
-        return describe_cl_error(e);
-    } catch (const std::exception& e) {
-        return e.what();
-    } catch (...) {
-        return "unknown error";
-    }
-}
-
 nlohmann::json share_json(const DeviceShare& s) {
     return {{"name", s.name},         {"index", s.index},       {"rank", s.rank},
             {"host", s.host},         {"samples", s.samples},   {"chunks", s.chunks},
@@ -320,7 +308,7 @@ int run_mpi_worker(MpiJob& job, const std::function<Scene()>& load_scene,
         report["devices"] = renderer->device_count();
     } catch (...) {
         report["ok"] = false;
-        report["error"] = error_text(std::current_exception());
+        report["error"] = exception_text(std::current_exception());
     }
     job.send_text(0, kStart, report.dump());
     int go = 0;
@@ -337,7 +325,7 @@ int run_mpi_worker(MpiJob& job, const std::function<Scene()>& load_scene,
         try {
             renderer->render_from(source, film);
         } catch (...) {
-            job.send_text(0, kFailed, error_text(std::current_exception()));
+            job.send_text(0, kFailed, exception_text(std::current_exception()));
             return 0; // rank 0 ends the job with the error (see above)
         }
         if (source.ended())

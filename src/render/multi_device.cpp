@@ -22,19 +22,6 @@ double seconds_since(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// The one line an exception from a device says.
-std::string error_text(const std::exception_ptr& error) {
-    try {
-        std::rethrow_exception(error);
-    } catch (const cl::Error& e) {
-        return describe_cl_error(e);
-    } catch (const std::exception& e) {
-        return e.what();
-    } catch (...) {
-        return "unknown error";
-    }
-}
-
 // What the test hook throws: an error as a lost device gives, mid-chunk.
 class InjectedFailure : public std::runtime_error {
   public:
@@ -58,6 +45,18 @@ void add_stats(RenderStats& total, const RenderStats& part) {
 }
 
 } // namespace
+
+std::string exception_text(const std::exception_ptr& error) {
+    try {
+        std::rethrow_exception(error);
+    } catch (const cl::Error& e) {
+        return describe_cl_error(e);
+    } catch (const std::exception& e) {
+        return e.what();
+    } catch (...) {
+        return "unknown error";
+    }
+}
 
 struct MultiDeviceRenderer::Device {
     DeviceInfo info;
@@ -120,7 +119,7 @@ MultiDeviceRenderer::MultiDeviceRenderer(const std::vector<DeviceInfo>& devices,
             continue;
         if (!first_failure)
             first_failure = device->failure;
-        device->share.error = error_text(device->failure);
+        device->share.error = exception_text(device->failure);
     }
     if (device_count() == 0)
         std::rethrow_exception(first_failure);
@@ -196,7 +195,7 @@ void MultiDeviceRenderer::render_from(ChunkSource& source, Film& film,
 void MultiDeviceRenderer::fail(Device& device, std::exception_ptr error,
                                const std::string& while_doing) {
     device.failure = error;
-    device.share.error = error_text(error);
+    device.share.error = exception_text(error);
     static std::mutex reporting; // devices fail on their own threads
     std::lock_guard lock(reporting);
     if (devices_.size() > 1 || peers_)

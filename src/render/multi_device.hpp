@@ -51,6 +51,10 @@ struct DeviceShare {
     }
 };
 
+// The one line an exception from a device (or another rank) says: an OpenCL
+// error described (cl/error.hpp), or what().
+std::string exception_text(const std::exception_ptr& error);
+
 // Other processes that render chunks of the same image (MPI ranks), served
 // from the process that holds the output (rank 0). See src/mpi/.
 class RenderPeers {

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "util/file.hpp"
+#include "util/xml_escape.hpp"
 
 namespace wp {
 namespace {
@@ -14,29 +15,6 @@ namespace {
 // Colour-blind-safe palette (Okabe and Ito).
 constexpr std::array<const char*, 7> kPalette = {"#0072B2", "#D55E00", "#009E73", "#CC79A7",
                                                  "#E69F00", "#56B4E9", "#000000"};
-
-std::string escape(const std::string& text) {
-    std::string out;
-    for (char c : text) {
-        switch (c) {
-        case '&':
-            out += "&amp;";
-            break;
-        case '<':
-            out += "&lt;";
-            break;
-        case '>':
-            out += "&gt;";
-            break;
-        case '"':
-            out += "&quot;";
-            break;
-        default:
-            out += c;
-        }
-    }
-    return out;
-}
 
 std::string fixed(double value, int decimals = 1) {
     char text[64];
@@ -151,7 +129,7 @@ std::string render_svg(const LogLogPlot& plot) {
     if (!plot.title.empty())
         svg += "<text x=\"" + fixed(left + w / 2) +
                "\" y=\"26\" text-anchor=\"middle\" font-size=\"15\" font-weight=\"bold\">" +
-               escape(plot.title) + "</text>\n";
+               xml_escape(plot.title) + "</text>\n";
 
     // Grid and ticks.
     svg += "<g stroke-width=\"1\">\n";
@@ -183,9 +161,9 @@ std::string render_svg(const LogLogPlot& plot) {
     svg += "<rect x=\"" + fixed(left) + "\" y=\"" + fixed(top) + "\" width=\"" + fixed(w) +
            "\" height=\"" + fixed(h) + "\" fill=\"none\" stroke=\"#333\"/>\n";
     svg += "<text x=\"" + fixed(left + w / 2) + "\" y=\"" + fixed(plot.height - 16.0) +
-           "\" text-anchor=\"middle\">" + escape(plot.x_label) + "</text>\n";
+           "\" text-anchor=\"middle\">" + xml_escape(plot.x_label) + "</text>\n";
     svg += "<text transform=\"translate(20 " + fixed(top + h / 2) +
-           ") rotate(-90)\" text-anchor=\"middle\">" + escape(plot.y_label) + "</text>\n";
+           ") rotate(-90)\" text-anchor=\"middle\">" + xml_escape(plot.y_label) + "</text>\n";
 
     // Series, clipped to the plot area.
     svg += "<defs><clipPath id=\"area\"><rect x=\"" + fixed(left) + "\" y=\"" + fixed(top) +
@@ -219,8 +197,8 @@ std::string render_svg(const LogLogPlot& plot) {
                 const bool left_side = x > left + w - 60;
                 svg += "<text x=\"" + fixed(left_side ? x - 5 : x + 5) + "\" y=\"" + fixed(y - 6) +
                        "\" font-size=\"10\" fill=\"" + colour + "\"" +
-                       (left_side ? " text-anchor=\"end\"" : "") + ">" + escape(s.point_labels[i]) +
-                       "</text>\n";
+                       (left_side ? " text-anchor=\"end\"" : "") + ">" +
+                       xml_escape(s.point_labels[i]) + "</text>\n";
             }
         }
         svg += "</g>\n";
@@ -249,7 +227,7 @@ std::string render_svg(const LogLogPlot& plot) {
                    "\" stroke-width=\"2\"" +
                    (s.dashed ? std::string(" stroke-dasharray=\"7 5\"") : std::string()) + "/>\n";
             svg += "<text x=\"" + fixed(lx + 40) + "\" y=\"" + fixed(y + 4) + "\">" +
-                   escape(s.label) + "</text>\n";
+                   xml_escape(s.label) + "</text>\n";
             y += row;
         }
         svg += "</g>\n";

@@ -11,6 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include "util/file.hpp"
+#include "util/xml_escape.hpp"
 
 namespace wp {
 namespace {
@@ -28,32 +29,6 @@ std::string number(double value) {
 
 std::string triple(const glm::dvec3& v) {
     return number(v.x) + ", " + number(v.y) + ", " + number(v.z);
-}
-
-std::string xml_attribute(const std::string& text) {
-    std::string out;
-    for (char c : text) {
-        switch (c) {
-        case '&':
-            out += "&amp;";
-            break;
-        case '<':
-            out += "&lt;";
-            break;
-        case '>':
-            out += "&gt;";
-            break;
-        case '"':
-            out += "&quot;";
-            break;
-        case '\'':
-            out += "&apos;";
-            break;
-        default:
-            out += c;
-        }
-    }
-    return out;
 }
 
 // XML comments may hold anything but "--" (and must not end in "-") and the
@@ -327,8 +302,7 @@ MitsubaExport export_mitsuba(const Scene& scene, const std::string& mesh_prefix,
     for (const MitsubaMesh& mesh : out.meshes) {
         const Material& material = scene.materials[mesh.material];
         x += "    <shape type=\"ply\">\n";
-        x +=
-            "        <string name=\"filename\" value=\"" + xml_attribute(mesh.file_name) + "\"/>\n";
+        x += "        <string name=\"filename\" value=\"" + xml_escape(mesh.file_name) + "\"/>\n";
         // Without vertex normals Mitsuba would compute smooth ones; wavepath
         // shades these triangles by their facets.
         x += std::string("        <boolean name=\"face_normals\" value=\"") +
