@@ -11,6 +11,7 @@
 #include "app/cli_run.hpp"
 #include "app/same_samples.hpp"
 #include "image/image_io.hpp"
+#include "support/sanitizer.hpp"
 
 using namespace wp::test::cli;
 namespace fs = std::filesystem;
@@ -18,12 +19,18 @@ namespace fs = std::filesystem;
 namespace {
 
 // mpirun with two ranks on this machine (more ranks than cores is fine), as
-// root too (CI runs as root).
+// root too (CI runs as root). In the sanitizer build the ranks run without
+// LeakSanitizer: OpenMPI's components (plugins it loads and unloads again)
+// leave allocations at exit whose frames are then unknown modules, which no
+// suppression can name (docs/fuzzing.md); ASan's and UBSan's checks stay on.
 std::string mpirun() {
     const std::string path = WAVEPATH_MPIRUN;
     if (path.empty() || !fs::exists(path))
         return {};
-    return "'" + path + "' --oversubscribe" + (::geteuid() == 0 ? " --allow-run-as-root" : "");
+    const std::string environment =
+        wp::test::kAddressSanitizer ? "ASAN_OPTIONS=\"${ASAN_OPTIONS:-}:detect_leaks=0\" " : "";
+    return environment + "'" + path + "' --oversubscribe" +
+           (::geteuid() == 0 ? " --allow-run-as-root" : "");
 }
 
 } // namespace
