@@ -16,18 +16,9 @@
 #include "render/wavefront.hpp"
 #include "report/convergence.hpp"
 #include "scene/load.hpp"
+#include "util/format.hpp"
 
 namespace wp {
-namespace {
-
-std::string format(const char* pattern, double value) {
-    char text[64];
-    std::snprintf(text, sizeof text, pattern, value);
-    return text;
-}
-
-} // namespace
-
 CLI::App* add_converge_subcommand(CLI::App& app, ConvergeCommand& command) {
     CLI::App* c = app.add_subcommand(
         "converge", "Render progressively and report the error against render time at 1, 2, "
@@ -112,7 +103,7 @@ int run_converge(const ConvergeCommand& command) {
 
     std::cerr << "wavepath: converge " << scene.camera.width << "x" << scene.camera.height
               << ", estimator " << describe_estimator(options) << ", on " << device.info.name
-              << "; kernels built in " << format("%.3f", integrator.program().build_seconds)
+              << "; kernels built in " << format_text("%.3f", integrator.program().build_seconds)
               << " s (not counted in the times below)\n";
 
     ConvergenceSettings settings;
@@ -136,7 +127,7 @@ int run_converge(const ConvergeCommand& command) {
         });
 
     std::cerr << "wavepath: warm-up render (1 spp, first-launch kernel compilation): "
-              << format("%.3f", run.warm_up_seconds) << " s (not counted)\n";
+              << format_text("%.3f", run.warm_up_seconds) << " s (not counted)\n";
     if (!command.csv.empty())
         write_convergence_csv(command.csv, run);
     if (!command.plot.empty()) {

@@ -16,6 +16,7 @@
 #include "app/progress.hpp"
 #include "image/metrics.hpp"
 #include "image/png.hpp"
+#include "util/format.hpp"
 
 namespace wp {
 namespace {
@@ -26,15 +27,9 @@ double seconds_between(Clock::time_point from, Clock::time_point to) {
     return std::chrono::duration<double>(to - from).count();
 }
 
-std::string format_number(const char* pattern, double value) {
-    char text[64];
-    std::snprintf(text, sizeof text, pattern, value);
-    return text;
-}
-
 // A JSON number, or null for "not known" (negative).
 std::string json_number(double value) {
-    return value < 0.0 || !std::isfinite(value) ? "null" : format_number("%.6g", value);
+    return value < 0.0 || !std::isfinite(value) ? "null" : format_text("%.6g", value);
 }
 
 // The estimate costs two half images and a pass over them; it is made
@@ -61,26 +56,26 @@ void print_halt(const RenderLoopResult& result, const RenderLoopOptions& options
                 std::uint32_t max_spp) {
     const std::string estimate = result.estimate.spp > 0
                                      ? "estimated relMSE " +
-                                           format_number("%.4g", result.estimate.rel_mse) + " at " +
+                                           format_text("%.4g", result.estimate.rel_mse) + " at " +
                                            std::to_string(result.estimate.spp) + " spp"
                                      : "";
     switch (result.reason) {
     case HaltReason::TimeBudget:
-        std::cerr << "wavepath: time budget of " << format_number("%g", options.time_budget)
+        std::cerr << "wavepath: time budget of " << format_text("%g", options.time_budget)
                   << " s reached: " << result.spp << " spp in "
-                  << format_number("%.2f", result.seconds) << " s\n";
+                  << format_text("%.2f", result.seconds) << " s\n";
         break;
     case HaltReason::TargetError:
-        std::cerr << "wavepath: target error " << format_number("%g", options.target_error)
+        std::cerr << "wavepath: target error " << format_text("%g", options.target_error)
                   << " reached: " << estimate;
         if (result.previous.spp > 0)
-            std::cerr << " (" << format_number("%.4g", result.previous.rel_mse) << " at "
+            std::cerr << " (" << format_text("%.4g", result.previous.rel_mse) << " at "
                       << result.previous.spp << " spp)";
-        std::cerr << ", " << format_number("%.2f", result.seconds) << " s\n";
+        std::cerr << ", " << format_text("%.2f", result.seconds) << " s\n";
         break;
     case HaltReason::SampleCount:
         if (options.target_error > 0.0)
-            std::cerr << "wavepath: the target error " << format_number("%g", options.target_error)
+            std::cerr << "wavepath: the target error " << format_text("%g", options.target_error)
                       << " was not reached within " << max_spp << " spp"
                       << (estimate.empty() ? "" : ": " + estimate) << "\n";
         break;
@@ -142,10 +137,10 @@ std::string describe_halt_conditions(const RenderLoopOptions& options, std::uint
     if (options.spp_given || !others)
         parts.push_back("at " + std::to_string(spp) + " spp");
     if (options.time_budget > 0.0)
-        parts.push_back("for " + format_number("%g", options.time_budget) + " s");
+        parts.push_back("for " + format_text("%g", options.time_budget) + " s");
     if (options.target_error > 0.0)
         parts.push_back("until the estimated relMSE is below " +
-                        format_number("%g", options.target_error));
+                        format_text("%g", options.target_error));
     std::string text;
     for (const std::string& part : parts)
         text += (text.empty() ? "" : " or ") + part;

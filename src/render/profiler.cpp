@@ -54,29 +54,36 @@ double Profiler::device_busy_seconds() const {
     return sum;
 }
 
-void Profiler::write_trace(const std::filesystem::path& path,
-                           const std::string& device_name) const {
-    nlohmann::json events = nlohmann::json::array();
-    std::uint64_t origin = records_.empty() ? 0 : records_.front().queued_ns;
-    events.push_back({{"name", "process_name"},
-                      {"ph", "M"},
-                      {"pid", 1},
-                      {"args", {{"name", "wavepath on " + device_name}}}});
+void Profiler::append_trace_events(nlohmann::json& events, int pid,
+                                   const std::string& process_name) const {
+    const std::uint64_t origin = records_.empty() ? 0 : records_.front().queued_ns;
+    events.push_back(
+        {{"name", "process_name"}, {"ph", "M"}, {"pid", pid}, {"args", {{"name", process_name}}}});
     for (const LaunchRecord& r : records_) {
         if (r.end_ns == 0)
             continue; // never resolved
         events.push_back({{"name", stage_name(r.stage)},
                           {"cat", r.stage == Stage::Transfer ? "transfer" : "kernel"},
                           {"ph", "X"},
-                          {"pid", 1},
+                          {"pid", pid},
                           {"tid", 1},
                           {"ts", static_cast<double>(r.start_ns - origin) * 1e-3},
                           {"dur", static_cast<double>(r.end_ns - r.start_ns) * 1e-3},
                           {"args", {{"items", r.items}}}});
     }
+}
+
+void write_trace_file(const std::filesystem::path& path, const nlohmann::json& events) {
     nlohmann::json trace = {{"traceEvents", events}, {"displayTimeUnit", "ms"}};
     std::string text = trace.dump();
     write_bytes_atomically(path, text.data(), text.size());
+}
+
+void Profiler::write_trace(const std::filesystem::path& path,
+                           const std::string& device_name) const {
+    nlohmann::json events = nlohmann::json::array();
+    append_trace_events(events, 1, "wavepath on " + device_name);
+    write_trace_file(path, events);
 }
 
 } // namespace wp

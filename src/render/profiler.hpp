@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "cl/cl.hpp"
 #include "cl/stages.hpp"
 
@@ -53,7 +55,11 @@ class Profiler {
     double device_busy_seconds() const;
 
     // Chrome trace format (one complete event per launch), for Perfetto or
-    // chrome://tracing.
+    // chrome://tracing: this profiler's events as process `pid`, named
+    // `process_name`, on its own clock (time 0 at its first record) ...
+    void append_trace_events(nlohmann::json& events, int pid,
+                             const std::string& process_name) const;
+    // ... and a whole trace of one device.
     void write_trace(const std::filesystem::path& path, const std::string& device_name) const;
 
   private:
@@ -61,5 +67,8 @@ class Profiler {
     std::vector<cl::Event> pending_; // parallel to records_[resolved_ ...]
     std::size_t resolved_ = 0;
 };
+
+// Writes a Chrome trace of `events` (see Profiler::append_trace_events).
+void write_trace_file(const std::filesystem::path& path, const nlohmann::json& events);
 
 } // namespace wp

@@ -5,15 +5,10 @@
 #include <nlohmann/json.hpp>
 
 #include "util/file.hpp"
+#include "util/format.hpp"
 
 namespace wp {
 namespace {
-
-std::string line(const char* format, auto... values) {
-    char text[512];
-    std::snprintf(text, sizeof text, format, values...);
-    return text;
-}
 
 nlohmann::json stage_totals_json(const std::vector<StageTotals>& totals) {
     nlohmann::json stages = nlohmann::json::array();
@@ -31,10 +26,11 @@ std::string device_share_table(const std::vector<DeviceShare>& shares) {
     std::uint64_t total = 0;
     for (const DeviceShare& share : shares)
         total += share.samples;
-    std::string out = line("%-4s %-5s %-40s %12s %7s %11s %9s %9s %6s\n", "rank", "index", "device",
-                           "samples", "share", "samples/s", "busy s", "idle s", "chunks");
+    std::string out =
+        format_text("%-4s %-5s %-40s %12s %7s %11s %9s %9s %6s\n", "rank", "index", "device",
+                    "samples", "share", "samples/s", "busy s", "idle s", "chunks");
     for (const DeviceShare& share : shares) {
-        out += line(
+        out += format_text(
             "%-4d %-5s %-40.40s %12llu %6.1f%% %11.4g %9.3f %9.3f %6u\n", share.rank,
             share.index.c_str(), share.name.c_str(), static_cast<unsigned long long>(share.samples),
             total ? 100.0 * static_cast<double>(share.samples) / static_cast<double>(total) : 0.0,
@@ -81,8 +77,9 @@ std::string multi_device_profile_table(const MultiDeviceRenderer& renderer,
         out += profile_table(renderer.profiler(d), renderer.device_stats(d), own) + "\n";
     }
     return out +
-           line("split of %dx%d at %u spp over %zu devices (by demand, in chunks of samples):\n",
-                context.width, context.height, context.spp, shares.size()) +
+           format_text(
+               "split of %dx%d at %u spp over %zu devices (by demand, in chunks of samples):\n",
+               context.width, context.height, context.spp, shares.size()) +
            device_share_table(shares);
 }
 
@@ -127,32 +124,12 @@ void write_multi_device_trace(const std::filesystem::path& path,
         return;
     }
     nlohmann::json events = nlohmann::json::array();
-    for (std::size_t d = 0; d < renderer.local_device_count(); ++d) {
+    for (std::size_t d = 0; d < renderer.local_device_count(); ++d)
         // Each device has its own clock: its time starts at its first record.
-        const int pid = static_cast<int>(d) + 1;
-        const std::vector<LaunchRecord>& records = renderer.profiler(d).records();
-        const std::uint64_t origin = records.empty() ? 0 : records.front().queued_ns;
-        events.push_back(
-            {{"name", "process_name"},
-             {"ph", "M"},
-             {"pid", pid},
-             {"args", {{"name", "wavepath on " + shares[d].name + " (" + shares[d].index + ")"}}}});
-        for (const LaunchRecord& r : records) {
-            if (r.end_ns == 0)
-                continue;
-            events.push_back({{"name", stage_name(r.stage)},
-                              {"cat", r.stage == Stage::Transfer ? "transfer" : "kernel"},
-                              {"ph", "X"},
-                              {"pid", pid},
-                              {"tid", 1},
-                              {"ts", static_cast<double>(r.start_ns - origin) * 1e-3},
-                              {"dur", static_cast<double>(r.end_ns - r.start_ns) * 1e-3},
-                              {"args", {{"items", r.items}}}});
-        }
-    }
-    nlohmann::json trace = {{"traceEvents", events}, {"displayTimeUnit", "ms"}};
-    std::string text = trace.dump();
-    write_bytes_atomically(path, text.data(), text.size());
+        renderer.profiler(d).append_trace_events(events, static_cast<int>(d) + 1,
+                                                 "wavepath on " + shares[d].name + " (" +
+                                                     shares[d].index + ")");
+    write_trace_file(path, events);
 }
 
 } // namespace wp
