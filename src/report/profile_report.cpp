@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "render/stage_traffic.hpp"
 #include "util/file.hpp"
 
 namespace wp {
@@ -37,7 +38,36 @@ std::string queue_summary(const std::vector<std::uint32_t>& lengths) {
     return out;
 }
 
+// Bytes per second a stage moved: its items times its bytes per item.
+double stage_bytes_per_second(Stage stage, const StageTotals& t) {
+    return t.device_seconds > 0
+               ? static_cast<double>(t.items) * static_cast<double>(stage_bytes_per_item(stage)) /
+                     t.device_seconds
+               : 0.0;
+}
+
 } // namespace
+
+nlohmann::json stage_json(Stage stage, const StageTotals& totals, double memory_bandwidth) {
+    nlohmann::json row = {{"stage", stage_name(stage)},
+                          {"launches", totals.launches},
+                          {"items", totals.items},
+                          {"device_seconds", totals.device_seconds}};
+    if (stage != Stage::Transfer) {
+        const double moved = stage_bytes_per_second(stage, totals);
+        row["bytes_per_item"] = stage_bytes_per_item(stage);
+        row["gigabytes_per_second"] = moved * 1e-9;
+        row["fraction_of_copy_bandwidth"] = memory_bandwidth > 0 ? moved / memory_bandwidth : 0.0;
+    }
+    return row;
+}
+
+nlohmann::json stages_json(const std::vector<StageTotals>& totals, double memory_bandwidth) {
+    nlohmann::json stages = nlohmann::json::array();
+    for (int s = 0; s < kStageCount; ++s)
+        stages.push_back(stage_json(static_cast<Stage>(s), totals[s], memory_bandwidth));
+    return stages;
+}
 
 std::string profile_table(const Profiler& profiler, const RenderStats& stats,
                           const ProfileContext& context) {
@@ -48,8 +78,8 @@ std::string profile_table(const Profiler& profiler, const RenderStats& stats,
     out += line("profile: %s, %dx%d, %u spp on %s (%s, pool %u)\n", context.scene.c_str(),
                 context.width, context.height, context.spp, context.device.c_str(),
                 context.regeneration ? "regeneration" : "one wave at a time", context.pool_size);
-    out += line("%-12s %9s %14s %11s %7s %16s %13s\n", "stage", "launches", "items", "device ms",
-                "share", "rate", "items/launch");
+    out += line("%-12s %9s %14s %11s %7s %16s %13s %7s %8s %7s\n", "stage", "launches", "items",
+                "device ms", "share", "rate", "items/launch", "B/item", "GB/s", "of copy");
     for (int s = 0; s < kStageCount; ++s) {
         const StageTotals& t = totals[s];
         Stage stage = static_cast<Stage>(s);
@@ -60,10 +90,23 @@ std::string profile_table(const Profiler& profiler, const RenderStats& stats,
         double per_launch =
             t.launches ? static_cast<double>(t.items) / static_cast<double>(t.launches) : 0.0;
         out +=
-            line("%-12s %9llu %14llu %11.1f %6.1f%% %16s %13.0f\n", stage_name(stage),
+            line("%-12s %9llu %14llu %11.1f %6.1f%% %16s %13.0f", stage_name(stage),
                  static_cast<unsigned long long>(t.launches),
                  static_cast<unsigned long long>(t.items), t.device_seconds * 1e3,
                  busy > 0 ? 100.0 * t.device_seconds / busy : 0.0, rate_text.c_str(), per_launch);
+        if (stage != Stage::Transfer) {
+            // The speed of light: the bytes the stage moved per second against
+            // what a copy kernel moves on this device.
+            const double moved = stage_bytes_per_second(stage, t);
+            const std::string of_copy =
+                context.memory_bandwidth > 0
+                    ? line("%.1f%%", 100.0 * moved / context.memory_bandwidth)
+                    : std::string("-");
+            out += line(" %7llu %8.2f %7s",
+                        static_cast<unsigned long long>(stage_bytes_per_item(stage)), moved * 1e-9,
+                        of_copy.c_str());
+        }
+        out += "\n";
     }
     out += line("%-12s %9s %14s %11.1f %7s %16s\n", "host (film)", "", "", stats.host_seconds * 1e3,
                 "", "");
@@ -78,6 +121,10 @@ std::string profile_table(const Profiler& profiler, const RenderStats& stats,
                 "overhead %.3f s\n",
                 wall > 0 ? samples / wall : 0.0, wall, busy, wall > 0 ? 100.0 * busy / wall : 0.0,
                 wall - busy - stats.host_seconds);
+    if (context.memory_bandwidth > 0)
+        out += line("memory bound: a copy kernel moves %.2f GB/s on this device (read + write); "
+                    "B/item is global memory per item\n",
+                    context.memory_bandwidth * 1e-9);
     out += line("kernel build: %.3f s%s; options: %s\n", context.build_seconds,
                 context.build_cached ? " (from cache)" : "", context.build_options.c_str());
     out += line("iterations: %llu; rays per iteration: ",
@@ -95,13 +142,7 @@ std::string profile_table(const Profiler& profiler, const RenderStats& stats,
 
 nlohmann::json profile_json(const Profiler& profiler, const RenderStats& stats,
                             const ProfileContext& context) {
-    nlohmann::json stages = nlohmann::json::array();
-    std::vector<StageTotals> totals = profiler.totals();
-    for (int s = 0; s < kStageCount; ++s)
-        stages.push_back({{"stage", stage_name(static_cast<Stage>(s))},
-                          {"launches", totals[s].launches},
-                          {"items", totals[s].items},
-                          {"device_seconds", totals[s].device_seconds}});
+    nlohmann::json stages = stages_json(profiler.totals(), context.memory_bandwidth);
     return {
         {"device", context.device},
         {"scene", context.scene},
@@ -114,6 +155,7 @@ nlohmann::json profile_json(const Profiler& profiler, const RenderStats& stats,
         {"regeneration", context.regeneration},
         {"pool_size", context.pool_size},
         {"stages", stages},
+        {"copy_bandwidth_gigabytes_per_second", context.memory_bandwidth * 1e-9},
         {"host_seconds", stats.host_seconds},
         {"wall_seconds", stats.render_seconds},
         {"device_busy_seconds", profiler.device_busy_seconds()},
