@@ -12,6 +12,7 @@
 #include "app/cli_options.hpp"
 #include "app/commands.hpp"
 #include "cl/context.hpp"
+#include "cl/memory_bandwidth.hpp"
 #include "render/wavefront.hpp"
 #include "report/profile_report.hpp"
 #include "scene/load.hpp"
@@ -65,6 +66,7 @@ void render_workload(DeviceContext& device, const Scene& scene, std::uint32_t sp
     context.build_seconds = integrator.program().build_seconds;
     context.regeneration = regeneration;
     context.pool_size = integrator.pool_size();
+    context.memory_bandwidth = measured_copy_bandwidth(device);
     std::printf("%s\n", profile_table(profiler, integrator.stats(), context).c_str());
 }
 

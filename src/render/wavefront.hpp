@@ -70,6 +70,7 @@ class WavefrontIntegrator {
     const DeviceScene& device_scene() const { return scene_; }
     const IntegratorOptions& options() const { return options_; }
     std::uint32_t pool_size() const { return pool_size_; }
+    DeviceContext& device() const { return device_; }
     int width() const { return scene_.width; }
     int height() const { return scene_.height; }
 

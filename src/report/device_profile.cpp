@@ -4,20 +4,21 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cl/memory_bandwidth.hpp"
 #include "util/file.hpp"
 #include "util/format.hpp"
 
 namespace wp {
 namespace {
 
-nlohmann::json stage_totals_json(const std::vector<StageTotals>& totals) {
-    nlohmann::json stages = nlohmann::json::array();
-    for (int s = 0; s < kStageCount; ++s)
-        stages.push_back({{"stage", stage_name(static_cast<Stage>(s))},
-                          {"launches", totals[s].launches},
-                          {"items", totals[s].items},
-                          {"device_seconds", totals[s].device_seconds}});
-    return stages;
+// The context with the copy bandwidth of local device `d` (measured once per
+// process), or 0 for a device that failed.
+ProfileContext with_bandwidth(const ProfileContext& context, const MultiDeviceRenderer& renderer,
+                              std::size_t d) {
+    ProfileContext own = context;
+    const WavefrontIntegrator* integrator = renderer.integrator(d);
+    own.memory_bandwidth = integrator ? measured_copy_bandwidth(integrator->device()) : 0.0;
+    return own;
 }
 
 } // namespace
@@ -68,11 +69,12 @@ std::string multi_device_profile_table(const MultiDeviceRenderer& renderer,
                                        const ProfileContext& context) {
     const std::vector<DeviceShare> shares = renderer.shares();
     if (shares.size() == 1)
-        return profile_table(renderer.profiler(0), renderer.device_stats(0), context) + "\n" +
-               device_share_table(shares);
+        return profile_table(renderer.profiler(0), renderer.device_stats(0),
+                             with_bandwidth(context, renderer, 0)) +
+               "\n" + device_share_table(shares);
     std::string out;
     for (std::size_t d = 0; d < renderer.local_device_count(); ++d) {
-        ProfileContext own = context;
+        ProfileContext own = with_bandwidth(context, renderer, d);
         own.device = shares[d].name + " (" + shares[d].index + ")";
         out += profile_table(renderer.profiler(d), renderer.device_stats(d), own) + "\n";
     }
@@ -87,7 +89,8 @@ nlohmann::json multi_device_profile_json(const MultiDeviceRenderer& renderer,
                                          const ProfileContext& context) {
     const std::vector<DeviceShare> shares = renderer.shares();
     const std::size_t local = renderer.local_device_count();
-    nlohmann::json out = profile_json(renderer.profiler(0), renderer.stats(), context);
+    const ProfileContext first = with_bandwidth(context, renderer, 0);
+    nlohmann::json out = profile_json(renderer.profiler(0), renderer.stats(), first);
     nlohmann::json devices = device_share_json(shares);
     std::vector<StageTotals> sum(kStageCount);
     double busy = 0.0;
@@ -100,10 +103,12 @@ nlohmann::json multi_device_profile_json(const MultiDeviceRenderer& renderer,
             sum[s].device_seconds += totals[s].device_seconds;
         }
         busy += profiler.device_busy_seconds();
-        devices[d]["stages"] = stage_totals_json(totals);
+        const double bandwidth = with_bandwidth(context, renderer, d).memory_bandwidth;
+        devices[d]["stages"] = stages_json(totals, bandwidth);
+        devices[d]["copy_bandwidth_gigabytes_per_second"] = bandwidth * 1e-9;
         devices[d]["device_busy_seconds"] = profiler.device_busy_seconds();
     }
-    out["stages"] = stage_totals_json(sum);
+    out["stages"] = stages_json(sum, first.memory_bandwidth); // against the first device's copy
     out["device_busy_seconds"] = busy;
     out["devices"] = devices;
     return out;

@@ -5,7 +5,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "render/stage_traffic.hpp"
 #include "util/file.hpp"
+#include "util/format.hpp"
 
 namespace wp {
 namespace {
@@ -13,12 +15,6 @@ namespace {
 // Rays for the stages that trace them, items otherwise.
 bool traces_rays(Stage stage) {
     return stage == Stage::Intersect || stage == Stage::Shadow;
-}
-
-std::string line(const char* format, auto... values) {
-    char text[256];
-    std::snprintf(text, sizeof text, format, values...);
-    return text;
 }
 
 // Queue lengths per iteration, shortened to the first and last few.
@@ -37,7 +33,36 @@ std::string queue_summary(const std::vector<std::uint32_t>& lengths) {
     return out;
 }
 
+// Bytes per second a stage moved: its items times its bytes per item.
+double stage_bytes_per_second(Stage stage, const StageTotals& t) {
+    return t.device_seconds > 0
+               ? static_cast<double>(t.items) * static_cast<double>(stage_bytes_per_item(stage)) /
+                     t.device_seconds
+               : 0.0;
+}
+
 } // namespace
+
+nlohmann::json stage_json(Stage stage, const StageTotals& totals, double memory_bandwidth) {
+    nlohmann::json row = {{"stage", stage_name(stage)},
+                          {"launches", totals.launches},
+                          {"items", totals.items},
+                          {"device_seconds", totals.device_seconds}};
+    if (stage != Stage::Transfer) {
+        const double moved = stage_bytes_per_second(stage, totals);
+        row["bytes_per_item"] = stage_bytes_per_item(stage);
+        row["gigabytes_per_second"] = moved * 1e-9;
+        row["fraction_of_copy_bandwidth"] = memory_bandwidth > 0 ? moved / memory_bandwidth : 0.0;
+    }
+    return row;
+}
+
+nlohmann::json stages_json(const std::vector<StageTotals>& totals, double memory_bandwidth) {
+    nlohmann::json stages = nlohmann::json::array();
+    for (int s = 0; s < kStageCount; ++s)
+        stages.push_back(stage_json(static_cast<Stage>(s), totals[s], memory_bandwidth));
+    return stages;
+}
 
 std::string profile_table(const Profiler& profiler, const RenderStats& stats,
                           const ProfileContext& context) {
@@ -45,43 +70,63 @@ std::string profile_table(const Profiler& profiler, const RenderStats& stats,
     const double busy = profiler.device_busy_seconds();
     const double wall = stats.render_seconds;
     std::string out;
-    out += line("profile: %s, %dx%d, %u spp on %s (%s, pool %u)\n", context.scene.c_str(),
-                context.width, context.height, context.spp, context.device.c_str(),
-                context.regeneration ? "regeneration" : "one wave at a time", context.pool_size);
-    out += line("%-12s %9s %14s %11s %7s %16s %13s\n", "stage", "launches", "items", "device ms",
-                "share", "rate", "items/launch");
+    out += format_text("profile: %s, %dx%d, %u spp on %s (%s, pool %u)\n", context.scene.c_str(),
+                       context.width, context.height, context.spp, context.device.c_str(),
+                       context.regeneration ? "regeneration" : "one wave at a time",
+                       context.pool_size);
+    out +=
+        format_text("%-12s %9s %14s %11s %7s %16s %13s %7s %8s %7s\n", "stage", "launches", "items",
+                    "device ms", "share", "rate", "items/launch", "B/item", "GB/s", "of copy");
     for (int s = 0; s < kStageCount; ++s) {
         const StageTotals& t = totals[s];
         Stage stage = static_cast<Stage>(s);
         double rate = t.device_seconds > 0 ? static_cast<double>(t.items) / t.device_seconds : 0.0;
-        std::string rate_text = stage == Stage::Transfer ? line("%.3g MB/s", rate / 1e6)
-                                : traces_rays(stage)     ? line("%.3f Mrays/s", rate / 1e6)
-                                                         : line("%.3f M/s", rate / 1e6);
+        std::string rate_text = stage == Stage::Transfer ? format_text("%.3g MB/s", rate / 1e6)
+                                : traces_rays(stage)     ? format_text("%.3f Mrays/s", rate / 1e6)
+                                                         : format_text("%.3f M/s", rate / 1e6);
         double per_launch =
             t.launches ? static_cast<double>(t.items) / static_cast<double>(t.launches) : 0.0;
-        out +=
-            line("%-12s %9llu %14llu %11.1f %6.1f%% %16s %13.0f\n", stage_name(stage),
-                 static_cast<unsigned long long>(t.launches),
-                 static_cast<unsigned long long>(t.items), t.device_seconds * 1e3,
-                 busy > 0 ? 100.0 * t.device_seconds / busy : 0.0, rate_text.c_str(), per_launch);
+        out += format_text("%-12s %9llu %14llu %11.1f %6.1f%% %16s %13.0f", stage_name(stage),
+                           static_cast<unsigned long long>(t.launches),
+                           static_cast<unsigned long long>(t.items), t.device_seconds * 1e3,
+                           busy > 0 ? 100.0 * t.device_seconds / busy : 0.0, rate_text.c_str(),
+                           per_launch);
+        if (stage != Stage::Transfer) {
+            // The speed of light: the bytes the stage moved per second against
+            // what a copy kernel moves on this device.
+            const double moved = stage_bytes_per_second(stage, t);
+            const std::string of_copy =
+                context.memory_bandwidth > 0
+                    ? format_text("%.1f%%", 100.0 * moved / context.memory_bandwidth)
+                    : std::string("-");
+            out += format_text(" %7llu %8.2f %7s",
+                               static_cast<unsigned long long>(stage_bytes_per_item(stage)),
+                               moved * 1e-9, of_copy.c_str());
+        }
+        out += "\n";
     }
-    out += line("%-12s %9s %14s %11.1f %7s %16s\n", "host (film)", "", "", stats.host_seconds * 1e3,
-                "", "");
+    out += format_text("%-12s %9s %14s %11.1f %7s %16s\n", "host (film)", "", "",
+                       stats.host_seconds * 1e3, "", "");
     const double samples = static_cast<double>(stats.camera_rays);
-    out += line(
+    out += format_text(
         "rays: %llu camera + %llu bounce + %llu shadow = %llu\n",
         static_cast<unsigned long long>(stats.camera_rays),
         static_cast<unsigned long long>(stats.bounce_rays),
         static_cast<unsigned long long>(stats.shadow_rays),
         static_cast<unsigned long long>(stats.camera_rays + stats.bounce_rays + stats.shadow_rays));
-    out += line("samples/s: %.4g; wall %.3f s, device busy %.3f s (%.1f%%), launch and sync "
-                "overhead %.3f s\n",
-                wall > 0 ? samples / wall : 0.0, wall, busy, wall > 0 ? 100.0 * busy / wall : 0.0,
-                wall - busy - stats.host_seconds);
-    out += line("kernel build: %.3f s%s; options: %s\n", context.build_seconds,
-                context.build_cached ? " (from cache)" : "", context.build_options.c_str());
-    out += line("iterations: %llu; rays per iteration: ",
-                static_cast<unsigned long long>(stats.iterations)) +
+    out += format_text("samples/s: %.4g; wall %.3f s, device busy %.3f s (%.1f%%), launch and sync "
+                       "overhead %.3f s\n",
+                       wall > 0 ? samples / wall : 0.0, wall, busy,
+                       wall > 0 ? 100.0 * busy / wall : 0.0, wall - busy - stats.host_seconds);
+    if (context.memory_bandwidth > 0)
+        out += format_text(
+            "memory bound: a copy kernel moves %.2f GB/s on this device (read + write); "
+            "B/item is global memory per item\n",
+            context.memory_bandwidth * 1e-9);
+    out += format_text("kernel build: %.3f s%s; options: %s\n", context.build_seconds,
+                       context.build_cached ? " (from cache)" : "", context.build_options.c_str());
+    out += format_text("iterations: %llu; rays per iteration: ",
+                       static_cast<unsigned long long>(stats.iterations)) +
            queue_summary(stats.queue_lengths) + "\n";
     if (!stats.rays_per_bounce.empty()) {
         std::vector<std::uint32_t> per_wave;
@@ -95,13 +140,7 @@ std::string profile_table(const Profiler& profiler, const RenderStats& stats,
 
 nlohmann::json profile_json(const Profiler& profiler, const RenderStats& stats,
                             const ProfileContext& context) {
-    nlohmann::json stages = nlohmann::json::array();
-    std::vector<StageTotals> totals = profiler.totals();
-    for (int s = 0; s < kStageCount; ++s)
-        stages.push_back({{"stage", stage_name(static_cast<Stage>(s))},
-                          {"launches", totals[s].launches},
-                          {"items", totals[s].items},
-                          {"device_seconds", totals[s].device_seconds}});
+    nlohmann::json stages = stages_json(profiler.totals(), context.memory_bandwidth);
     return {
         {"device", context.device},
         {"scene", context.scene},
@@ -114,6 +153,7 @@ nlohmann::json profile_json(const Profiler& profiler, const RenderStats& stats,
         {"regeneration", context.regeneration},
         {"pool_size", context.pool_size},
         {"stages", stages},
+        {"copy_bandwidth_gigabytes_per_second", context.memory_bandwidth * 1e-9},
         {"host_seconds", stats.host_seconds},
         {"wall_seconds", stats.render_seconds},
         {"device_busy_seconds", profiler.device_busy_seconds()},

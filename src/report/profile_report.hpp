@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json_fwd.hpp>
 
@@ -24,7 +25,15 @@ struct ProfileContext {
     bool build_cached = false;
     bool regeneration = true;
     std::uint32_t pool_size = 0;
+    // The device's copy bandwidth in bytes/s (cl/memory_bandwidth.hpp), which
+    // each stage's memory traffic is compared with; 0: not measured.
+    double memory_bandwidth = 0.0;
 };
+
+// One stage's row of the JSON: its totals, bytes per item
+// (render/stage_traffic.hpp), GB/s, and the fraction of `memory_bandwidth`.
+nlohmann::json stage_json(Stage stage, const StageTotals& totals, double memory_bandwidth);
+nlohmann::json stages_json(const std::vector<StageTotals>& totals, double memory_bandwidth);
 
 // The per-stage table and the summary below it, as `render --profile` prints.
 std::string profile_table(const Profiler& profiler, const RenderStats& stats,

@@ -1,0 +1,106 @@
+#include "render/stage_traffic.hpp"
+
+#include <array>
+
+#include "wp_shared.h"
+
+namespace wp {
+namespace {
+
+constexpr Access R = Access::Read, W = Access::Write, RW = Access::ReadWrite;
+
+// kernels/generate.cl: finished_queue only when it refills finished slots.
+constexpr std::array<BufferAccess, 11> kGenerate{{{"finished_queue", R},
+                                                  {"path_task", RW},
+                                                  {"ray_origin", W},
+                                                  {"ray_direction", W},
+                                                  {"throughput", W},
+                                                  {"radiance", W},
+                                                  {"path_pixel", W},
+                                                  {"path_sample", W},
+                                                  {"path_depth", W},
+                                                  {"path_flags", W},
+                                                  {"ray_queues", W}}};
+
+// kernels/intersect.cl
+constexpr std::array<BufferAccess, 5> kIntersect{{{"ray_queues", R},
+                                                  {"ray_origin", R},
+                                                  {"ray_direction", R},
+                                                  {"hit_primitive", W},
+                                                  {"hit_t", W}}};
+
+// kernels/shade.cl: ray_queues is read (its own queue) and written (the
+// survivors' queue); a path ends in finished_queue or goes on, never both,
+// so the table overcounts one 4-byte push.
+constexpr std::array<BufferAccess, 16> kShade{{{"ray_queues", RW},
+                                               {"hit_primitive", R},
+                                               {"hit_t", R},
+                                               {"ray_origin", RW},
+                                               {"ray_direction", RW},
+                                               {"throughput", RW},
+                                               {"radiance", RW},
+                                               {"path_pixel", R},
+                                               {"path_sample", R},
+                                               {"path_depth", RW},
+                                               {"path_flags", RW},
+                                               {"shadow_queue", W},
+                                               {"shadow_origin", W},
+                                               {"shadow_direction", W},
+                                               {"shadow_contribution", W},
+                                               {"finished_queue", W}}};
+
+// kernels/shadow.cl: radiance is written only when the ray is unblocked.
+constexpr std::array<BufferAccess, 5> kShadow{{{"shadow_queue", R},
+                                               {"shadow_origin", R},
+                                               {"shadow_direction", R},
+                                               {"shadow_contribution", R},
+                                               {"radiance", RW}}};
+
+// kernels/accumulate.cl: film_odd_sum only for odd samples.
+constexpr std::array<BufferAccess, 7> kAccumulate{{{"finished_queue", R},
+                                                   {"radiance", R},
+                                                   {"path_pixel", R},
+                                                   {"path_sample", R},
+                                                   {"film_sum", RW},
+                                                   {"film_sum_squares", RW},
+                                                   {"film_odd_sum", RW}}};
+
+} // namespace
+
+std::span<const BufferAccess> stage_buffer_accesses(Stage stage) {
+    switch (stage) {
+    case Stage::Generate:
+        return kGenerate;
+    case Stage::Intersect:
+        return kIntersect;
+    case Stage::Shade:
+        return kShade;
+    case Stage::Shadow:
+        return kShadow;
+    case Stage::Accumulate:
+        return kAccumulate;
+    case Stage::Transfer:
+        break;
+    }
+    return {};
+}
+
+std::uint64_t path_buffer_element_bytes(std::string_view buffer) {
+#define WP_ELEMENT_BYTES(name, type, ...)                                                          \
+    if (buffer == #name)                                                                           \
+        return sizeof(type);
+    WP_PATH_BUFFERS(WP_ELEMENT_BYTES)
+#undef WP_ELEMENT_BYTES
+    return 0;
+}
+
+std::uint64_t stage_bytes_per_item(Stage stage) {
+    std::uint64_t bytes = 0;
+    for (const BufferAccess& a : stage_buffer_accesses(stage)) {
+        const std::uint64_t element = path_buffer_element_bytes(a.buffer);
+        bytes += element * ((a.access == Access::ReadWrite) ? 2u : 1u);
+    }
+    return bytes;
+}
+
+} // namespace wp

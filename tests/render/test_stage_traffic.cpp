@@ -1,0 +1,75 @@
+// The profile's bytes per item (render/stage_traffic.hpp) against the kernel
+// sources: a stage's table lists exactly the path buffers its kernel file
+// names, read where the source reads them and written where it writes them.
+#include <catch2/catch.hpp>
+
+#include <regex>
+#include <set>
+#include <string>
+
+#include "cl/program.hpp"
+#include "render/stage_traffic.hpp"
+#include "wp_shared.h"
+
+using namespace wp;
+
+namespace {
+
+// The source without its comments, whose prose names buffers too.
+std::string code_of(std::string_view file) {
+    static const std::regex comments(R"(/\*[\s\S]*?\*/|//[^\n]*)");
+    return std::regex_replace(std::string(kernel_file(file)), comments, " ");
+}
+
+// What the source does with `buffer`: read by an index that is not an
+// assignment's target (or by `+=`), written by an assignment or a queue push.
+int source_access(const std::string& code, const std::string& buffer) {
+    const std::string index = "\\b" + buffer + R"(\s*\[[^\]]*\])";
+    const bool read =
+        std::regex_search(code, std::regex(index + R"((?!\s*=[^=]))")) ||
+        std::regex_search(code, std::regex(R"(wp_ray_queue\(\s*)" + buffer + R"(\b[^;]*?\)\s*\[)"));
+    const bool written =
+        std::regex_search(code, std::regex(index + R"(\s*(\+=|=[^=]))")) ||
+        std::regex_search(code,
+                          std::regex(R"(wp_queue_push\(\s*(wp_ray_queue\(\s*)?)" + buffer + "\\b"));
+    return (read ? 1 : 0) | (written ? 2 : 0);
+}
+
+} // namespace
+
+TEST_CASE("stage traffic: each stage's table matches the buffers its kernel touches") {
+    std::set<std::string> path_buffers;
+#define WP_NAME(name, ...) path_buffers.insert(#name);
+    WP_PATH_BUFFERS(WP_NAME)
+#undef WP_NAME
+    path_buffers.erase("counters"); // atomics on one cache line, not counted
+    for (Stage stage :
+         {Stage::Generate, Stage::Intersect, Stage::Shade, Stage::Shadow, Stage::Accumulate}) {
+        const std::string file = std::string(stage_name(stage)) + ".cl";
+        const std::string code = code_of(file);
+        std::set<std::string> listed;
+        for (const BufferAccess& a : stage_buffer_accesses(stage)) {
+            INFO(file << ": " << a.buffer);
+            CHECK(path_buffers.count(std::string(a.buffer)) == 1);
+            CHECK(listed.insert(std::string(a.buffer)).second); // listed once
+            CHECK(source_access(code, std::string(a.buffer)) == static_cast<int>(a.access));
+        }
+        for (const std::string& buffer : path_buffers) {
+            INFO(file << " names " << buffer << ", which its table does not list");
+            if (!listed.count(buffer))
+                CHECK_FALSE(std::regex_search(code, std::regex("\\b" + buffer + "\\b")));
+        }
+    }
+}
+
+TEST_CASE("stage traffic: bytes per item add up the element sizes of the buffer list") {
+    // Independent of the table's arithmetic: sizes from the host's own types.
+    CHECK(path_buffer_element_bytes("ray_origin") == sizeof(cl_float4));
+    CHECK(path_buffer_element_bytes("hit_t") == sizeof(cl_float));
+    CHECK(path_buffer_element_bytes("no such buffer") == 0);
+    // intersect: a queue entry, origin and direction in; hit distance and primitive out.
+    CHECK(stage_bytes_per_item(Stage::Intersect) == 4 + 16 + 16 + 4 + 4);
+    // accumulate: a queue entry, radiance, pixel, sample in; three film float4 read and written.
+    CHECK(stage_bytes_per_item(Stage::Accumulate) == 4 + 16 + 4 + 4 + 3 * 2 * 16);
+    CHECK(stage_bytes_per_item(Stage::Transfer) == 0);
+}
