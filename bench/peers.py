@@ -107,6 +107,7 @@ def calibrate(renders, judge_against, label_against, is_reference=False):
         light_error = float(abs(light / LIGHT_RADIANCE - 1.0).max()) if light is not None else math.nan
         light_ok = light is not None and light_error <= LIGHT_TOLERANCE
         means_ok = bool(abs(deviation).max() <= MEANS_TOLERANCE)
+        blocks = peers_image.block_means(image) / peers_image.block_means(judge_against) - 1.0
         noise = ""
         if is_reference:
             pixels = image.shape[0] * image.shape[1]
@@ -118,7 +119,8 @@ def calibrate(renders, judge_against, label_against, is_reference=False):
                      f"(largest deviation {light_error * 100:.3f} %, {'ok' if light_ok else 'FAILS'}); "
                      f"means {peers_image.triple(means)}, "
                      f"{', '.join(f'{100 * d:+.2f} %' for d in deviation)};{noise} "
-                     f"({'ok' if means_ok else 'FAILS the 1 % check'})")
+                     f"({'ok' if means_ok else 'FAILS the 1 % check'}); largest deviation of a 4x4 block's "
+                     f"mean {100 * float(abs(blocks).max()):.2f} %")
     if not equal:
         lines.append("  NOT EQUAL WORK: the renderers do not compute the same image, "
                      "so the figures below do not compare like with like")
@@ -150,6 +152,7 @@ def run_throughput(args, workdir):
                           workdir / f"calibration-{r.slug}.exr")
         images[r.label] = peers_image.read(result["image"])
         peers_image.write_png(images[r.label], out / f"calibration-{r.slug}.png")
+    peers_image.write_row(list(images.values()), out / "calibration-side-by-side.png")
     report, equal = calibrate({k: v for k, v in images.items() if k != renderers[0].label},
                               images[renderers[0].label], renderers[0].label)
     print("\n".join(report), flush=True)
@@ -249,6 +252,7 @@ def run_error(args, workdir):
         result = r.render(size, args.calibration_spp, 1, 2, None, workdir / f"calibration-{r.slug}.exr")
         images[r.label] = peers_image.read(result["image"])
         peers_image.write_png(images[r.label], out / f"calibration-{r.slug}.png")
+    peers_image.write_row([reference] + list(images.values()), out / "calibration-side-by-side.png")
     report, equal = calibrate(images, reference, f"the reference {Path(args.reference).name}", True)
     print("\n".join(report), flush=True)
 
@@ -316,8 +320,8 @@ def run_error(args, workdir):
     series = []
     for mode in modes:
         for r in renderers:
-            pts = sorted((x["seconds"], x["rel_mse"], x["spp"]) for x in rows
-                         if x["renderer"] == r.label and x["mode"] == mode)
+            pts = sorted(((x["seconds"], x["rel_mse"], x["spp"]) for x in rows
+                          if x["renderer"] == r.label and x["mode"] == mode), key=lambda p: p[2])
             series.append({"label": f"{r.label} ({mode})", "points": pts, "dashed": mode == "one-core"})
     peers_plot.write_svg(out / "convergence.svg", series, f"hexroom {size}x{size}: relMSE against render time",
                          "render time (s)", "relMSE")

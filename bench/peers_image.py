@@ -42,6 +42,19 @@ def light_pixels(image, radiance, tolerance=1e-3):
     return inner
 
 
+def block_means(image, blocks=4):
+    """Per-channel means of a blocks x blocks grid (row 0 at the top), so that
+    images with the same mean but not the same picture tell apart."""
+    rows = np.array_split(np.arange(image.shape[0]), blocks)
+    columns = np.array_split(np.arange(image.shape[1]), blocks)
+    return np.array([[image[np.ix_(r, c)].reshape(-1, 3).mean(axis=0) for c in columns] for r in rows])
+
+
+def write_row(images, path, scale=1 / 8.0):
+    """The images side by side as one PNG view (write_png's)."""
+    write_png(np.concatenate(images, axis=1), path, scale)
+
+
 def triple(values):
     return " ".join(f"{v:.4f}" for v in values)
 
