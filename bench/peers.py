@@ -112,13 +112,15 @@ def calibrate(renders, judge_against, label_against, is_reference=False):
         if is_reference:
             pixels = image.shape[0] * image.shape[1]
             mse = ((image - judge_against) ** 2).reshape(-1, 3).mean(axis=0)
-            noise = (" standard error " +
-                     ", ".join(f"{100 * v:.2f} %" for v in (mse / pixels) ** 0.5 / target_means) + ";")
+            standard_error = (mse / pixels) ** 0.5 / target_means
+            noise = "; standard error " + ", ".join(f"{100 * v:.2f} %" for v in standard_error)
+            if not means_ok and bool((abs(deviation) <= 3 * standard_error).all()):
+                noise += ", so within noise: raise --calibration-spp"
         equal = equal and light_ok and means_ok
         lines.append(f"  {label}: light pixels {float(light.mean()) if light is not None else math.nan:.4f} "
                      f"(largest deviation {light_error * 100:.3f} %, {'ok' if light_ok else 'FAILS'}); "
                      f"means {peers_image.triple(means)}, "
-                     f"{', '.join(f'{100 * d:+.2f} %' for d in deviation)};{noise} "
+                     f"{', '.join(f'{100 * d:+.2f} %' for d in deviation)}{noise} "
                      f"({'ok' if means_ok else 'FAILS the 1 % check'}); largest deviation of a 4x4 block's "
                      f"mean {100 * float(abs(blocks).max()):.2f} %")
     if not equal:
@@ -347,7 +349,8 @@ def main():
     parser.add_argument("--wavepath", default=str(REPOSITORY / "build" / "wavepath"),
                         help="the wavepath binary under test (default: build/wavepath)")
     parser.add_argument("--scene", default=str(REPOSITORY / "scenes" / "hexroom.json"))
-    parser.add_argument("--out-dir", default="peers-out", help="where results go (default: peers-out)")
+    parser.add_argument("--out-dir", default=str(REPOSITORY / "build" / "peers-out"),
+                        help="where results go (default: build/peers-out, which git ignores)")
     parser.add_argument("--rounds", type=int, default=None,
                         help="alternating rounds (default: 3 throughput, 2 error)")
     parser.add_argument("--calibration-spp", type=int, default=256)
