@@ -5,8 +5,10 @@
 # chromium for the live preview's browser test (tests/app/test_cli_preview.cpp,
 # skipped without it; docs/preview.md gives its download and unpack times),
 # and zlib's headers for the sanitizer build's own tinyexr (docs/fuzzing.md).
-# --bench adds what the benchmark against Embree needs (bench/, docs/performance.md):
-# libembree-dev; neither the default nor --ci installs it.
+# --bench adds what the benchmarks need (bench/, docs/performance.md): libembree-dev
+# (against Embree), blender and libllvm19 (bench/peers.py: Cycles, and Mitsuba 3's
+# LLVM backend; Dr.Jit 1.5 fails on LLVM 16), and from PyPI mitsuba and numpy;
+# neither the default nor --ci installs them.
 # --fuzz adds what the libFuzzer build needs (fuzz/, docs/fuzzing.md): clang 14
 # with its fuzzer runtime, and zlib's headers.
 set -euo pipefail
@@ -21,7 +23,7 @@ if [[ "${1:-}" == "--ci" ]]; then
   packages+=(clang-format-14 chromium zlib1g-dev)
 fi
 if [[ "${1:-}" == "--bench" ]]; then
-  packages+=(libembree-dev)
+  packages+=(libembree-dev blender libllvm19)
 fi
 if [[ "${1:-}" == "--fuzz" ]]; then
   packages+=(clang-14 libclang-rt-14-dev zlib1g-dev)
@@ -35,4 +37,8 @@ if ((${#missing[@]})); then
   sudo=""; [ "$(id -u)" -eq 0 ] || sudo="sudo"
   $sudo apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+if [[ "${1:-}" == "--bench" ]] && ! python3 -c "import mitsuba, numpy" 2>/dev/null; then
+  echo "install-deps: installing mitsuba numpy (pip)" >&2
+  python3 -m pip install --quiet mitsuba numpy
 fi
