@@ -41,13 +41,21 @@ static inline float wp_two_sum(float a, float b, float* err) {
     return s;
 }
 
-/* wp_two_sum in another form for SLP, with the same results: the error's
- * two terms added as x - (-y) (bb - b == -(b - bb) exactly), so that the
- * last operation is an fma, not an addition. */
+/* wp_two_sum in two other forms for SLP, with the same results: the
+ * error's two terms added as x - (-y) (bb - b == -(b - bb) exactly), so
+ * that the last operation is an fma, not an addition; or its first term
+ * subtracted by wp_minus. */
 static inline float wp_two_sum_fma(float a, float b, float* err) {
     float s = a + b;
     float bb = s - a;
     *err = wp_minus(a - (s - bb), bb - b);
+    return s;
+}
+
+static inline float wp_two_sum_fma_first(float a, float b, float* err) {
+    float s = a + b;
+    float bb = s - a;
+    *err = wp_minus(a, s - bb) + (b - bb);
     return s;
 }
 

@@ -16,7 +16,7 @@
  * float3 expression it replaces, component by component, in the same order
  * (dot(a, b) is a.x b.x + a.y b.y + a.z b.z on PoCL). Where one axis, or one
  * of two alike steps, is written in another form that rounds exactly the
- * same (wp_two_diff_fma, wp_two_sum_fma, max(y, -y) for |y|), it is so that
+ * same (wp_two_diff_fma, the wp_two_sum forms, max(y, -y) for |y|), it is so that
  * LLVM's SLP vectoriser finds no alike lines to pack into short vectors,
  * which would keep PoCL from vectorising across work-items (traverse.h). */
 
@@ -47,8 +47,8 @@ static inline float wp_sphere_c(float fx, float fy, float fz, float ex, float ey
     float pz = wp_two_product(fz, fz, &qz);
     float rr = wp_two_product(radius, radius, &qr);
     float sum = wp_two_sum(px, py, &s1);
-    sum = wp_two_sum_fma(sum, pz, &s2); /* another form, for SLP */
-    sum = wp_two_sum(sum, -rr, &s3);
+    sum = wp_two_sum_fma(sum, pz, &s2); /* each in its own form, for SLP */
+    sum = wp_two_sum_fma_first(sum, -rr, &s3);
     /* The small terms: compensations, product errors, 2 f.f_error + |f_error|^2. */
     float cross = ((fx + fx) + ex) * ex + ((fy + fy) + ey) * ey + ((fz + fz) + ez) * ez;
     float small = ((s1 + s2) + s3) + ((qx + qy) + (qz - qr)) + cross;

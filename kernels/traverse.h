@@ -20,7 +20,7 @@
  * tests are written on scalars (triangle.h, sphere.h), rays are loaded with
  * scalar loads (wp_load_xyz), and the entry points are always inlined (past
  * about 30 primitives the inliner would keep them out of line, and the call
- * would pass float3). tests/kernels/test_vectorised.cpp checks the result.
+ * would pass float3). tests/app/test_vectorised_stages.cpp checks the result.
  */
 #ifndef WP_TRAVERSE_H
 #define WP_TRAVERSE_H
