@@ -2,7 +2,8 @@
  *
  * The queue's length is read from the counters rather than passed in,
  * because generate appended to it after the host last looked; the host
- * launches enough work-items for the most it can hold. */
+ * launches enough work-items for the most it can hold. Rays are loaded as
+ * scalars so that the stage vectorises (traverse.h). */
 #include "stage.h"
 #include "traverse.h"
 
@@ -13,7 +14,7 @@ __kernel void intersect(WP_STAGE_PARAMETERS) {
     wp_uint slot = wp_ray_queue(ray_queues, frame, launch.ray_queue)[index];
     WpSceneView scene = WP_SCENE_VIEW();
     float t;
-    hit_primitive[slot] =
-        wp_closest_hit(&scene, ray_origin[slot].xyz, ray_direction[slot].xyz, INFINITY, &t);
+    hit_primitive[slot] = wp_closest_hit(&scene, wp_load_xyz(ray_origin, slot),
+                                         wp_load_xyz(ray_direction, slot), INFINITY, &t);
     hit_t[slot] = t;
 }

@@ -9,7 +9,16 @@ __kernel void shadow(WP_STAGE_PARAMETERS) {
         return;
     wp_uint slot = shadow_queue[index];
     WpSceneView scene = WP_SCENE_VIEW();
-    float4 segment = shadow_direction[slot]; /* xyz unit direction, w length */
-    if (!wp_occluded(&scene, shadow_origin[slot].xyz, segment.xyz, segment.w))
-        radiance[slot] += shadow_contribution[slot];
+    /* Scalar loads and a per-component update keep vector instructions out
+     * of the stage, so that it vectorises (traverse.h). The direction's w is
+     * the segment's length. */
+    if (!wp_occluded(&scene, wp_load_xyz(shadow_origin, slot), wp_load_xyz(shadow_direction, slot),
+                     wp_load_w(shadow_direction, slot))) {
+        __global float* sum = (__global float*)(radiance + slot);
+        __global const float* add = (__global const float*)(shadow_contribution + slot);
+        sum[0] += add[0];
+        sum[1] += add[1];
+        sum[2] += add[2];
+        sum[3] += add[3];
+    }
 }

@@ -30,6 +30,7 @@
 #include <string_view>
 #include <vector>
 
+#include "cl/stages.hpp"
 #include "support/temp_dir.hpp"
 #include "support/test_device.hpp"
 
@@ -46,6 +47,8 @@ struct VectorizerRemarks {
 
     // The remarks from `kernel`'s work-group marker up to the next kernel's
     // marker (empty if the kernel was never built).
+    // A remark that names another kernel ('shade', '_pocl_kernel_shade...')
+    // ends the range too.
     std::vector<std::string> of_kernel(std::string_view kernel) const {
         const std::string own = "'_pocl_kernel_" + std::string(kernel) + "' inlined into";
         std::vector<std::string> out;
@@ -55,10 +58,26 @@ struct VectorizerRemarks {
                                 line.find("_workgroup'") != std::string::npos;
             if (marker)
                 inside = line.rfind(own, 0) == 0;
+            else if (inside && names_another_kernel(line, kernel))
+                inside = false;
             if (inside)
                 out.push_back(line);
         }
         return out;
+    }
+
+    static bool names_another_kernel(const std::string& line, std::string_view kernel) {
+        for (std::string_view other : kStageKernelNames) {
+            if (other == kernel)
+                continue;
+            std::string quoted(1, '\''), work_group("'_pocl_kernel_");
+            quoted.append(other).push_back('\'');
+            work_group.append(other);
+            if (line.find(quoted) != std::string::npos ||
+                line.find(work_group) != std::string::npos)
+                return true;
+        }
+        return false;
     }
 
     // Whether LLVM vectorised a loop of `kernel` ("vectorized loop (...").
