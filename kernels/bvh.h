@@ -90,7 +90,7 @@ static inline wp_uint wp_bvh_trace(const WpSceneView* scene, float3 origin, floa
         __global const WpBvhNode* n = &scene->bvh_nodes[node];
         if (n->count > 0u) {
             for (wp_uint k = 0; k < n->count; ++k) {
-                wp_uint primitive = scene->bvh_primitives[n->offset + k];
+                wp_uint primitive = n->offset + k;
                 float t;
                 if (wp_intersect_primitive(scene, &sheared, origin, direction, primitive, closest,
                                            &t)) {

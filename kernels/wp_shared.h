@@ -19,6 +19,7 @@ typedef float wp_float;
 typedef float4 wp_float4;
 #else
 #include <CL/cl_platform.h>
+#include <string.h>
 typedef cl_uint wp_uint;
 typedef cl_float wp_float;
 typedef cl_float4 wp_float4;
@@ -46,17 +47,43 @@ typedef cl_float4 wp_float4;
 #define WP_COUNTER_NONFINITE 5u   /* samples dropped at the film for NaN or Inf */
 #define WP_COUNTER_COUNT 8u
 
-/* A triangle: vertices in xyz (w unused). Its front face is the side of
- * cross(v1 - v0, v2 - v0); only emitters care which side is the front.
- * `normals` is 0, or k + 1 for shading normals in triangle_normals[k]. */
+/* A triangle, 48 bytes: vertices in xyz. Its front face is the side of
+ * cross(v1 - v0, v2 - v0); only emitters care which side is the front. The
+ * w lanes, which no geometric code reads, hold two uints as their bits (read
+ * and written only through the accessors below): v0.w its material, v1.w
+ * `normals`, 0 or k + 1 for shading normals in triangle_normals[k]; v2.w is
+ * 0. A 0.0f lane is a 0 uint, so material 0 without normals is the default. */
 typedef struct {
     wp_float4 v0;
     wp_float4 v1;
     wp_float4 v2;
-    wp_uint material;
-    wp_uint normals;
-    wp_uint pad1, pad2;
 } WpTriangle;
+
+#ifdef __OPENCL_VERSION__
+static inline wp_uint wp_triangle_material(const WpTriangle* t) {
+    return as_uint(t->v0.w);
+}
+static inline wp_uint wp_triangle_normals(const WpTriangle* t) {
+    return as_uint(t->v1.w);
+}
+#else
+static inline wp_uint wp_triangle_material(const WpTriangle* t) {
+    wp_uint u;
+    memcpy(&u, &t->v0.s[3], sizeof u);
+    return u;
+}
+static inline wp_uint wp_triangle_normals(const WpTriangle* t) {
+    wp_uint u;
+    memcpy(&u, &t->v1.s[3], sizeof u);
+    return u;
+}
+static inline void wp_set_triangle_material(WpTriangle* t, wp_uint material) {
+    memcpy(&t->v0.s[3], &material, sizeof material);
+}
+static inline void wp_set_triangle_normals(WpTriangle* t, wp_uint normals) {
+    memcpy(&t->v1.s[3], &normals, sizeof normals);
+}
+#endif
 
 /* A triangle's vertex normals for shading (unit, xyz), in vertex order. */
 typedef struct {
@@ -89,9 +116,10 @@ typedef struct {
 
 /* A node of the bounding volume hierarchy (src/scene/bvh.hpp), 32 bytes of
  * scalars. Nodes are stored depth first: an inner node's first child follows
- * it, its second is at `offset`. A leaf's primitives are bvh_primitives[offset
- * .. offset + count). Its box holds every primitive below it, with room for
- * the intersection tests' rounding (src/render/device_scene.cpp). */
+ * it, its second is at `offset`. The primitives are stored in leaf order, so a
+ * leaf's are the primitive numbers offset .. offset + count - 1, all triangles
+ * or all spheres. Its box holds every primitive below it, with room for the
+ * intersection tests' rounding (src/render/device_scene.cpp). */
 typedef struct {
     wp_float lower_x, lower_y, lower_z;
     wp_uint offset;
@@ -172,8 +200,7 @@ typedef struct {
     X(materials, WpMaterial)                                                                       \
     X(lights, WpLight)                                                                             \
     X(triangle_normals, WpShadingNormals) /* shading normals of the triangles that have them */    \
-    X(bvh_nodes, WpBvhNode)               /* with WP_USE_BVH; a dummy without */                   \
-    X(bvh_primitives, wp_uint)            /* primitive numbers, leaf by leaf */
+    X(bvh_nodes, WpBvhNode)               /* with WP_USE_BVH; a dummy without */
 
 #define WP_PATH_BUFFERS(X)                                                                         \
     /* path state, one entry per slot (structure of arrays) */                                     \

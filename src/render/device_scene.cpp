@@ -54,25 +54,123 @@ Bounds3f widened(const Bounds3f& b) {
     return out;
 }
 
-// The hierarchy over every primitive, as the kernels store it (WpBvhNode).
-void build_hierarchy(DeviceScene& scene) {
-    Bvh bvh = build_bvh(primitive_boxes(scene));
-    if (bvh.stats.depth > WP_BVH_MAX_DEPTH)
-        throw std::logic_error("BVH deeper than the traversal stack");
-    scene.bvh_nodes.reserve(bvh.nodes.size());
-    for (const BvhNode& node : bvh.nodes) {
-        WpBvhNode n{};
-        n.lower_x = node.bounds.lower.x;
-        n.lower_y = node.bounds.lower.y;
-        n.lower_z = node.bounds.lower.z;
-        n.upper_x = node.bounds.upper.x;
-        n.upper_y = node.bounds.upper.y;
-        n.upper_z = node.bounds.upper.z;
-        n.offset = node.is_leaf() ? node.first_primitive : node.second_child;
-        n.count = node.primitive_count;
-        scene.bvh_nodes.push_back(n);
+// The hierarchy's nodes as the kernels store them (WpBvhNode), depth first.
+// Primitives are stored in leaf order (DeviceScene's triangles and spheres
+// are permuted so that each leaf's are contiguous), so a leaf names a range
+// of primitive numbers and needs no index array. A leaf that holds both
+// triangles and spheres, whose numbers cannot form one range, becomes an
+// inner node over a leaf of each kind.
+class NodeWriter {
+  public:
+    NodeWriter(const Bvh& bvh, const std::vector<Bounds3f>& boxes,
+               const std::vector<wp_uint>& new_number, wp_uint triangle_count,
+               std::vector<WpBvhNode>& out)
+        : bvh_(bvh), boxes_(boxes), new_number_(new_number), triangle_count_(triangle_count),
+          out_(out) {}
+
+    std::uint32_t depth() const { return depth_; }
+
+    void write(std::uint32_t index, std::uint32_t depth) {
+        const BvhNode& node = bvh_.nodes[index];
+        if (!node.is_leaf()) {
+            const std::uint32_t at = push(node.bounds, 0, 0, depth);
+            write(index + 1, depth + 1);
+            out_[at].offset = static_cast<wp_uint>(out_.size());
+            write(node.second_child, depth + 1);
+            return;
+        }
+        const std::uint32_t* first = &bvh_.primitives[node.first_primitive];
+        const std::uint32_t* last = first + node.primitive_count;
+        const auto triangles = static_cast<std::uint32_t>(
+            std::count_if(first, last, [&](std::uint32_t p) { return p < triangle_count_; }));
+        if (triangles == 0 || triangles == node.primitive_count) {
+            leaf(node.bounds, first, node.primitive_count, depth);
+            return;
+        }
+        // The builder's order lists a mixed leaf's triangles first (see flatten_scene).
+        const std::uint32_t at = push(node.bounds, 0, 0, depth);
+        leaf(bounds_of(first, triangles), first, triangles, depth + 1);
+        out_[at].offset = static_cast<wp_uint>(out_.size());
+        leaf(bounds_of(first + triangles, node.primitive_count - triangles), first + triangles,
+             node.primitive_count - triangles, depth + 1);
     }
-    scene.bvh_primitives = std::move(bvh.primitives);
+
+  private:
+    std::uint32_t push(const Bounds3f& b, wp_uint offset, wp_uint count, std::uint32_t depth) {
+        depth_ = std::max(depth_, depth);
+        WpBvhNode n{};
+        n.lower_x = b.lower.x;
+        n.lower_y = b.lower.y;
+        n.lower_z = b.lower.z;
+        n.upper_x = b.upper.x;
+        n.upper_y = b.upper.y;
+        n.upper_z = b.upper.z;
+        n.offset = offset;
+        n.count = count;
+        out_.push_back(n);
+        return static_cast<std::uint32_t>(out_.size() - 1);
+    }
+
+    // A leaf of primitives of one kind, contiguous in leaf order.
+    void leaf(const Bounds3f& b, const std::uint32_t* first, std::uint32_t count,
+              std::uint32_t depth) {
+        push(b, new_number_[*first], count, depth);
+    }
+
+    Bounds3f bounds_of(const std::uint32_t* first, std::uint32_t count) const {
+        Bounds3f b;
+        for (std::uint32_t k = 0; k < count; ++k)
+            b.extend(boxes_[first[k]]);
+        return b;
+    }
+
+    const Bvh& bvh_;
+    const std::vector<Bounds3f>& boxes_;
+    const std::vector<wp_uint>& new_number_;
+    wp_uint triangle_count_;
+    std::vector<WpBvhNode>& out_;
+    std::uint32_t depth_ = 0;
+};
+
+// The hierarchy over every primitive, with the primitives put in its leaf
+// order and every primitive number (the lights') renumbered to match.
+void build_hierarchy(DeviceScene& scene) {
+    const std::vector<Bounds3f> boxes = primitive_boxes(scene);
+    BvhBuildOptions options;
+    options.max_depth = WP_BVH_MAX_DEPTH - 1; // a mixed leaf's split adds a level
+    Bvh bvh = build_bvh(boxes, options);
+    const auto triangle_count = static_cast<wp_uint>(scene.triangles.size());
+    // Within each leaf, triangles before spheres (NodeWriter splits mixed leaves there).
+    for (const BvhNode& node : bvh.nodes)
+        if (node.is_leaf())
+            std::stable_partition(bvh.primitives.begin() + node.first_primitive,
+                                  bvh.primitives.begin() + node.first_primitive +
+                                      node.primitive_count,
+                                  [&](std::uint32_t p) { return p < triangle_count; });
+
+    std::vector<wp_uint> new_number(bvh.primitives.size());
+    std::vector<WpTriangle> triangles;
+    std::vector<WpSphere> spheres;
+    triangles.reserve(scene.triangles.size());
+    spheres.reserve(scene.spheres.size());
+    for (std::uint32_t p : bvh.primitives)
+        if (p < triangle_count) {
+            new_number[p] = static_cast<wp_uint>(triangles.size());
+            triangles.push_back(scene.triangles[p]);
+        } else {
+            new_number[p] = triangle_count + static_cast<wp_uint>(spheres.size());
+            spheres.push_back(scene.spheres[p - triangle_count]);
+        }
+    scene.triangles = std::move(triangles);
+    scene.spheres = std::move(spheres);
+    for (WpLight& light : scene.lights)
+        light.triangle = new_number[light.triangle];
+
+    scene.bvh_nodes.reserve(bvh.nodes.size());
+    NodeWriter writer(bvh, boxes, new_number, triangle_count, scene.bvh_nodes);
+    writer.write(0, 0);
+    if (writer.depth() > WP_BVH_MAX_DEPTH)
+        throw std::logic_error("BVH deeper than the traversal stack");
     scene.bvh_stats = bvh.stats;
 }
 
@@ -159,14 +257,14 @@ DeviceScene flatten_scene(const Scene& scene, bool hierarchy) {
         w.v0 = to_float4(frame.point(t.v[0]));
         w.v1 = to_float4(frame.point(t.v[1]));
         w.v2 = to_float4(frame.point(t.v[2]));
-        w.material = t.material;
+        wp_set_triangle_material(&w, t.material);
         if (t.has_normals) {
             WpShadingNormals n{};
             n.n0 = to_float4(t.normals[0]);
             n.n1 = to_float4(t.normals[1]);
             n.n2 = to_float4(t.normals[2]);
             out.triangle_normals.push_back(n);
-            w.normals = static_cast<wp_uint>(out.triangle_normals.size()); // index + 1
+            wp_set_triangle_normals(&w, static_cast<wp_uint>(out.triangle_normals.size())); // k + 1
         }
         out.triangles.push_back(w);
         if (scene.materials[t.material].is_emissive()) {
