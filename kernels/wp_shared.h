@@ -114,21 +114,32 @@ typedef struct {
     wp_uint pad0, pad1;
 } WpLight;
 
-/* A node of the bounding volume hierarchy (src/scene/bvh.hpp), 32 bytes of
- * scalars. Nodes are stored depth first: an inner node's first child follows
- * it, its second is at `offset`. The primitives are stored in leaf order, so a
- * leaf's are the primitive numbers offset .. offset + count - 1, all triangles
- * or all spheres. Its box holds every primitive below it, with room for the
- * intersection tests' rounding (src/render/device_scene.cpp). */
+/* A node of the bounding volume hierarchy, four children wide: the
+ * builder's binary tree (src/scene/bvh.hpp) collapsed two levels into one
+ * (src/render/device_scene.cpp), 128 bytes of scalars. Child i's box is
+ * lower_x[i] .. upper_x[i] and so on (an array per coordinate, so the four box
+ * tests are independent scalar code), and count[i] says what it is: 0, the
+ * node bvh_nodes[child[i]]; n > 0, a leaf of the primitives child[i] ..
+ * child[i] + n - 1 (all triangles or all spheres: primitives are stored in
+ * leaf order); WP_BVH_EMPTY, no child. nodes[0] is the root. Every box holds
+ * the primitives below it with room for the intersection tests' rounding. */
 typedef struct {
-    wp_float lower_x, lower_y, lower_z;
-    wp_uint offset;
-    wp_float upper_x, upper_y, upper_z;
-    wp_uint count; /* primitives in a leaf (at least 1); 0 for an inner node */
+    wp_float lower_x[4], upper_x[4];
+    wp_float lower_y[4], upper_y[4];
+    wp_float lower_z[4], upper_z[4];
+    wp_uint child[4];
+    wp_uint count[4];
 } WpBvhNode;
 
-/* The deepest leaf the traversal stack can reach (the host builds no deeper). */
-#define WP_BVH_MAX_DEPTH 48u
+#define WP_BVH_EMPTY 0xffffffffu
+
+/* The traversal stack's entries (kernels/bvh.h); the host checks that no
+ * path through the hierarchy needs more. */
+#define WP_BVH_STACK_SIZE 64
+
+/* The deepest leaf of the binary tree the host builds: collapsed two levels a
+ * node, its deepest path pushes at most 3 x 20 + 4 = 64 entries. */
+#define WP_BVH_MAX_DEPTH 41u
 
 /* The pinhole camera: a ray through film position (sx, sy) in [-1, 1]^2
  * (x right, y up) has direction forward + sx * right + sy * up, where right

@@ -54,29 +54,34 @@ Bounds3f widened(const Bounds3f& b) {
     return out;
 }
 
-// The hierarchy's nodes as the kernels store them (WpBvhNode), depth first.
-// Primitives are stored in leaf order (DeviceScene's triangles and spheres
-// are permuted so that each leaf's are contiguous), so a leaf names a range
-// of primitive numbers and needs no index array. A leaf that holds both
-// triangles and spheres, whose numbers cannot form one range, becomes an
-// inner node over a leaf of each kind.
-class NodeWriter {
+// A node of the binary tree as the device needs it: `offset` is an inner
+// node's second child (its first follows it) or a leaf's first primitive.
+struct BinaryNode {
+    Bounds3f bounds;
+    wp_uint offset = 0;
+    wp_uint count = 0; // 0 for an inner node
+};
+
+// The builder's tree with primitive numbers in leaf order (DeviceScene's
+// triangles and spheres are permuted so that each leaf's are contiguous), so
+// that a leaf names a range of primitive numbers and needs no index array. A
+// leaf that holds both triangles and spheres, whose numbers cannot form one
+// range, becomes an inner node over a leaf of each kind.
+class BinaryWriter {
   public:
-    NodeWriter(const Bvh& bvh, const std::vector<Bounds3f>& boxes,
-               const std::vector<wp_uint>& new_number, wp_uint triangle_count,
-               std::vector<WpBvhNode>& out)
+    BinaryWriter(const Bvh& bvh, const std::vector<Bounds3f>& boxes,
+                 const std::vector<wp_uint>& new_number, wp_uint triangle_count,
+                 std::vector<BinaryNode>& out)
         : bvh_(bvh), boxes_(boxes), new_number_(new_number), triangle_count_(triangle_count),
           out_(out) {}
 
-    std::uint32_t depth() const { return depth_; }
-
-    void write(std::uint32_t index, std::uint32_t depth) {
+    void write(std::uint32_t index) {
         const BvhNode& node = bvh_.nodes[index];
         if (!node.is_leaf()) {
-            const std::uint32_t at = push(node.bounds, 0, 0, depth);
-            write(index + 1, depth + 1);
+            const std::size_t at = push(node.bounds, 0, 0);
+            write(index + 1);
             out_[at].offset = static_cast<wp_uint>(out_.size());
-            write(node.second_child, depth + 1);
+            write(node.second_child);
             return;
         }
         const std::uint32_t* first = &bvh_.primitives[node.first_primitive];
@@ -84,37 +89,21 @@ class NodeWriter {
         const auto triangles = static_cast<std::uint32_t>(
             std::count_if(first, last, [&](std::uint32_t p) { return p < triangle_count_; }));
         if (triangles == 0 || triangles == node.primitive_count) {
-            leaf(node.bounds, first, node.primitive_count, depth);
+            push(node.bounds, new_number_[*first], node.primitive_count);
             return;
         }
-        // The builder's order lists a mixed leaf's triangles first (see flatten_scene).
-        const std::uint32_t at = push(node.bounds, 0, 0, depth);
-        leaf(bounds_of(first, triangles), first, triangles, depth + 1);
+        // build_hierarchy put a mixed leaf's triangles first.
+        const std::uint32_t spheres = node.primitive_count - triangles;
+        const std::size_t at = push(node.bounds, 0, 0);
+        push(bounds_of(first, triangles), new_number_[first[0]], triangles);
         out_[at].offset = static_cast<wp_uint>(out_.size());
-        leaf(bounds_of(first + triangles, node.primitive_count - triangles), first + triangles,
-             node.primitive_count - triangles, depth + 1);
+        push(bounds_of(first + triangles, spheres), new_number_[first[triangles]], spheres);
     }
 
   private:
-    std::uint32_t push(const Bounds3f& b, wp_uint offset, wp_uint count, std::uint32_t depth) {
-        depth_ = std::max(depth_, depth);
-        WpBvhNode n{};
-        n.lower_x = b.lower.x;
-        n.lower_y = b.lower.y;
-        n.lower_z = b.lower.z;
-        n.upper_x = b.upper.x;
-        n.upper_y = b.upper.y;
-        n.upper_z = b.upper.z;
-        n.offset = offset;
-        n.count = count;
-        out_.push_back(n);
-        return static_cast<std::uint32_t>(out_.size() - 1);
-    }
-
-    // A leaf of primitives of one kind, contiguous in leaf order.
-    void leaf(const Bounds3f& b, const std::uint32_t* first, std::uint32_t count,
-              std::uint32_t depth) {
-        push(b, new_number_[*first], count, depth);
+    std::size_t push(const Bounds3f& b, wp_uint offset, wp_uint count) {
+        out_.push_back({b, offset, count});
+        return out_.size() - 1;
     }
 
     Bounds3f bounds_of(const std::uint32_t* first, std::uint32_t count) const {
@@ -128,8 +117,72 @@ class NodeWriter {
     const std::vector<Bounds3f>& boxes_;
     const std::vector<wp_uint>& new_number_;
     wp_uint triangle_count_;
+    std::vector<BinaryNode>& out_;
+};
+
+// The binary tree collapsed into four-wide nodes (WpBvhNode): a node's
+// children are its binary node's children, each inner one replaced by its own
+// two children, so every four-wide level is two binary levels. Returns the
+// most stack entries the kernel's traversal (kernels/bvh.h) can hold below
+// `binary`'s node: it pushes the children it hits and pops the nearest.
+class WideWriter {
+  public:
+    WideWriter(const std::vector<BinaryNode>& binary, std::vector<WpBvhNode>& out)
+        : binary_(binary), out_(out) {}
+
+    std::uint32_t write(std::uint32_t binary) {
+        std::uint32_t slots[4];
+        int used = 0;
+        auto add_grandchildren = [&](std::uint32_t b) {
+            if (binary_[b].count > 0) {
+                slots[used++] = b;
+                return;
+            }
+            slots[used++] = b + 1;
+            slots[used++] = binary_[b].offset;
+        };
+        if (binary_[binary].count > 0) {
+            slots[used++] = binary; // a root that is a leaf
+        } else {
+            add_grandchildren(binary + 1);
+            add_grandchildren(binary_[binary].offset);
+        }
+        const std::size_t at = out_.size();
+        out_.emplace_back();
+        std::uint32_t deepest = 0;
+        for (int i = 0; i < 4; ++i) {
+            WpBvhNode& n = out_[at];
+            if (i >= used) {
+                n.lower_x[i] = n.lower_y[i] = n.lower_z[i] = 0.0f;
+                n.upper_x[i] = n.upper_y[i] = n.upper_z[i] = 0.0f;
+                n.child[i] = 0;
+                n.count[i] = WP_BVH_EMPTY;
+                continue;
+            }
+            const BinaryNode& c = binary_[slots[i]];
+            n.lower_x[i] = c.bounds.lower.x;
+            n.lower_y[i] = c.bounds.lower.y;
+            n.lower_z[i] = c.bounds.lower.z;
+            n.upper_x[i] = c.bounds.upper.x;
+            n.upper_y[i] = c.bounds.upper.y;
+            n.upper_z[i] = c.bounds.upper.z;
+            n.count[i] = c.count;
+            if (c.count > 0) {
+                n.child[i] = c.offset;
+            } else {
+                const auto child = static_cast<wp_uint>(out_.size());
+                deepest = std::max(deepest, write(slots[i]));
+                out_[at].child[i] = child; // out_ may have moved
+            }
+        }
+        // This node's entries, then the nearest popped and its own on top.
+        return std::max<std::uint32_t>(static_cast<std::uint32_t>(used),
+                                       deepest > 0 ? used - 1 + deepest : 0);
+    }
+
+  private:
+    const std::vector<BinaryNode>& binary_;
     std::vector<WpBvhNode>& out_;
-    std::uint32_t depth_ = 0;
 };
 
 // The hierarchy over every primitive, with the primitives put in its leaf
@@ -140,7 +193,7 @@ void build_hierarchy(DeviceScene& scene) {
     options.max_depth = WP_BVH_MAX_DEPTH - 1; // a mixed leaf's split adds a level
     Bvh bvh = build_bvh(boxes, options);
     const auto triangle_count = static_cast<wp_uint>(scene.triangles.size());
-    // Within each leaf, triangles before spheres (NodeWriter splits mixed leaves there).
+    // Within each leaf, triangles before spheres (BinaryWriter splits mixed leaves there).
     for (const BvhNode& node : bvh.nodes)
         if (node.is_leaf())
             std::stable_partition(bvh.primitives.begin() + node.first_primitive,
@@ -166,11 +219,12 @@ void build_hierarchy(DeviceScene& scene) {
     for (WpLight& light : scene.lights)
         light.triangle = new_number[light.triangle];
 
-    scene.bvh_nodes.reserve(bvh.nodes.size());
-    NodeWriter writer(bvh, boxes, new_number, triangle_count, scene.bvh_nodes);
-    writer.write(0, 0);
-    if (writer.depth() > WP_BVH_MAX_DEPTH)
-        throw std::logic_error("BVH deeper than the traversal stack");
+    std::vector<BinaryNode> binary;
+    binary.reserve(bvh.nodes.size());
+    BinaryWriter(bvh, boxes, new_number, triangle_count, binary).write(0);
+    scene.bvh_nodes.reserve(bvh.nodes.size() / 3 + 1);
+    if (WideWriter(binary, scene.bvh_nodes).write(0) > WP_BVH_STACK_SIZE)
+        throw std::logic_error("BVH too deep for the traversal stack");
     scene.bvh_stats = bvh.stats;
 }
 

@@ -40,12 +40,12 @@ namespace {
     X(WpMaterial, pad1)                                                                            \
     X(WpMaterial, pad2)                                                                            \
     X(WpBvhNode, lower_x)                                                                          \
-    X(WpBvhNode, lower_y)                                                                          \
-    X(WpBvhNode, lower_z)                                                                          \
-    X(WpBvhNode, offset)                                                                           \
     X(WpBvhNode, upper_x)                                                                          \
+    X(WpBvhNode, lower_y)                                                                          \
     X(WpBvhNode, upper_y)                                                                          \
+    X(WpBvhNode, lower_z)                                                                          \
     X(WpBvhNode, upper_z)                                                                          \
+    X(WpBvhNode, child)                                                                            \
     X(WpBvhNode, count)                                                                            \
     X(WpLight, triangle)                                                                           \
     X(WpLight, cdf)                                                                                \
