@@ -332,13 +332,13 @@ void bounce_rays(const DeviceScene& ds, const Rays& camera, const Hits& hits, st
     light = {"light", {}, {}};
     std::vector<std::uint32_t> emitters;
     for (std::uint32_t i = 0; i < ds.triangles.size(); ++i)
-        if (ds.materials[ds.triangles[i].material].kind == 2u) // WP_MATERIAL_EMITTER
+        if (ds.materials[wp_triangle_material(&ds.triangles[i])].kind == 2u) // WP_MATERIAL_EMITTER
             emitters.push_back(i);
     std::mt19937 rng(seed);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     for (std::size_t i = 0; i < camera.origins.size(); ++i) {
         unsigned p = hits.primitive[i];
-        if (p == WP_NO_HIT || ds.materials[ds.triangles[p].material].kind == 2u)
+        if (p == WP_NO_HIT || ds.materials[wp_triangle_material(&ds.triangles[p])].kind == 2u)
             continue;
         const WpTriangle& tri = ds.triangles[p];
         glm::vec3 a = v3(tri.v0), b = v3(tri.v1), c = v3(tri.v2);
@@ -689,7 +689,7 @@ int main(int argc, char** argv) {
         const std::size_t wp_bytes =
             ds.triangles.size() * sizeof(WpTriangle) + ds.spheres.size() * sizeof(WpSphere) +
             ds.materials.size() * sizeof(WpMaterial) + ds.lights.size() * sizeof(WpLight) +
-            ds.bvh_nodes.size() * sizeof(WpBvhNode) + ds.bvh_primitives.size() * sizeof(wp_uint);
+            ds.bvh_nodes.size() * sizeof(WpBvhNode);
         std::map<std::string, EmbreeScene> scenes;
         scenes["medium"] = build_embree(embree, memory, ds, RTC_BUILD_QUALITY_MEDIUM);
         scenes["high"] = build_embree(embree, memory, ds, RTC_BUILD_QUALITY_HIGH);

@@ -1,14 +1,14 @@
 /* Traversal of the bounding volume hierarchy (WP_USE_BVH): the closest hit,
  * or any hit, among the primitives on a ray segment.
  *
- * Depth first with a private stack: at an inner node both children's boxes
- * are tested, the nearer one is visited next and the farther one pushed with
- * its entry distance, and popped nodes that start beyond the closest hit
- * found since are skipped. Leaves test their primitives with the same tests,
- * limits and update rule as the loop over all primitives (traverse.h), so a
- * ray finds the same hit at the same t; only between primitives hit at
- * exactly the same t (rays through a shared edge) may the order decide which
- * one is reported.
+ * Depth first with a private stack over four-wide nodes: at a node all four
+ * children's boxes are tested (independent scalar code, the bounds stored as
+ * arrays of each coordinate), the children hit are pushed farthest first with
+ * their entry distances, and the nearest is visited next; popped children
+ * that start beyond the closest hit found since are skipped. Leaves test their primitives with the
+ * same tests, limits and update rule as the loop over all primitives (traverse.h), so a ray finds
+ * the same hit at the same t; only between primitives hit at exactly the same t (rays through a
+ * shared edge) may the order decide which one is reported.
  *
  * The box test is conservative: a slab test whose exit distance is enlarged
  * by 1 + 2 gamma(3) for its own rounding (pbrt-v4, after Ize 2013), with a
@@ -28,7 +28,6 @@
 
 /* 1 + 2 gamma(3), gamma(n) = n eps / (1 - n eps), eps = 2^-24. */
 #define WP_BOX_EXIT_SCALE 1.0000007152557373f
-#define WP_BVH_STACK_SIZE 64
 
 typedef struct {
     float3 origin;
@@ -59,20 +58,28 @@ static inline void wp_clip_slab(float lower, float upper, float origin, float in
     *t_exit = far < *t_exit ? far : *t_exit;
 }
 
-/* 1 if the ray meets the node's box at some 0 <= t <= t_max; *t_enter is
+/* 1 if the ray meets child i's box at some 0 <= t <= t_max; *t_enter is
  * where it enters. */
-static inline int wp_hit_box(__global const WpBvhNode* node, const WpBoxRay* ray, float t_max,
-                             float* t_enter) {
+static inline int wp_hit_child_box(__global const WpBvhNode* node, int i, const WpBoxRay* ray,
+                                   float t_max, float* t_enter) {
     float enter = 0.0f, exit = t_max;
-    wp_clip_slab(node->lower_x, node->upper_x, ray->origin.x, ray->inverse_direction.x, &enter,
-                 &exit);
-    wp_clip_slab(node->lower_y, node->upper_y, ray->origin.y, ray->inverse_direction.y, &enter,
-                 &exit);
-    wp_clip_slab(node->lower_z, node->upper_z, ray->origin.z, ray->inverse_direction.z, &enter,
-                 &exit);
+    wp_clip_slab(node->lower_x[i], node->upper_x[i], ray->origin.x, ray->inverse_direction.x,
+                 &enter, &exit);
+    wp_clip_slab(node->lower_y[i], node->upper_y[i], ray->origin.y, ray->inverse_direction.y,
+                 &enter, &exit);
+    wp_clip_slab(node->lower_z[i], node->upper_z[i], ray->origin.z, ray->inverse_direction.z,
+                 &enter, &exit);
     *t_enter = enter;
     return enter <= exit;
 }
+
+/* A child waiting on the stack: a node (count 0) or a leaf, and where the ray
+ * enters its box. */
+typedef struct {
+    wp_uint child;
+    wp_uint count;
+    float enter;
+} WpBvhEntry;
 
 static inline wp_uint wp_bvh_trace(const WpSceneView* scene, float3 origin, float3 direction,
                                    float t_max, int any_hit, float* t_hit) {
@@ -80,17 +87,36 @@ static inline wp_uint wp_bvh_trace(const WpSceneView* scene, float3 origin, floa
     float closest = t_max;
     WpShearedRay sheared = wp_shear_ray(origin, direction);
     WpBoxRay box_ray = wp_box_ray(origin, direction);
-    wp_uint stack_node[WP_BVH_STACK_SIZE];
-    float stack_enter[WP_BVH_STACK_SIZE];
+    /* Every node pushes its hit children, farthest first, so the nearest is
+     * on top; the host keeps the deepest path's pushes within the stack. */
+    WpBvhEntry stack[WP_BVH_STACK_SIZE];
     int top = 0;
-    wp_uint node = 0;
-    float enter;
-    int active = wp_hit_box(&scene->bvh_nodes[0], &box_ray, closest, &enter);
-    while (active) {
-        __global const WpBvhNode* n = &scene->bvh_nodes[node];
-        if (n->count > 0u) {
-            for (wp_uint k = 0; k < n->count; ++k) {
-                wp_uint primitive = scene->bvh_primitives[n->offset + k];
+    WpBvhEntry current;
+    current.child = 0u; /* the root */
+    current.count = 0u;
+    current.enter = 0.0f;
+    for (;;) {
+        if (current.count == 0u) {
+            __global const WpBvhNode* n = &scene->bvh_nodes[current.child];
+            int base = top;
+            for (int i = 0; i < 4; ++i) {
+                float enter;
+                wp_uint count = n->count[i];
+                if (count != WP_BVH_EMPTY && wp_hit_child_box(n, i, &box_ray, closest, &enter)) {
+                    /* Insert, keeping this node's entries nearest on top. */
+                    int j = top++;
+                    while (j > base && stack[j - 1].enter < enter) {
+                        stack[j] = stack[j - 1];
+                        --j;
+                    }
+                    stack[j].child = n->child[i];
+                    stack[j].count = count;
+                    stack[j].enter = enter;
+                }
+            }
+        } else {
+            for (wp_uint k = 0; k < current.count; ++k) {
+                wp_uint primitive = current.child + k;
                 float t;
                 if (wp_intersect_primitive(scene, &sheared, origin, direction, primitive, closest,
                                            &t)) {
@@ -102,35 +128,19 @@ static inline wp_uint wp_bvh_trace(const WpSceneView* scene, float3 origin, floa
                     }
                 }
             }
-        } else {
-            wp_uint first = node + 1u, second = n->offset;
-            float enter_first, enter_second;
-            int hit_first = wp_hit_box(&scene->bvh_nodes[first], &box_ray, closest, &enter_first);
-            int hit_second =
-                wp_hit_box(&scene->bvh_nodes[second], &box_ray, closest, &enter_second);
-            if (hit_first && hit_second) {
-                int second_nearer = enter_second < enter_first;
-                stack_node[top] = second_nearer ? first : second;
-                stack_enter[top] = second_nearer ? enter_first : enter_second;
-                ++top; /* at most WP_BVH_MAX_DEPTH entries: the host builds no deeper */
-                node = second_nearer ? second : first;
-                continue;
-            }
-            if (hit_first || hit_second) {
-                node = hit_first ? first : second;
-                continue;
-            }
         }
-        /* Next: the nearest pushed node that may still hold a closer hit. */
-        active = 0;
+        /* Next: the nearest pushed child that may still hold a closer hit. */
+        int found = 0;
         while (top > 0) {
             --top;
-            if (stack_enter[top] <= closest) {
-                node = stack_node[top];
-                active = 1;
+            if (stack[top].enter <= closest) {
+                current = stack[top];
+                found = 1;
                 break;
             }
         }
+        if (!found)
+            break;
     }
     *t_hit = closest;
     return hit;

@@ -88,7 +88,7 @@ static inline int wp_sample_light(const WpSceneView* scene, float3 position, flo
             return 0;
         float triangle_area =
             0.5f * length(cross(light.v1.xyz - light.v0.xyz, light.v2.xyz - light.v0.xyz));
-        out->irradiance = scene->materials[light.material].emission.xyz *
+        out->irradiance = scene->materials[wp_triangle_material(&light)].emission.xyz *
                           (cos_surface * solid_angle * scene->light_area / triangle_area);
         return 1;
     }
@@ -103,8 +103,8 @@ static inline int wp_sample_light(const WpSceneView* scene, float3 position, flo
     if (!(cos_surface > 0.0f && cos_light > 0.0f) || !wp_aim_shadow_ray(origin, point, &light, out))
         return 0;
     float geometry = cos_surface * cos_light / (distance * distance);
-    out->irradiance =
-        scene->materials[light.material].emission.xyz * (geometry * scene->light_area);
+    out->irradiance = scene->materials[wp_triangle_material(&light)].emission.xyz *
+                      (geometry * scene->light_area);
     return 1;
 }
 

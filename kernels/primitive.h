@@ -119,7 +119,7 @@ static inline float3 wp_terminator_point(float3 p, float3 b, const WpTriangle* t
  * normals; s->position is already on the triangle's plane. */
 static inline void wp_shade_with_vertex_normals(const WpSceneView* scene, const WpTriangle* t,
                                                 WpSurface* s) {
-    WpShadingNormals n = scene->triangle_normals[t->normals - 1u];
+    WpShadingNormals n = scene->triangle_normals[wp_triangle_normals(t) - 1u];
     /* Barycentrics of the hit point from the sub-triangles' areas. */
     float3 e1 = t->v1.xyz - t->v0.xyz, e2 = t->v2.xyz - t->v0.xyz, w = s->position - t->v0.xyz;
     float3 ng = cross(e1, e2);
@@ -160,9 +160,9 @@ static inline WpSurface wp_surface_at(const WpSceneView* scene, wp_uint primitiv
         s.normal = normalize(wp_triangle_normal(&triangle));
         s.position = position - dot(position - triangle.v0.xyz, s.normal) * s.normal;
         s.scale = wp_triangle_scale(&triangle);
-        s.material = triangle.material;
+        s.material = wp_triangle_material(&triangle);
 #if WP_HAS_SHADING_NORMALS
-        if (triangle.normals != 0u) {
+        if (wp_triangle_normals(&triangle) != 0u) {
             s.front_face = dot(direction, s.normal) < 0.0f;
             wp_shade_with_vertex_normals(scene, &triangle, &s);
             return s;

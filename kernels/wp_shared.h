@@ -19,6 +19,7 @@ typedef float wp_float;
 typedef float4 wp_float4;
 #else
 #include <CL/cl_platform.h>
+#include <string.h>
 typedef cl_uint wp_uint;
 typedef cl_float wp_float;
 typedef cl_float4 wp_float4;
@@ -46,17 +47,43 @@ typedef cl_float4 wp_float4;
 #define WP_COUNTER_NONFINITE 5u   /* samples dropped at the film for NaN or Inf */
 #define WP_COUNTER_COUNT 8u
 
-/* A triangle: vertices in xyz (w unused). Its front face is the side of
- * cross(v1 - v0, v2 - v0); only emitters care which side is the front.
- * `normals` is 0, or k + 1 for shading normals in triangle_normals[k]. */
+/* A triangle, 48 bytes: vertices in xyz. Its front face is the side of
+ * cross(v1 - v0, v2 - v0); only emitters care which side is the front. The
+ * w lanes, which no geometric code reads, hold two uints as their bits (read
+ * and written only through the accessors below): v0.w its material, v1.w
+ * `normals`, 0 or k + 1 for shading normals in triangle_normals[k]; v2.w is
+ * 0. A 0.0f lane is a 0 uint, so material 0 without normals is the default. */
 typedef struct {
     wp_float4 v0;
     wp_float4 v1;
     wp_float4 v2;
-    wp_uint material;
-    wp_uint normals;
-    wp_uint pad1, pad2;
 } WpTriangle;
+
+#ifdef __OPENCL_VERSION__
+static inline wp_uint wp_triangle_material(const WpTriangle* t) {
+    return as_uint(t->v0.w);
+}
+static inline wp_uint wp_triangle_normals(const WpTriangle* t) {
+    return as_uint(t->v1.w);
+}
+#else
+static inline wp_uint wp_triangle_material(const WpTriangle* t) {
+    wp_uint u;
+    memcpy(&u, &t->v0.s[3], sizeof u);
+    return u;
+}
+static inline wp_uint wp_triangle_normals(const WpTriangle* t) {
+    wp_uint u;
+    memcpy(&u, &t->v1.s[3], sizeof u);
+    return u;
+}
+static inline void wp_set_triangle_material(WpTriangle* t, wp_uint material) {
+    memcpy(&t->v0.s[3], &material, sizeof material);
+}
+static inline void wp_set_triangle_normals(WpTriangle* t, wp_uint normals) {
+    memcpy(&t->v1.s[3], &normals, sizeof normals);
+}
+#endif
 
 /* A triangle's vertex normals for shading (unit, xyz), in vertex order. */
 typedef struct {
@@ -87,20 +114,32 @@ typedef struct {
     wp_uint pad0, pad1;
 } WpLight;
 
-/* A node of the bounding volume hierarchy (src/scene/bvh.hpp), 32 bytes of
- * scalars. Nodes are stored depth first: an inner node's first child follows
- * it, its second is at `offset`. A leaf's primitives are bvh_primitives[offset
- * .. offset + count). Its box holds every primitive below it, with room for
- * the intersection tests' rounding (src/render/device_scene.cpp). */
+/* A node of the bounding volume hierarchy, four children wide: the
+ * builder's binary tree (src/scene/bvh.hpp) collapsed two levels into one
+ * (src/render/device_scene.cpp), 128 bytes of scalars. Child i's box is
+ * lower_x[i] .. upper_x[i] and so on (an array per coordinate, so the four box
+ * tests are independent scalar code), and count[i] says what it is: 0, the
+ * node bvh_nodes[child[i]]; n > 0, a leaf of the primitives child[i] ..
+ * child[i] + n - 1 (all triangles or all spheres: primitives are stored in
+ * leaf order); WP_BVH_EMPTY, no child. nodes[0] is the root. Every box holds
+ * the primitives below it with room for the intersection tests' rounding. */
 typedef struct {
-    wp_float lower_x, lower_y, lower_z;
-    wp_uint offset;
-    wp_float upper_x, upper_y, upper_z;
-    wp_uint count; /* primitives in a leaf (at least 1); 0 for an inner node */
+    wp_float lower_x[4], upper_x[4];
+    wp_float lower_y[4], upper_y[4];
+    wp_float lower_z[4], upper_z[4];
+    wp_uint child[4];
+    wp_uint count[4];
 } WpBvhNode;
 
-/* The deepest leaf the traversal stack can reach (the host builds no deeper). */
-#define WP_BVH_MAX_DEPTH 48u
+#define WP_BVH_EMPTY 0xffffffffu
+
+/* The traversal stack's entries (kernels/bvh.h); the host checks that no
+ * path through the hierarchy needs more. */
+#define WP_BVH_STACK_SIZE 64
+
+/* The deepest leaf of the binary tree the host builds: collapsed two levels a
+ * node, its deepest path pushes at most 3 x 20 + 4 = 64 entries. */
+#define WP_BVH_MAX_DEPTH 41u
 
 /* The pinhole camera: a ray through film position (sx, sy) in [-1, 1]^2
  * (x right, y up) has direction forward + sx * right + sy * up, where right
@@ -172,8 +211,7 @@ typedef struct {
     X(materials, WpMaterial)                                                                       \
     X(lights, WpLight)                                                                             \
     X(triangle_normals, WpShadingNormals) /* shading normals of the triangles that have them */    \
-    X(bvh_nodes, WpBvhNode)               /* with WP_USE_BVH; a dummy without */                   \
-    X(bvh_primitives, wp_uint)            /* primitive numbers, leaf by leaf */
+    X(bvh_nodes, WpBvhNode)               /* with WP_USE_BVH; a dummy without */
 
 #define WP_PATH_BUFFERS(X)                                                                         \
     /* path state, one entry per slot (structure of arrays) */                                     \

@@ -32,8 +32,7 @@ namespace {
 void print_geometry_memory(const DeviceScene& scene) {
     const std::size_t primitive_bytes =
         scene.triangles.size() * sizeof(WpTriangle) + scene.spheres.size() * sizeof(WpSphere);
-    const std::size_t hierarchy_bytes =
-        scene.bvh_nodes.size() * sizeof(WpBvhNode) + scene.bvh_primitives.size() * sizeof(wp_uint);
+    const std::size_t hierarchy_bytes = scene.bvh_nodes.size() * sizeof(WpBvhNode);
     if (!scene.bvh_nodes.empty()) {
         const BvhStats& b = scene.bvh_stats;
         std::printf("hierarchy: %u nodes (%u leaves, at most %u primitives), depth %u, SAH cost "

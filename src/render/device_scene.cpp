@@ -54,25 +54,182 @@ Bounds3f widened(const Bounds3f& b) {
     return out;
 }
 
-// The hierarchy over every primitive, as the kernels store it (WpBvhNode).
-void build_hierarchy(DeviceScene& scene) {
-    Bvh bvh = build_bvh(primitive_boxes(scene));
-    if (bvh.stats.depth > WP_BVH_MAX_DEPTH)
-        throw std::logic_error("BVH deeper than the traversal stack");
-    scene.bvh_nodes.reserve(bvh.nodes.size());
-    for (const BvhNode& node : bvh.nodes) {
-        WpBvhNode n{};
-        n.lower_x = node.bounds.lower.x;
-        n.lower_y = node.bounds.lower.y;
-        n.lower_z = node.bounds.lower.z;
-        n.upper_x = node.bounds.upper.x;
-        n.upper_y = node.bounds.upper.y;
-        n.upper_z = node.bounds.upper.z;
-        n.offset = node.is_leaf() ? node.first_primitive : node.second_child;
-        n.count = node.primitive_count;
-        scene.bvh_nodes.push_back(n);
+// A node of the binary tree as the device needs it: `offset` is an inner
+// node's second child (its first follows it) or a leaf's first primitive.
+struct BinaryNode {
+    Bounds3f bounds;
+    wp_uint offset = 0;
+    wp_uint count = 0; // 0 for an inner node
+};
+
+// The builder's tree with primitive numbers in leaf order (DeviceScene's
+// triangles and spheres are permuted so that each leaf's are contiguous), so
+// that a leaf names a range of primitive numbers and needs no index array. A
+// leaf that holds both triangles and spheres, whose numbers cannot form one
+// range, becomes an inner node over a leaf of each kind.
+class BinaryWriter {
+  public:
+    BinaryWriter(const Bvh& bvh, const std::vector<Bounds3f>& boxes,
+                 const std::vector<wp_uint>& new_number, wp_uint triangle_count,
+                 std::vector<BinaryNode>& out)
+        : bvh_(bvh), boxes_(boxes), new_number_(new_number), triangle_count_(triangle_count),
+          out_(out) {}
+
+    void write(std::uint32_t index) {
+        const BvhNode& node = bvh_.nodes[index];
+        if (!node.is_leaf()) {
+            const std::size_t at = push(node.bounds, 0, 0);
+            write(index + 1);
+            out_[at].offset = static_cast<wp_uint>(out_.size());
+            write(node.second_child);
+            return;
+        }
+        const std::uint32_t* first = &bvh_.primitives[node.first_primitive];
+        const std::uint32_t* last = first + node.primitive_count;
+        const auto triangles = static_cast<std::uint32_t>(
+            std::count_if(first, last, [&](std::uint32_t p) { return p < triangle_count_; }));
+        if (triangles == 0 || triangles == node.primitive_count) {
+            push(node.bounds, new_number_[*first], node.primitive_count);
+            return;
+        }
+        // build_hierarchy put a mixed leaf's triangles first.
+        const std::uint32_t spheres = node.primitive_count - triangles;
+        const std::size_t at = push(node.bounds, 0, 0);
+        push(bounds_of(first, triangles), new_number_[first[0]], triangles);
+        out_[at].offset = static_cast<wp_uint>(out_.size());
+        push(bounds_of(first + triangles, spheres), new_number_[first[triangles]], spheres);
     }
-    scene.bvh_primitives = std::move(bvh.primitives);
+
+  private:
+    std::size_t push(const Bounds3f& b, wp_uint offset, wp_uint count) {
+        out_.push_back({b, offset, count});
+        return out_.size() - 1;
+    }
+
+    Bounds3f bounds_of(const std::uint32_t* first, std::uint32_t count) const {
+        Bounds3f b;
+        for (std::uint32_t k = 0; k < count; ++k)
+            b.extend(boxes_[first[k]]);
+        return b;
+    }
+
+    const Bvh& bvh_;
+    const std::vector<Bounds3f>& boxes_;
+    const std::vector<wp_uint>& new_number_;
+    wp_uint triangle_count_;
+    std::vector<BinaryNode>& out_;
+};
+
+// The binary tree collapsed into four-wide nodes (WpBvhNode): a node's
+// children are its binary node's children, each inner one replaced by its own
+// two children, so every four-wide level is two binary levels. Returns the
+// most stack entries the kernel's traversal (kernels/bvh.h) can hold below
+// `binary`'s node: it pushes the children it hits and pops the nearest.
+class WideWriter {
+  public:
+    WideWriter(const std::vector<BinaryNode>& binary, std::vector<WpBvhNode>& out)
+        : binary_(binary), out_(out) {}
+
+    std::uint32_t write(std::uint32_t binary) {
+        std::uint32_t slots[4];
+        int used = 0;
+        auto add_grandchildren = [&](std::uint32_t b) {
+            if (binary_[b].count > 0) {
+                slots[used++] = b;
+                return;
+            }
+            slots[used++] = b + 1;
+            slots[used++] = binary_[b].offset;
+        };
+        if (binary_[binary].count > 0) {
+            slots[used++] = binary; // a root that is a leaf
+        } else {
+            add_grandchildren(binary + 1);
+            add_grandchildren(binary_[binary].offset);
+        }
+        const std::size_t at = out_.size();
+        out_.emplace_back();
+        std::uint32_t deepest = 0;
+        for (int i = 0; i < 4; ++i) {
+            WpBvhNode& n = out_[at];
+            if (i >= used) {
+                n.lower_x[i] = n.lower_y[i] = n.lower_z[i] = 0.0f;
+                n.upper_x[i] = n.upper_y[i] = n.upper_z[i] = 0.0f;
+                n.child[i] = 0;
+                n.count[i] = WP_BVH_EMPTY;
+                continue;
+            }
+            const BinaryNode& c = binary_[slots[i]];
+            n.lower_x[i] = c.bounds.lower.x;
+            n.lower_y[i] = c.bounds.lower.y;
+            n.lower_z[i] = c.bounds.lower.z;
+            n.upper_x[i] = c.bounds.upper.x;
+            n.upper_y[i] = c.bounds.upper.y;
+            n.upper_z[i] = c.bounds.upper.z;
+            n.count[i] = c.count;
+            if (c.count > 0) {
+                n.child[i] = c.offset;
+            } else {
+                const auto child = static_cast<wp_uint>(out_.size());
+                deepest = std::max(deepest, write(slots[i]));
+                out_[at].child[i] = child; // out_ may have moved
+            }
+        }
+        // This node's entries, then the nearest popped and its own on top.
+        return std::max<std::uint32_t>(static_cast<std::uint32_t>(used),
+                                       deepest > 0 ? used - 1 + deepest : 0);
+    }
+
+  private:
+    const std::vector<BinaryNode>& binary_;
+    std::vector<WpBvhNode>& out_;
+};
+
+// The hierarchy over every primitive, with the primitives put in its leaf
+// order and every primitive number (the lights') renumbered to match.
+void build_hierarchy(DeviceScene& scene) {
+    const std::vector<Bounds3f> boxes = primitive_boxes(scene);
+    BvhBuildOptions options;
+    options.max_depth = WP_BVH_MAX_DEPTH - 1; // a mixed leaf's split adds a level
+    // A four-wide node tests four boxes at once: SAH weighs its visit as two
+    // triangle tests, which makes fewer, fuller leaves (docs/performance.md:
+    // measured smaller and no slower than the default 1).
+    options.traversal_cost = 2.0;
+    options.max_leaf_size = 8;
+    Bvh bvh = build_bvh(boxes, options);
+    const auto triangle_count = static_cast<wp_uint>(scene.triangles.size());
+    // Within each leaf, triangles before spheres (BinaryWriter splits mixed leaves there).
+    for (const BvhNode& node : bvh.nodes)
+        if (node.is_leaf())
+            std::stable_partition(bvh.primitives.begin() + node.first_primitive,
+                                  bvh.primitives.begin() + node.first_primitive +
+                                      node.primitive_count,
+                                  [&](std::uint32_t p) { return p < triangle_count; });
+
+    std::vector<wp_uint> new_number(bvh.primitives.size());
+    std::vector<WpTriangle> triangles;
+    std::vector<WpSphere> spheres;
+    triangles.reserve(scene.triangles.size());
+    spheres.reserve(scene.spheres.size());
+    for (std::uint32_t p : bvh.primitives)
+        if (p < triangle_count) {
+            new_number[p] = static_cast<wp_uint>(triangles.size());
+            triangles.push_back(scene.triangles[p]);
+        } else {
+            new_number[p] = triangle_count + static_cast<wp_uint>(spheres.size());
+            spheres.push_back(scene.spheres[p - triangle_count]);
+        }
+    scene.triangles = std::move(triangles);
+    scene.spheres = std::move(spheres);
+    for (WpLight& light : scene.lights)
+        light.triangle = new_number[light.triangle];
+
+    std::vector<BinaryNode> binary;
+    binary.reserve(bvh.nodes.size());
+    BinaryWriter(bvh, boxes, new_number, triangle_count, binary).write(0);
+    scene.bvh_nodes.reserve(bvh.nodes.size() / 3 + 1);
+    if (WideWriter(binary, scene.bvh_nodes).write(0) > WP_BVH_STACK_SIZE)
+        throw std::logic_error("BVH too deep for the traversal stack");
     scene.bvh_stats = bvh.stats;
 }
 
@@ -159,14 +316,14 @@ DeviceScene flatten_scene(const Scene& scene, bool hierarchy) {
         w.v0 = to_float4(frame.point(t.v[0]));
         w.v1 = to_float4(frame.point(t.v[1]));
         w.v2 = to_float4(frame.point(t.v[2]));
-        w.material = t.material;
+        wp_set_triangle_material(&w, t.material);
         if (t.has_normals) {
             WpShadingNormals n{};
             n.n0 = to_float4(t.normals[0]);
             n.n1 = to_float4(t.normals[1]);
             n.n2 = to_float4(t.normals[2]);
             out.triangle_normals.push_back(n);
-            w.normals = static_cast<wp_uint>(out.triangle_normals.size()); // index + 1
+            wp_set_triangle_normals(&w, static_cast<wp_uint>(out.triangle_normals.size())); // k + 1
         }
         out.triangles.push_back(w);
         if (scene.materials[t.material].is_emissive()) {

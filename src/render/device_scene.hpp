@@ -84,7 +84,6 @@ struct DeviceScene {
     std::vector<WpLight> lights;                    // emissive triangles with their area CDF
     std::vector<WpShadingNormals> triangle_normals; // of the triangles that have them
     std::vector<WpBvhNode> bvh_nodes;               // empty without a hierarchy
-    std::vector<wp_uint> bvh_primitives;
     BvhStats bvh_stats;
     float light_area = 0.0f; // total emissive area
     WpCamera camera{};

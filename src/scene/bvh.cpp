@@ -14,16 +14,6 @@
 
 namespace wp {
 
-void Bounds3f::extend(const Bounds3f& b) {
-    lower = glm::min(lower, b.lower);
-    upper = glm::max(upper, b.upper);
-}
-
-void Bounds3f::extend(const glm::vec3& p) {
-    lower = glm::min(lower, p);
-    upper = glm::max(upper, p);
-}
-
 double Bounds3f::surface_area() const {
     if (empty())
         return 0.0;
@@ -134,34 +124,47 @@ class Builder {
         return std::clamp(static_cast<int>(x * static_cast<float>(kBins)), 0, kBins - 1);
     }
 
+    // One pass over the primitives bins them along all three axes (the
+    // primitives are read once, not once an axis: binning is most of the
+    // build's time).
     Split best_split(std::size_t begin, std::size_t end, const Bounds3f& node_bounds,
                      const Bounds3f& centroids) const {
         Split best;
         const double node_area = node_bounds.surface_area();
-        for (int axis = 0; axis < 3; ++axis) {
-            if (!(centroids.upper[axis] > centroids.lower[axis]))
-                continue;
-            std::array<Bounds3f, kBins> bins;
-            std::array<std::size_t, kBins> counts{};
-            for (std::size_t i = begin; i < end; ++i) {
-                const int b = bin_of(primitives_[i].centroid, centroids, axis);
-                bins[b].extend(primitives_[i].bounds);
-                ++counts[b];
+        bool splittable[3];
+        for (int axis = 0; axis < 3; ++axis)
+            splittable[axis] = centroids.upper[axis] > centroids.lower[axis];
+        if (!splittable[0] && !splittable[1] && !splittable[2])
+            return best;
+        std::array<std::array<Bounds3f, kBins>, 3> bins;
+        std::array<std::array<std::size_t, kBins>, 3> counts{};
+        for (std::size_t i = begin; i < end; ++i) {
+            const Primitive& p = primitives_[i];
+            for (int axis = 0; axis < 3; ++axis) {
+                if (!splittable[axis])
+                    continue; // a zero extent has no bins
+                const int b = bin_of(p.centroid, centroids, axis);
+                bins[axis][b].extend(p.bounds);
+                ++counts[axis][b];
             }
+        }
+        for (int axis = 0; axis < 3; ++axis) {
+            if (!splittable[axis])
+                continue;
             // Sweep from the right: the cost of everything right of each plane.
             std::array<double, kBins> right_cost{};
             Bounds3f right;
             std::size_t right_count = 0;
             for (int b = kBins - 1; b > 0; --b) {
-                right.extend(bins[b]);
-                right_count += counts[b];
+                right.extend(bins[axis][b]);
+                right_count += counts[axis][b];
                 right_cost[b] = right.surface_area() * static_cast<double>(right_count);
             }
             Bounds3f left;
             std::size_t left_count = 0;
             for (int b = 0; b < kBins - 1; ++b) {
-                left.extend(bins[b]);
-                left_count += counts[b];
+                left.extend(bins[axis][b]);
+                left_count += counts[axis][b];
                 if (left_count == 0 || left_count == end - begin)
                     continue;
                 const double cost = options_.traversal_cost +

@@ -21,6 +21,7 @@
 #include <limits>
 #include <vector>
 
+#include <glm/common.hpp>
 #include <glm/vec3.hpp>
 
 namespace wp {
@@ -30,8 +31,14 @@ struct Bounds3f {
     glm::vec3 upper{-std::numeric_limits<float>::infinity()};
 
     bool empty() const { return lower.x > upper.x; }
-    void extend(const Bounds3f& b);
-    void extend(const glm::vec3& p);
+    void extend(const Bounds3f& b) { // inline: the builder's inner loops call it
+        lower = glm::min(lower, b.lower);
+        upper = glm::max(upper, b.upper);
+    }
+    void extend(const glm::vec3& p) {
+        lower = glm::min(lower, p);
+        upper = glm::max(upper, p);
+    }
     glm::vec3 centroid() const { return 0.5f * (lower + upper); }
     double surface_area() const; // 0 for an empty box
     bool contains(const Bounds3f& b) const;

@@ -18,16 +18,13 @@ namespace {
 // Every struct of wp_shared.h, and every field of each.
 #define WP_LAYOUT_STRUCTS(X)                                                                       \
     X(WpTriangle)                                                                                  \
-    X(WpShadingNormals) X(WpSphere) X(WpMaterial) X(WpLight) X(WpCamera) X(WpFrame) X(WpLaunch)
+    X(WpShadingNormals)                                                                            \
+    X(WpSphere) X(WpMaterial) X(WpLight) X(WpBvhNode) X(WpCamera) X(WpFrame) X(WpLaunch)
 
 #define WP_LAYOUT_FIELDS(X)                                                                        \
     X(WpTriangle, v0)                                                                              \
     X(WpTriangle, v1)                                                                              \
     X(WpTriangle, v2)                                                                              \
-    X(WpTriangle, material)                                                                        \
-    X(WpTriangle, normals)                                                                         \
-    X(WpTriangle, pad1)                                                                            \
-    X(WpTriangle, pad2)                                                                            \
     X(WpShadingNormals, n0)                                                                        \
     X(WpShadingNormals, n1)                                                                        \
     X(WpShadingNormals, n2)                                                                        \
@@ -42,6 +39,14 @@ namespace {
     X(WpMaterial, pad0)                                                                            \
     X(WpMaterial, pad1)                                                                            \
     X(WpMaterial, pad2)                                                                            \
+    X(WpBvhNode, lower_x)                                                                          \
+    X(WpBvhNode, upper_x)                                                                          \
+    X(WpBvhNode, lower_y)                                                                          \
+    X(WpBvhNode, upper_y)                                                                          \
+    X(WpBvhNode, lower_z)                                                                          \
+    X(WpBvhNode, upper_z)                                                                          \
+    X(WpBvhNode, child)                                                                            \
+    X(WpBvhNode, count)                                                                            \
     X(WpLight, triangle)                                                                           \
     X(WpLight, cdf)                                                                                \
     X(WpLight, pad0)                                                                               \
@@ -220,6 +225,51 @@ TEST_CASE("A WpFrame passed by value reaches the kernel field for field", "[cl][
     for (std::size_t i = 0; i < expected.size(); ++i) {
         INFO("word " << i);
         CHECK(got[i] == expected[i]);
+    }
+}
+
+TEST_CASE("A WpTriangle's material and normals, kept in its w lanes, read the same on the device",
+          "[cl][layout]") {
+    // Values whose bits are NaN, infinity, a denormal or a normal float when
+    // read as a float: the accessors must carry them bit for bit.
+    const cl_uint values[] = {0u,          1u,          7u,          0x007fffffu,
+                              0x3f800000u, 0x7f800000u, 0x7fc00001u, 0xffffffffu};
+    std::vector<WpTriangle> triangles;
+    for (cl_uint material : values)
+        for (cl_uint normals : values) {
+            WpTriangle t{};
+            t.v0 = float4(1.0f, 2.0f, 3.0f);
+            t.v1 = float4(-4.0f, 5.0f, -6.0f);
+            t.v2 = float4(7.0f, 8.0f, 9.0f);
+            wp_set_triangle_material(&t, material);
+            wp_set_triangle_normals(&t, normals);
+            REQUIRE(wp_triangle_material(&t) == material);
+            REQUIRE(wp_triangle_normals(&t) == normals);
+            CHECK(t.v0.s[0] == 1.0f); // the vertices are untouched
+            CHECK(t.v1.s[2] == -6.0f);
+            triangles.push_back(t);
+        }
+    const char* source = R"CL(
+#include "wp_shared.h"
+__kernel void read_lanes(uint count, __global const WpTriangle* triangles, __global uint* out) {
+    uint i = get_global_id(0);
+    if (i >= count) return;
+    WpTriangle t = triangles[i];
+    out[2 * i] = wp_triangle_material(&t);
+    out[2 * i + 1] = wp_triangle_normals(&t);
+}
+)CL";
+    cl::Kernel kernel(program(source, "triangle_lanes_test.cl"), "read_lanes");
+    const std::size_t n = triangles.size();
+    cl::Buffer in = upload(triangles);
+    cl::Buffer out = upload(std::vector<cl_uint>(2 * n, 0));
+    set_args(kernel, static_cast<cl_uint>(n), in, out);
+    launch(kernel, n);
+    std::vector<cl_uint> got = download<cl_uint>(out, 2 * n);
+    for (std::size_t i = 0; i < n; ++i) {
+        INFO("triangle " << i);
+        CHECK(got[2 * i] == wp_triangle_material(&triangles[i]));
+        CHECK(got[2 * i + 1] == wp_triangle_normals(&triangles[i]));
     }
 }
 

@@ -119,7 +119,6 @@ static inline WpSceneView st_scene_view(__global const WpTriangle* triangles,
     scene.materials = 0;
     scene.lights = 0;
     scene.bvh_nodes = 0;
-    scene.bvh_primitives = 0;
     scene.triangle_count = triangle_count;
     scene.sphere_count = sphere_count;
     scene.light_count = 0u;

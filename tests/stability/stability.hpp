@@ -310,7 +310,7 @@ inline WpTriangle make_triangle(const D3& a, const D3& b, const D3& c, cl_uint m
     t.v0 = to_float4(a);
     t.v1 = to_float4(b);
     t.v2 = to_float4(c);
-    t.material = material;
+    wp_set_triangle_material(&t, material);
     return t;
 }
 
