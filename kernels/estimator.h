@@ -57,6 +57,15 @@
 #define WP_LIGHT_SAMPLING WP_LIGHT_AREA
 #endif
 
+/* WP_ROULETTE_DEPTH: the first bounce (1: the first vertex) at which the
+ * throughput roulette of WP_DIFFUSE_COSINE may end a path; before it every
+ * path goes on with survival probability 1 (IntegratorOptions::roulette_depth,
+ * --roulette-depth; docs/convergence.md measures it). The report's albedo
+ * roulette is part of its direction sampling and always runs. */
+#ifndef WP_ROULETTE_DEPTH
+#define WP_ROULETTE_DEPTH 1
+#endif
+
 #define WP_MIN_SPHERICAL_AREA 1e-3f
 #define WP_MAX_SPHERICAL_AREA 6.2f
 

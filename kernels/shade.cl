@@ -15,11 +15,15 @@
  *  below their flat facet arrives is the shadow ray's to say, and paths
  *  scattered into the facet are absorbed.
  *  4. Russian roulette: survive with probability min(1, max(throughput)) and
- *     divide survivors' throughput by it, which keeps the estimate unbiased.
+ *     divide survivors' throughput by it, which keeps the estimate unbiased;
+ *     from bounce WP_ROULETTE_DEPTH on (estimator.h), before it always survive.
  *     Past frame.max_depth bounces a path is cut and counted; the cap is a
  *     guard against endless mirror corridors, not part of the estimator.
  *     With WP_DIFFUSE_SAMPLING == WP_DIFFUSE_REPORT it is the report's albedo
  *     roulette instead (estimator.h, bsdf/diffuse.h).
+ *
+ * With WP_PATH_TYPE_MASK (path_type.h) emission and next-event estimation
+ * add only the light of the selected path types.
  *
  * Survivors go to the other ray queue, finished paths (missed, absorbed,
  * cut) to the finished queue.
@@ -27,6 +31,7 @@
 #include "bsdf.h"
 #include "estimator.h"
 #include "lights.h"
+#include "path_type.h"
 #include "primitive.h"
 #include "rng.h"
 #include "stage.h"
@@ -43,7 +48,8 @@ static inline float wp_path_random(const WpPathRandom* r, wp_uint dimension) {
 /* Step 1: the emitted radiance the path sees at this surface, if it counts. */
 static inline float3 wp_shade_emission(const WpMaterial* material, const WpSurface* surface,
                                        wp_uint flags, float3 beta, float3 sum) {
-    if ((!WP_USE_NEE || (flags & WP_PATH_SPECULAR)) && surface->front_face)
+    if ((!WP_USE_NEE || (flags & WP_PATH_SPECULAR)) && surface->front_face &&
+        WP_PATH_EMISSION_SELECTED(flags))
         sum += beta * material->emission.xyz;
     return sum;
 }
@@ -97,6 +103,10 @@ static inline int wp_shade_roulette(const WpMaterial* material, const WpBsdfSamp
     (void)material;
     (void)u_bsdf;
     *beta *= scattered->weight;
+    if (random->depth + 1u < WP_ROULETTE_DEPTH) { /* every path survives its first bounces */
+        *survival = 1.0f;
+        return 1;
+    }
     *survival = fmin(1.0f, wp_max_component(*beta));
     return wp_path_random(random, WP_DIM_ROULETTE) < *survival;
 #endif
@@ -143,7 +153,7 @@ __kernel void shade(WP_STAGE_PARAMETERS) {
     }
 
     float3 origin = wp_offset_ray_origin(spawn, normal, surface.scale);
-    if (!wp_bsdf_is_delta(&material))
+    if (!wp_bsdf_is_delta(&material) && WP_PATH_NEXT_EVENT_SELECTED(flags))
         wp_shade_next_event(&scene, &material, &surface, direction, normal, shading, origin, beta,
                             &random, slot, shadow_queue, counters, shadow_origin, shadow_direction,
                             shadow_contribution);
@@ -162,6 +172,9 @@ __kernel void shade(WP_STAGE_PARAMETERS) {
         flags |= WP_PATH_SPECULAR;
     else
         flags &= ~WP_PATH_SPECULAR;
+#ifdef WP_PATH_TYPE_MASK
+    flags = wp_path_flags_after(flags, scattered.specular);
+#endif
 
     float survival;
     int survives = wp_shade_roulette(&material, &scattered, &random, u1, &beta, &survival);

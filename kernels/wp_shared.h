@@ -35,6 +35,21 @@ typedef cl_float4 wp_float4;
 
 /* Path flags (path_flags[]). */
 #define WP_PATH_SPECULAR 1u /* the last bounce was specular (or none yet): emitters count */
+/* Bits 1-3 hold the path's history class (WP_PATH_TYPE_*, kernels/path_type.h),
+ * kept only when the kernels are built with WP_PATH_TYPE_MASK. */
+#define WP_PATH_HISTORY_SHIFT 1u
+#define WP_PATH_HISTORY_BITS (7u << WP_PATH_HISTORY_SHIFT)
+
+/* Path types: every contribution to a pixel falls in exactly one, by the
+ * bounces before the light reached the path (docs/convergence.md, "Where the
+ * error is"). WP_PATH_TYPE_MASK, a sum of (1u << type), selects the ones a
+ * render adds; the host sets it only for `--path-types`. */
+#define WP_PATH_TYPE_CAMERA 0u   /* an emitter seen from the camera */
+#define WP_PATH_TYPE_DIRECT 1u   /* light at the first vertex, a diffuse one */
+#define WP_PATH_TYPE_INDIRECT 2u /* after two or more diffuse bounces, no mirror */
+#define WP_PATH_TYPE_MIRROR 3u   /* the first vertex is a mirror */
+#define WP_PATH_TYPE_CAUSTIC 4u  /* a diffuse first vertex, a mirror after it */
+#define WP_PATH_TYPE_COUNT 5u
 
 /* Counters the kernels bump with atomics (one buffer of WP_COUNTER_COUNT
  * uints). The two ray queues swap roles every iteration, so each keeps its

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <map>
+#include <stdexcept>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -28,6 +29,18 @@ void add_choice(CLI::App& command, const std::string& flag, Enum& value,
         ->default_str(to_string(value))
         ->check(CLI::IsMember(allowed));
 }
+
+// Refuses a --path-types list that parse_path_types does not take.
+const CLI::Validator path_type_list(
+    [](const std::string& text) -> std::string {
+        try {
+            parse_path_types(text);
+        } catch (const std::invalid_argument& e) {
+            return e.what();
+        }
+        return {};
+    },
+    "TYPES");
 
 } // namespace
 
@@ -59,6 +72,21 @@ void add_integrator_options(CLI::App& command, IntegratorOptions& options) {
                {LightSampling::Area, LightSampling::SolidAngle},
                "Next-event estimation: 'area' (uniform on the light) or 'solid-angle' (uniform "
                "in the light's spherical triangles)");
+    command
+        .add_option("--roulette-depth", options.roulette_depth,
+                    "The first bounce at which Russian roulette may end a path (1: every "
+                    "bounce); before it every path goes on")
+        ->capture_default_str()
+        ->check(CLI::Range(1u, cli_limits::max_depth));
+    command
+        .add_option_function<std::string>(
+            "--path-types",
+            [&options](const std::string& list) { options.path_types = parse_path_types(list); },
+            "Add only the light of these path types, a comma-separated list of camera, direct, "
+            "indirect, mirror, caustic (docs/convergence.md); the parts of one seed sum to the "
+            "full image")
+        ->default_str("all")
+        ->check(path_type_list);
     command.add_flag("--general", options.general_kernels,
                      "Build the all-features kernels instead of the scene's specialised ones");
     add_choice(command, "--traversal", options.traversal,

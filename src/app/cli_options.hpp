@@ -24,8 +24,9 @@ inline constexpr unsigned max_depth = 1u << 20;
 extern const CLI::Validator finite_number;
 
 // Every field of IntegratorOptions: --seed, --max-depth, --no-nee, --diffuse,
-// --light-sampling, --general, --regeneration, --pool and --no-cache (which
-// turns options.program_cache off). The defaults shown are options' values.
+// --light-sampling, --roulette-depth, --path-types, --general, --regeneration,
+// --pool and --no-cache (which turns options.program_cache off). The defaults shown are options'
+// values.
 void add_integrator_options(CLI::App& command, IntegratorOptions& options);
 
 // --device: an index P:D or part of a device's name.

@@ -12,6 +12,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/breakdown.hpp"
 #include "app/caches.hpp"
 #include "app/commands.hpp"
 #include "app/interrupt.hpp"
@@ -79,6 +80,8 @@ int main(int argc, char** argv) {
     CLI::App* info_app = wp::add_info_subcommand(app, info);
     wp::ExportMitsubaCommand export_mitsuba;
     CLI::App* export_app = wp::add_export_mitsuba_subcommand(app, export_mitsuba);
+    wp::BreakdownCommand breakdown; // where the error is (breakdown.cpp)
+    CLI::App* breakdown_app = wp::add_breakdown_subcommand(app, breakdown);
 
     try {
         app.parse(argc, argv);
@@ -103,6 +106,8 @@ int main(int argc, char** argv) {
             wp::prepare_caches(converge.integrator);
         else if (info_app->parsed())
             wp::prepare_caches(info.integrator);
+        else if (breakdown_app->parsed())
+            wp::prepare_caches(breakdown.integrator);
         else if (app.got_subcommand("render"))
             wp::prepare_caches(render.integrator);
         if (app.got_subcommand("devices"))
@@ -117,6 +122,8 @@ int main(int argc, char** argv) {
             status = wp::run_info(info);
         else if (export_app->parsed())
             status = wp::run_export_mitsuba(export_mitsuba);
+        else if (breakdown_app->parsed())
+            status = wp::run_breakdown(breakdown);
         else
             status = wp::run_render(render);
     } catch (const wp::BuildError& e) {

@@ -1,5 +1,9 @@
 #include "render/integrator_options.hpp"
 
+#include <algorithm>
+#include <array>
+#include <stdexcept>
+
 namespace wp {
 
 std::string to_string(DiffuseSampling sampling) {
@@ -34,11 +38,57 @@ std::string to_string(Traversal traversal) {
     return "?";
 }
 
+std::string path_type_name(std::uint32_t type) {
+    constexpr std::array<const char*, WP_PATH_TYPE_COUNT> names = {"camera", "direct", "indirect",
+                                                                   "mirror", "caustic"};
+    return type < names.size() ? names[type] : "?";
+}
+
+std::uint32_t parse_path_types(const std::string& list) {
+    if (list == "all")
+        return kAllPathTypes;
+    std::uint32_t types = 0;
+    std::size_t start = 0;
+    while (true) {
+        const std::size_t end = std::min(list.find(',', start), list.size());
+        const std::string name = list.substr(start, end - start);
+        std::uint32_t type = 0;
+        while (type < WP_PATH_TYPE_COUNT && path_type_name(type) != name)
+            ++type;
+        if (type == WP_PATH_TYPE_COUNT)
+            throw std::invalid_argument("unknown path type '" + name + "' in '" + list +
+                                        "'; expected a comma-separated list of camera, direct, "
+                                        "indirect, mirror, caustic, or 'all'");
+        types |= 1u << type;
+        if (end == list.size())
+            return types;
+        start = end + 1;
+    }
+}
+
+std::string describe_path_types(std::uint32_t types) {
+    if ((types & kAllPathTypes) == kAllPathTypes)
+        return "all";
+    std::string text;
+    for (std::uint32_t type = 0; type < WP_PATH_TYPE_COUNT; ++type)
+        if (types & (1u << type)) {
+            if (!text.empty())
+                text += ',';
+            text += path_type_name(type);
+        }
+    return text;
+}
+
 std::string describe_estimator(const IntegratorOptions& options) {
     const std::string diffuse = to_string(options.diffuse_sampling);
-    if (!options.next_event_estimation)
-        return diffuse + "+no-nee";
-    return diffuse + "+nee+" + to_string(options.light_sampling);
+    std::string text = options.next_event_estimation
+                           ? diffuse + "+nee+" + to_string(options.light_sampling)
+                           : diffuse + "+no-nee";
+    if (options.roulette_depth != IntegratorOptions{}.roulette_depth)
+        text += "+roulette-from-" + std::to_string(options.roulette_depth);
+    if (options.path_types != kAllPathTypes)
+        text += "+paths=" + describe_path_types(options.path_types);
+    return text;
 }
 
 } // namespace wp

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "cl/program_cache.hpp"
+#include "wp_shared.h" // WP_PATH_TYPE_*
 
 namespace wp {
 
@@ -30,6 +31,9 @@ enum class Traversal {
     Loop,      // always every primitive (the images agree; only the speed differs)
 };
 
+// Every path type (kernels/path_type.h): the full estimate.
+inline constexpr std::uint32_t kAllPathTypes = (1u << WP_PATH_TYPE_COUNT) - 1u;
+
 struct IntegratorOptions {
     std::uint32_t seed = 0;
     // Safety cap on bounces. Russian roulette ends paths long before it in
@@ -50,6 +54,14 @@ struct IntegratorOptions {
     // magnitude where surfaces come close to a light.
     DiffuseSampling diffuse_sampling = DiffuseSampling::Cosine;
     LightSampling light_sampling = LightSampling::Area;
+    // The first bounce at which throughput roulette may end a path (1: every
+    // bounce); before it paths always go on (kernels/estimator.h).
+    std::uint32_t roulette_depth = 1;
+    // The path types whose light the render adds, a set of 1 << WP_PATH_TYPE_*
+    // (kernels/path_type.h). Anything but all of them compiles the kernels
+    // with WP_PATH_TYPE_MASK: a part of the image, for measuring where the
+    // error is (docs/convergence.md).
+    std::uint32_t path_types = kAllPathTypes;
     // Refill finished slots with new samples at once, instead of waiting for
     // the whole pool to finish (a "wave") before generating again. Off by
     // default: on PoCL's CPU device it was measured 30-40 % slower (camera
@@ -72,8 +84,19 @@ std::string to_string(DiffuseSampling sampling);
 std::string to_string(LightSampling sampling);
 std::string to_string(Traversal traversal); // "auto", "bvh", "loop"
 
+// The path types' names, in WP_PATH_TYPE_* order: "camera", "direct",
+// "indirect", "mirror", "caustic".
+std::string path_type_name(std::uint32_t type);
+// A set of path types from a comma-separated list of those names, or "all";
+// throws std::invalid_argument naming a bad or empty entry.
+std::uint32_t parse_path_types(const std::string& list);
+// The names of a set, comma-separated ("all" for every type).
+std::string describe_path_types(std::uint32_t types);
+
 // A short name for an estimator, e.g. "cosine+nee+solid-angle", "report+no-nee".
 // (Light sampling is left out without next-event estimation: it does not apply.)
+// A roulette depth other than the default adds "+roulette-from-N", a subset
+// of the path types "+paths=direct,caustic".
 std::string describe_estimator(const IntegratorOptions& options);
 
 } // namespace wp

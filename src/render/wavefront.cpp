@@ -323,6 +323,9 @@ std::string kernel_build_options(const SceneFeatures& features, const Integrator
                                                                 : " -D WP_DIFFUSE_SAMPLING=0";
     text += options.light_sampling == LightSampling::SolidAngle ? " -D WP_LIGHT_SAMPLING=1"
                                                                 : " -D WP_LIGHT_SAMPLING=0";
+    text += " -D WP_ROULETTE_DEPTH=" + std::to_string(options.roulette_depth);
+    if (options.path_types != kAllPathTypes) // only then is anything tracked (path_type.h)
+        text += " -D WP_PATH_TYPE_MASK=" + std::to_string(options.path_types);
     if (features.shading_normals && !options.shadow_terminator_fix)
         text += " -D WP_SHADOW_TERMINATOR_FIX=0";
     return text;
