@@ -59,6 +59,9 @@ void add_integrator_options(CLI::App& command, IntegratorOptions& options) {
                {LightSampling::Area, LightSampling::SolidAngle},
                "Next-event estimation: 'area' (uniform on the light) or 'solid-angle' (uniform "
                "in the light's spherical triangles)");
+    add_choice(command, "--sampler", options.sampler, {Sampler::Independent, Sampler::Sobol},
+               "Random numbers: 'independent' (a hash each) or 'sobol' (a pixel's samples "
+               "stratified: Owen-scrambled Sobol points)");
     command.add_flag("--general", options.general_kernels,
                      "Build the all-features kernels instead of the scene's specialised ones");
     add_choice(command, "--traversal", options.traversal,

@@ -34,6 +34,16 @@ std::string to_string(Traversal traversal) {
     return "?";
 }
 
+std::string to_string(Sampler sampler) {
+    switch (sampler) {
+    case Sampler::Independent:
+        return "independent";
+    case Sampler::Sobol:
+        return "sobol";
+    }
+    return "?";
+}
+
 std::string describe_estimator(const IntegratorOptions& options) {
     const std::string diffuse = to_string(options.diffuse_sampling);
     if (!options.next_event_estimation)

@@ -23,6 +23,14 @@ enum class LightSampling {
     SolidAngle, // uniform in the subtended solid angle (spherical triangles)
 };
 
+// Where the random numbers come from (kernels/rng.h; compared in
+// docs/convergence.md, "Samplers"). Both are pure functions of (seed, pixel,
+// sample, bounce, dimension), so neither depends on how samples are split.
+enum class Sampler {
+    Independent, // every number an independent hash
+    Sobol,       // a pixel's samples stratified: Owen-scrambled Sobol pairs (kernels/sobol.h)
+};
+
 // How rays find what they hit:
 enum class Traversal {
     Auto,      // a bounding volume hierarchy past kMinBvhPrimitives, else every primitive
@@ -50,6 +58,7 @@ struct IntegratorOptions {
     // magnitude where surfaces come close to a light.
     DiffuseSampling diffuse_sampling = DiffuseSampling::Cosine;
     LightSampling light_sampling = LightSampling::Area;
+    Sampler sampler = Sampler::Independent;
     // Refill finished slots with new samples at once, instead of waiting for
     // the whole pool to finish (a "wave") before generating again. Off by
     // default: on PoCL's CPU device it was measured 30-40 % slower (camera
@@ -71,6 +80,7 @@ struct IntegratorOptions {
 std::string to_string(DiffuseSampling sampling);
 std::string to_string(LightSampling sampling);
 std::string to_string(Traversal traversal); // "auto", "bvh", "loop"
+std::string to_string(Sampler sampler);     // "independent", "sobol"
 
 // A short name for an estimator, e.g. "cosine+nee+solid-angle", "report+no-nee".
 // (Light sampling is left out without next-event estimation: it does not apply.)

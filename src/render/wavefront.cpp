@@ -323,6 +323,7 @@ std::string kernel_build_options(const SceneFeatures& features, const Integrator
                                                                 : " -D WP_DIFFUSE_SAMPLING=0";
     text += options.light_sampling == LightSampling::SolidAngle ? " -D WP_LIGHT_SAMPLING=1"
                                                                 : " -D WP_LIGHT_SAMPLING=0";
+    text += options.sampler == Sampler::Sobol ? " -D WP_SAMPLER=1" : " -D WP_SAMPLER=0";
     if (features.shading_normals && !options.shadow_terminator_fix)
         text += " -D WP_SHADOW_TERMINATOR_FIX=0";
     return text;
