@@ -87,20 +87,31 @@ static inline wp_uint wp_nested_uniform_scramble(wp_uint x, wp_uint seed) {
     return wp_reverse_bits(wp_laine_karras_permutation(wp_reverse_bits(x), seed));
 }
 
-/* The first two Sobol dimensions as 0.32 fixed-point fractions. The first is
- * the van der Corput sequence (the bit-reversed index); the second has the
- * direction numbers v_1 = 1/2, v_{k+1} = v_k xor v_k / 2 (Joe and Kuo's
- * second dimension, m = 1, 3, 5, 15, 17, 51, ...). */
+/* The first two Sobol dimensions at an index, with their binary digits in
+ * reverse order (bit j holds the digit of weight 2^-(j+1)), the order the
+ * scramble works in. The first is the van der Corput sequence: reversed, the
+ * index itself. The second has the generator matrix of Pascal's triangle mod
+ * 2 (direction numbers v_1 = 1/2, v_{k+1} = v_k xor v_k / 2; Joe and Kuo's
+ * second dimension, m = 1, 3, 5, 15, 17, 51, ...): digit j is the xor of the
+ * index bits k with C(k, j) odd, that is (Lucas) with k's bits a superset of
+ * j's. A superset sum over the five bits of j takes five shifts, not a loop
+ * over the 32 bits of the index. */
+static inline wp_uint wp_sobol_second_reversed(wp_uint index) {
+    index ^= (index >> 1) & 0x55555555u;
+    index ^= (index >> 2) & 0x33333333u;
+    index ^= (index >> 4) & 0x0f0f0f0fu;
+    index ^= (index >> 8) & 0x00ff00ffu;
+    index ^= (index >> 16) & 0x0000ffffu;
+    return index;
+}
+
+/* The two dimensions as 0.32 fixed-point fractions (for the tests). */
 static inline wp_uint wp_sobol_first(wp_uint index) {
     return wp_reverse_bits(index);
 }
 
 static inline wp_uint wp_sobol_second(wp_uint index) {
-    wp_uint x = 0u;
-    for (wp_uint v = 0x80000000u; index != 0u; index >>= 1, v ^= v >> 1)
-        if (index & 1u)
-            x ^= v;
-    return x;
+    return wp_reverse_bits(wp_sobol_second_reversed(index));
 }
 
 /* The seed of one pair of one bounce of one pixel. */
@@ -118,9 +129,11 @@ static inline wp_uint wp_sobol_bits(wp_uint seed, wp_uint pixel, wp_uint sample,
     wp_uint pair_seed = wp_sobol_pair_seed(seed, pixel, bounce, wp_sobol_pair(dimension));
     wp_uint coordinate = wp_sobol_coordinate(dimension);
     wp_uint index = wp_nested_uniform_scramble(sample, wp_mix32(pair_seed ^ 0x3c6ef372u));
-    wp_uint point = coordinate == 0u ? wp_sobol_first(index) : wp_sobol_second(index);
+    wp_uint reversed = coordinate == 0u ? index : wp_sobol_second_reversed(index);
     wp_uint coordinate_seed = wp_mix32(pair_seed ^ (coordinate == 0u ? 0xa54ff53au : 0x510e527fu));
-    return wp_nested_uniform_scramble(point, coordinate_seed);
+    /* wp_nested_uniform_scramble of the point, whose first reversal is undone
+     * by taking its digits reversed already. */
+    return wp_reverse_bits(wp_laine_karras_permutation(reversed, coordinate_seed));
 }
 
 static inline wp_float wp_sobol_random(wp_uint seed, wp_uint pixel, wp_uint sample, wp_uint bounce,

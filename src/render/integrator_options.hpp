@@ -58,7 +58,10 @@ struct IntegratorOptions {
     // magnitude where surfaces come close to a light.
     DiffuseSampling diffuse_sampling = DiffuseSampling::Cosine;
     LightSampling light_sampling = LightSampling::Area;
-    Sampler sampler = Sampler::Independent;
+    // Stratified samples by default: on the hexroom at 64 spp they cut the
+    // MSE by 40 % (by 11x next to the light's edges; docs/convergence.md,
+    // "Samplers").
+    Sampler sampler = Sampler::Sobol;
     // Refill finished slots with new samples at once, instead of waiting for
     // the whole pool to finish (a "wave") before generating again. Off by
     // default: on PoCL's CPU device it was measured 30-40 % slower (camera
