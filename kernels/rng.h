@@ -9,6 +9,14 @@
  * The mixer is Chris Wellons' "lowbias32" integer hash (a bijection on 32-bit
  * words with low avalanche bias); chaining it over the key words decorrelates
  * neighbouring counters.
+ *
+ * Two samplers give these numbers, chosen by WP_SAMPLER (the host always
+ * passes it, from IntegratorOptions::sampler; left undefined it is the
+ * independent one, which the stage tests in tests/kernels model on the host):
+ *   WP_SAMPLER_INDEPENDENT (0): every number a hash of its whole key
+ *     (wp_independent_random below);
+ *   WP_SAMPLER_SOBOL (1): the samples of a pixel stratified, Owen-scrambled
+ *     Sobol points (sobol.h).
  */
 #ifndef WP_RNG_H
 #define WP_RNG_H
@@ -50,9 +58,26 @@ static inline wp_float wp_to_unit_float(wp_uint bits) {
     return (wp_float)(bits >> 8) * (1.0f / 16777216.0f);
 }
 
+static inline wp_float wp_independent_random(wp_uint seed, wp_uint pixel, wp_uint sample,
+                                             wp_uint bounce, wp_uint dimension) {
+    return wp_to_unit_float(wp_hash(seed, pixel, sample, bounce * WP_DIMS_PER_BOUNCE + dimension));
+}
+
+#include "sobol.h"
+
+#define WP_SAMPLER_INDEPENDENT 0
+#define WP_SAMPLER_SOBOL 1
+#ifndef WP_SAMPLER
+#define WP_SAMPLER WP_SAMPLER_INDEPENDENT
+#endif
+
 static inline wp_float wp_random(wp_uint seed, wp_uint pixel, wp_uint sample, wp_uint bounce,
                                  wp_uint dimension) {
-    return wp_to_unit_float(wp_hash(seed, pixel, sample, bounce * WP_DIMS_PER_BOUNCE + dimension));
+#if WP_SAMPLER == WP_SAMPLER_SOBOL
+    return wp_sobol_random(seed, pixel, sample, bounce, dimension);
+#else
+    return wp_independent_random(seed, pixel, sample, bounce, dimension);
+#endif
 }
 
 #endif /* WP_RNG_H */

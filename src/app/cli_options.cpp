@@ -87,6 +87,9 @@ void add_integrator_options(CLI::App& command, IntegratorOptions& options) {
             "full image")
         ->default_str("all")
         ->check(path_type_list);
+    add_choice(command, "--sampler", options.sampler, {Sampler::Independent, Sampler::Sobol},
+               "Random numbers: 'independent' (a hash each) or 'sobol' (a pixel's samples "
+               "stratified: Owen-scrambled Sobol points)");
     command.add_flag("--general", options.general_kernels,
                      "Build the all-features kernels instead of the scene's specialised ones");
     add_choice(command, "--traversal", options.traversal,

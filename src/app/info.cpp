@@ -284,6 +284,7 @@ int run_info(const InfoCommand& command) {
     std::printf("kernels: %s\n",
                 command.integrator.general_kernels ? "general (--general)" : "specialised");
     std::printf("build options: %s\n", built.options.c_str());
+    std::printf("sampler: %s\n", to_string(command.integrator.sampler).c_str());
     print_geometry_memory(integrator.device_scene());
 
     const CachePolicy& cache = command.integrator.program_cache;

@@ -38,6 +38,7 @@ Metadata render_metadata(const RenderRecord& record) {
         {"wavepath.resumed_from", std::to_string(record.samples_resumed)},
         {"wavepath.seed", std::to_string(record.options.seed)},
         {"wavepath.estimator", describe_estimator(record.options)},
+        {"wavepath.sampler", to_string(record.options.sampler)},
         {"wavepath.max_depth", std::to_string(record.options.max_depth)},
         {"wavepath.devices", join(record.devices, "; ")},
         {"wavepath.render_seconds", format_text("%.3f", record.render_seconds)},

@@ -79,6 +79,16 @@ std::string describe_path_types(std::uint32_t types) {
     return text;
 }
 
+std::string to_string(Sampler sampler) {
+    switch (sampler) {
+    case Sampler::Independent:
+        return "independent";
+    case Sampler::Sobol:
+        return "sobol";
+    }
+    return "?";
+}
+
 std::string describe_estimator(const IntegratorOptions& options) {
     const std::string diffuse = to_string(options.diffuse_sampling);
     std::string text = options.next_event_estimation

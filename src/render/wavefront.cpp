@@ -326,6 +326,7 @@ std::string kernel_build_options(const SceneFeatures& features, const Integrator
     text += " -D WP_ROULETTE_DEPTH=" + std::to_string(options.roulette_depth);
     if (options.path_types != kAllPathTypes) // only then is anything tracked (path_type.h)
         text += " -D WP_PATH_TYPE_MASK=" + std::to_string(options.path_types);
+    text += options.sampler == Sampler::Sobol ? " -D WP_SAMPLER=1" : " -D WP_SAMPLER=0";
     if (features.shading_normals && !options.shadow_terminator_fix)
         text += " -D WP_SHADOW_TERMINATOR_FIX=0";
     return text;

@@ -13,15 +13,23 @@ using namespace wp::test;
 
 namespace {
 
+// Built once per sampler (WP_SAMPLER); with WP_ALONG_SAMPLES the numbers are
+// the samples of one pixel (stratified by the Sobol sampler), else sample 0 of
+// many pixels.
 const char* const kSamplingSource = R"CL(
 #include "rng.h"
 #include "sampling.h"
+#ifdef WP_ALONG_SAMPLES
+#define WP_KEY(i) 0u, (i)
+#else
+#define WP_KEY(i) (i), 0u
+#endif
 
 __kernel void cosine_samples(float4 n, uint seed, uint count, __global float4* out) {
     uint i = get_global_id(0);
     if (i >= count) return;
-    float u1 = wp_random(seed, i, 0u, 0u, WP_DIM_BSDF_U);
-    float u2 = wp_random(seed, i, 0u, 0u, WP_DIM_BSDF_V);
+    float u1 = wp_random(seed, WP_KEY(i), 0u, WP_DIM_BSDF_U);
+    float u2 = wp_random(seed, WP_KEY(i), 0u, WP_DIM_BSDF_V);
     out[i] = (float4)(wp_sample_cosine_hemisphere(n.xyz, u1, u2), 0.0f);
 }
 
@@ -29,13 +37,20 @@ __kernel void triangle_samples(float4 p0, float4 p1, float4 p2, uint seed, uint 
                                __global float4* out) {
     uint i = get_global_id(0);
     if (i >= count) return;
-    float u1 = wp_random(seed, i, 0u, 0u, WP_DIM_LIGHT_U);
-    float u2 = wp_random(seed, i, 0u, 0u, WP_DIM_LIGHT_V);
+    float u1 = wp_random(seed, WP_KEY(i), 0u, WP_DIM_LIGHT_U);
+    float u2 = wp_random(seed, WP_KEY(i), 0u, WP_DIM_LIGHT_V);
     out[i] = (float4)(wp_sample_triangle(p0.xyz, p1.xyz, p2.xyz, u1, u2), 0.0f);
 }
 )CL";
 
 constexpr cl_uint kSamples = 1u << 20;
+
+// The samplers the uniformity tests run on: independent, Sobol across pixels,
+// Sobol along one pixel's samples.
+std::string sampler_options() {
+    return GENERATE(as<std::string>{}, "-D WP_SAMPLER=0", "-D WP_SAMPLER=1",
+                    "-D WP_SAMPLER=1 -D WP_ALONG_SAMPLES");
+}
 
 // Mean and standard error of a sample.
 struct Moment {
@@ -95,7 +110,9 @@ TEST_CASE("wp_sample_cosine_hemisphere has the moments of the cosine distributio
         normalize(D3(-0.3, 0.2, 0.93)),
         normalize(D3(1e-3, 0, -1)),
     };
-    cl::Kernel kernel(program(kSamplingSource, "sampling_test.cl"), "cosine_samples");
+    const std::string options = sampler_options();
+    INFO(options);
+    cl::Kernel kernel(program(kSamplingSource, "sampling_test.cl", options), "cosine_samples");
     cl_uint seed = 5;
     for (const D3& requested : normals) {
         cl_float4 n_float = to_float4(requested);
@@ -149,7 +166,9 @@ TEST_CASE("wp_sample_triangle gives uniform points inside the triangle", "[cl][s
         {D3(1, 2, 3), D3(-1, 0.5, 2), D3(0.3, -1, -0.5)},
         {D3(-2, 1, 0.5), D3(2.5, 1.2, -0.25), D3(0.1, -0.7, 1.9)},
     };
-    cl::Kernel kernel(program(kSamplingSource, "sampling_test.cl"), "triangle_samples");
+    const std::string options = sampler_options();
+    INFO(options);
+    cl::Kernel kernel(program(kSamplingSource, "sampling_test.cl", options), "triangle_samples");
     cl_uint seed = 77;
     for (const std::array<D3, 3>& requested : triangles) {
         std::array<cl_float4, 3> p_float{to_float4(requested[0]), to_float4(requested[1]),

@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "render/chunk_source.hpp"
@@ -124,12 +125,16 @@ TEST_CASE("multi-device: chunks cover the samples once, shrink, and come back wh
 
 TEST_CASE("multi-device: two devices render the image one device renders, sample for sample") {
     const Scene scene = test::hexroom(24, 20);
-    for (bool regeneration : {false, true}) {
-        INFO("regeneration " << regeneration);
+    for (auto [regeneration, sampler] : {std::pair{false, Sampler::Independent},
+                                         {true, Sampler::Independent},
+                                         {false, Sampler::Sobol},
+                                         {true, Sampler::Sobol}}) {
+        INFO("regeneration " << regeneration << ", sampler " << to_string(sampler));
         const std::uint32_t spp = 16, seed = 7;
         IntegratorOptions options;
         options.seed = seed;
         options.regeneration = regeneration;
+        options.sampler = sampler;
         test::Rendered single = test::render(scene, spp, seed, 0, options);
 
         MultiDeviceRenderer renderer(two_devices(), scene, options);

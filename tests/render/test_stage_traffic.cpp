@@ -22,16 +22,27 @@ std::string code_of(std::string_view file) {
 }
 
 // What the source does with `buffer`: read by an index that is not an
-// assignment's target (or by `+=`), written by an assignment or a queue push.
+// assignment's target (or by `+=`), by a scalar load (wp_load_xyz, wp_load_w)
+// or through a pointer to an element; written by an assignment, a queue push
+// or through a pointer to an element that is not const (per-component updates
+// such as `sum[0] += add[0]`, which also read it).
 int source_access(const std::string& code, const std::string& buffer) {
     const std::string index = "\\b" + buffer + R"(\s*\[[^\]]*\])";
+    const std::string element = R"(\*\)\s*\(\s*)" + buffer + R"(\s*\+)";
+    const bool through_pointer =
+        std::regex_search(code, std::regex(R"(\(__global\s+\w+\s*)" + element));
     const bool read =
         std::regex_search(code, std::regex(index + R"((?!\s*=[^=]))")) ||
-        std::regex_search(code, std::regex(R"(wp_ray_queue\(\s*)" + buffer + R"(\b[^;]*?\)\s*\[)"));
+        std::regex_search(code,
+                          std::regex(R"(wp_ray_queue\(\s*)" + buffer + R"(\b[^;]*?\)\s*\[)")) ||
+        std::regex_search(code, std::regex(R"(\bwp_load_\w+\(\s*)" + buffer + "\\b")) ||
+        std::regex_search(code, std::regex(R"(\(__global\s+const\s+\w+\s*)" + element)) ||
+        through_pointer;
     const bool written =
         std::regex_search(code, std::regex(index + R"(\s*(\+=|=[^=]))")) ||
-        std::regex_search(code,
-                          std::regex(R"(wp_queue_push\(\s*(wp_ray_queue\(\s*)?)" + buffer + "\\b"));
+        std::regex_search(
+            code, std::regex(R"(wp_queue_push\(\s*(wp_ray_queue\(\s*)?)" + buffer + "\\b")) ||
+        through_pointer;
     return (read ? 1 : 0) | (written ? 2 : 0);
 }
 

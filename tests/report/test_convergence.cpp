@@ -105,6 +105,10 @@ TEST_CASE("converge: the hexroom's RMSE against its reference falls with slope -
     const Scene scene = hexroom(32);
     IntegratorOptions options;
     options.seed = 7;
+    // The rate of independent samples. Stratified ones (the default Sobol
+    // sampler) converge faster where the light's edges cross pixels: -0.61
+    // measured here (docs/convergence.md, "Samplers").
+    options.sampler = Sampler::Independent;
     WavefrontIntegrator integrator(test::device(), scene, options);
     constexpr int kRuns = 4;
     std::vector<double> spp, mse_sum;
@@ -157,6 +161,10 @@ TEST_CASE("converge: the half-image MSE estimate is within a factor 1.5 of the t
     const Scene scene = hexroom(32);
     IntegratorOptions options;
     options.seed = 11;
+    // The half-image estimate assumes independent samples. With the Sobol
+    // sampler each half is less evenly spread than the whole, so the estimate
+    // overstates the error (6.4x measured here: conservative).
+    options.sampler = Sampler::Independent;
     WavefrontIntegrator integrator(test::device(), scene, options);
     constexpr std::uint32_t kRuns = 16, kSpp = 64;
     double mse = 0.0, mse_halves = 0.0, rel_mse = 0.0, rel_mse_halves = 0.0;
