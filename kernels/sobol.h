@@ -60,6 +60,25 @@ static inline wp_uint wp_sobol_coordinate(wp_uint dimension) {
 }
 
 /* Bit 0 to bit 31 and so on, without builtins (OpenCL C 1.2 has none). */
+#if defined(__OPENCL_VERSION__) && defined(WP_BIT_REVERSAL_TABLE)
+/* On Oclgrind only (the host sets WP_BIT_REVERSAL_TABLE there: it cannot run
+ * llvm.bitreverse, the intrinsic clang makes of the swaps below), the bytes
+ * are reversed through a table: the same bits. */
+#define WP_REVERSED_2(n) n, n + 2 * 64, n + 1 * 64, n + 3 * 64
+#define WP_REVERSED_4(n)                                                                           \
+    WP_REVERSED_2(n), WP_REVERSED_2(n + 2 * 16), WP_REVERSED_2(n + 1 * 16),                        \
+        WP_REVERSED_2(n + 3 * 16)
+#define WP_REVERSED_6(n)                                                                           \
+    WP_REVERSED_4(n), WP_REVERSED_4(n + 2 * 4), WP_REVERSED_4(n + 1 * 4), WP_REVERSED_4(n + 3 * 4)
+__constant uchar wp_reversed_bytes[256] = {WP_REVERSED_6(0), WP_REVERSED_6(2), WP_REVERSED_6(1),
+                                           WP_REVERSED_6(3)};
+static inline wp_uint wp_reverse_bits(wp_uint x) {
+    return ((wp_uint)wp_reversed_bytes[x & 255u] << 24) |
+           ((wp_uint)wp_reversed_bytes[(x >> 8) & 255u] << 16) |
+           ((wp_uint)wp_reversed_bytes[(x >> 16) & 255u] << 8) |
+           (wp_uint)wp_reversed_bytes[x >> 24];
+}
+#else
 static inline wp_uint wp_reverse_bits(wp_uint x) {
     x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
     x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
@@ -67,6 +86,7 @@ static inline wp_uint wp_reverse_bits(wp_uint x) {
     x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
     return (x >> 16) | (x << 16);
 }
+#endif
 
 /* Laine and Karras' permutation with Burley's constants: adding the seed and
  * xoring in multiples by even constants changes each bit by a function of the

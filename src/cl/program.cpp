@@ -103,9 +103,21 @@ const char* cache_outcome_name(CacheOutcome outcome) {
     return "?";
 }
 
+// Options a device needs besides the caller's. Oclgrind (the simulator of
+// .ci/oclgrind-check) cannot run llvm.bitreverse, which clang makes of
+// sobol.h's bit reversal; there sobol.h reverses through a table instead
+// (the same bits).
+std::string device_workaround_options(const cl::Device& device) {
+    const cl::Platform platform(device.getInfo<CL_DEVICE_PLATFORM>());
+    if (platform.getInfo<CL_PLATFORM_NAME>().find("Oclgrind") != std::string::npos)
+        return " -D WP_BIT_REVERSAL_TABLE=1";
+    return "";
+}
+
 BuiltProgram build_program(const cl::Context& context, const cl::Device& device,
                            std::string_view source, std::string_view source_name,
-                           const std::string& options, const CachePolicy& cache) {
+                           const std::string& caller_options, const CachePolicy& cache) {
+    const std::string options = caller_options + device_workaround_options(device);
     auto start = std::chrono::steady_clock::now();
     auto elapsed = [&] {
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
