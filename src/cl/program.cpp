@@ -117,6 +117,8 @@ std::string device_workaround_options(const cl::Device& device) {
 BuiltProgram build_program(const cl::Context& context, const cl::Device& device,
                            std::string_view source, std::string_view source_name,
                            const std::string& caller_options, const CachePolicy& cache) {
+    // The workaround depends on the device alone, which the cache key holds
+    // already: the key and the reported options are the caller's.
     const std::string options = caller_options + device_workaround_options(device);
     auto start = std::chrono::steady_clock::now();
     auto elapsed = [&] {
@@ -124,7 +126,7 @@ BuiltProgram build_program(const cl::Context& context, const cl::Device& device,
     };
     std::string expanded = expand_includes(source, source_name);
     BuiltProgram built;
-    built.options = options;
+    built.options = caller_options;
 
     std::optional<ProgramCache> store;
     std::uint64_t key = 0;
@@ -135,7 +137,7 @@ BuiltProgram build_program(const cl::Context& context, const cl::Device& device,
             built.cache_note = "no cache directory (neither XDG_CACHE_HOME nor HOME is set)";
         } else {
             store.emplace(dir);
-            key = program_cache_key(expanded, options, device_cache_identity(device));
+            key = program_cache_key(expanded, caller_options, device_cache_identity(device));
             built.cache_file = store->entry_path(key).string();
             CacheLookup found = store->load(key);
             if (found.binary) {
