@@ -95,7 +95,7 @@ void add_integrator_options(CLI::App& command, IntegratorOptions& options) {
     add_choice(command, "--traversal", options.traversal,
                {Traversal::Auto, Traversal::Hierarchy, Traversal::Loop},
                "How rays find their hits: 'bvh' (a bounding volume hierarchy), 'loop' (test every "
-               "primitive) or 'auto' (the hierarchy past 128 primitives)");
+               "primitive) or 'auto' (the hierarchy past 64 primitives)");
     command.add_flag(
         "--regeneration,!--no-regeneration", options.regeneration,
         "Refill the slots of finished paths with new samples at once, keeping queues full "

@@ -15,7 +15,7 @@ namespace wp {
 // Scenes with at most this many primitives (triangles plus spheres) get
 // kernels with the counts compiled in (see SceneFeatures::fixed_counts). The
 // limit comes from measurement on PoCL: docs/specialization.md.
-inline constexpr std::uint32_t kMaxFixedCountPrimitives = 128;
+inline constexpr std::uint32_t kMaxFixedCountPrimitives = 64;
 // Scenes with more primitives than this are traversed through a bounding
 // volume hierarchy (SceneFeatures::bvh), fewer by testing every primitive.
 inline constexpr std::uint32_t kMinBvhPrimitives = kMaxFixedCountPrimitives + 1;
