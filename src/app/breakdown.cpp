@@ -108,18 +108,8 @@ int run_breakdown(const BreakdownCommand& command) {
 
     const Scene scene = load_scene_for_render(command.scene, command.width, command.height);
     Image reference;
-    if (!command.reference.empty()) {
-        reference = read_image(command.reference);
-        if (reference.width != scene.camera.width || reference.height != scene.camera.height)
-            throw std::runtime_error(
-                "reference '" + command.reference + "' is " + std::to_string(reference.width) +
-                "x" + std::to_string(reference.height) + " but the render is " +
-                std::to_string(scene.camera.width) + "x" + std::to_string(scene.camera.height) +
-                " (use --width/--height)");
-        if (count_nonfinite(reference) > 0)
-            throw std::runtime_error("reference '" + command.reference +
-                                     "' has NaN or infinite values");
-    }
+    if (!command.reference.empty())
+        reference = read_reference_for(command.reference, scene);
 
     DeviceContext device(select_device(command.device), false);
     const IntegratorOptions& options = command.integrator;

@@ -20,6 +20,7 @@
 #include "cl/context.hpp"
 #include "cl/device.hpp"
 #include "image/image_io.hpp"
+#include "image/metrics.hpp"
 #include "render/multi_device.hpp"
 #include "render/wavefront.hpp"
 #include "report/device_profile.hpp"
@@ -125,6 +126,20 @@ Scene load_scene_for_render(const std::string& path, int width, int height) {
     if (height > 0)
         scene.camera.height = height;
     return scene;
+}
+
+Image read_reference_for(const std::string& path, const Scene& scene) {
+    Image reference = read_image(path);
+    if (reference.width != scene.camera.width || reference.height != scene.camera.height)
+        throw std::runtime_error("reference '" + path + "' is " + std::to_string(reference.width) +
+                                 "x" + std::to_string(reference.height) + " but the render is " +
+                                 std::to_string(scene.camera.width) + "x" +
+                                 std::to_string(scene.camera.height) + " (use --width/--height)");
+    if (const std::size_t bad = count_nonfinite(reference); bad > 0)
+        throw std::runtime_error("reference '" + path + "' has " + std::to_string(bad) +
+                                 " NaN or infinite values; errors against it would be "
+                                 "meaningless");
+    return reference;
 }
 
 int run_devices() {

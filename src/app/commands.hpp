@@ -133,6 +133,10 @@ void write_result_image(const std::string& path, const Image& image, const ViewO
 // the scene's resolution).
 Scene load_scene_for_render(const std::string& path, int width, int height);
 
+// A reference image for errors against it (converge, breakdown): throws one
+// line if it cannot be read, is not the render's size, or holds NaN or Inf.
+Image read_reference_for(const std::string& path, const Scene& scene);
+
 // The render's film; throws "out of host memory: the film of WxH pixels
 // needs N MiB ..." where the allocation fails.
 Film allocate_film(int width, int height);

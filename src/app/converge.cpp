@@ -82,20 +82,8 @@ int run_converge(const ConvergeCommand& command) {
     const std::string scene_sha256 = file_sha256(command.scene); // for --out's metadata
 
     Image reference;
-    if (!command.reference.empty()) {
-        reference = read_image(command.reference);
-        if (reference.width != scene.camera.width || reference.height != scene.camera.height)
-            throw std::runtime_error(
-                "reference '" + command.reference + "' is " + std::to_string(reference.width) +
-                "x" + std::to_string(reference.height) + " but the render is " +
-                std::to_string(scene.camera.width) + "x" + std::to_string(scene.camera.height) +
-                " (use --width/--height)");
-        if (const std::size_t bad = count_nonfinite(reference); bad > 0)
-            throw std::runtime_error("reference '" + command.reference + "' has " +
-                                     std::to_string(bad) +
-                                     " NaN or infinite values; errors against it would be "
-                                     "meaningless");
-    }
+    if (!command.reference.empty())
+        reference = read_reference_for(command.reference, scene);
 
     const IntegratorOptions& options = command.integrator;
     DeviceContext device(select_device(command.device), false);
