@@ -149,26 +149,26 @@ TEST_CASE("cli: --target-error stops at the first estimate below the target") {
 
     // The same render in this process (same device, seed and one sample per
     // call, so the same film bit for bit), with the estimate recomputed from
-    // its half images: below the target at the spp reached, above it one call
-    // and one estimate earlier.
+    // its half images: below the target at the spp reached, above it at the
+    // estimate before (the previous call's end).
     const wp::Scene scene = wp::test::hexroom(32, 24);
     wp::WavefrontIntegrator integrator(wp::test::device(), scene, wp::IntegratorOptions{});
     wp::Film film(32, 24);
-    double at_spp = 0.0, one_call_earlier = 0.0, at_spp_before = 0.0;
+    double at_spp = 0.0, at_spp_before = 0.0;
     for (std::uint32_t done = 0; done < spp; ++done) {
         integrator.render(done, 1, film);
         if (done + 1 == spp_before)
             at_spp_before = estimate_from_halves(film, spp_before);
-        if (done + 1 == spp - 1)
-            one_call_earlier = estimate_from_halves(film, spp - 1);
     }
     at_spp = estimate_from_halves(film, spp);
     CHECK(at_spp < target);
     CHECK(at_spp == Approx(reported).epsilon(1e-3)); // printed to 4 digits
     CHECK(at_spp_before >= target);
     CHECK(at_spp_before == Approx(reported_before).epsilon(1e-3));
-    // On an image this small the estimate is made after every call.
-    CHECK(one_call_earlier >= target);
+    // The estimate is made after every call, so spp_before is the previous
+    // call's end (a call may render more than one sample per pixel when the
+    // machine is slow: the render loop sizes calls by time, so spp - 1 need
+    // not have been estimated at all).
 }
 
 TEST_CASE("cli: a target error not reached within --spp is said so") {
