@@ -11,11 +11,8 @@
  */
 #include "stage.h"
 
-__kernel void accumulate(WP_STAGE_PARAMETERS) {
-    wp_uint index = get_global_id(0);
-    if (index >= launch.count)
-        return;
-    wp_uint slot = finished_queue[index];
+/* Accumulate's work for one finished path: slot's radiance into its pixel. */
+static inline void wp_accumulate_path(WP_STAGE_PARAMETERS, wp_uint slot) {
     float4 value = (float4)(radiance[slot].xyz, 0.0f);
     if (!(isfinite(value.x) && isfinite(value.y) && isfinite(value.z))) {
         atomic_inc(&counters[WP_COUNTER_NONFINITE]);
@@ -26,4 +23,11 @@ __kernel void accumulate(WP_STAGE_PARAMETERS) {
     film_sum_squares[pixel] += value * value;
     if (path_sample[slot] & 1u)
         film_odd_sum[pixel] += (float4)(value.xyz, 1.0f);
+}
+
+__kernel void accumulate(WP_STAGE_PARAMETERS) {
+    wp_uint index = get_global_id(0);
+    if (index >= launch.count)
+        return;
+    wp_accumulate_path(WP_STAGE_ARGUMENTS, finished_queue[index]);
 }

@@ -17,16 +17,14 @@
 #include "rng.h"
 #include "stage.h"
 
-__kernel void generate(WP_STAGE_PARAMETERS) {
-    wp_uint index = get_global_id(0);
-    if (index >= launch.count)
-        return;
-    wp_uint slot = launch.from_finished ? finished_queue[index] : index;
+/* Generate's work for one slot: starts its next task's camera ray and says
+ * whether there was one (0: the slot has done all its tasks). */
+static inline int wp_generate_path(WP_STAGE_PARAMETERS, wp_uint slot) {
     wp_uint pixel_count = frame.width * frame.height;
     wp_uint owned = (pixel_count - slot + frame.pool_size - 1u) / frame.pool_size;
     wp_uint task = path_task[slot];
     if (task >= owned * frame.sample_count)
-        return;
+        return 0;
     path_task[slot] = task + 1u;
     wp_uint pixel = slot + (task % owned) * frame.pool_size;
     wp_uint sample = frame.first_sample + task / owned;
@@ -49,6 +47,16 @@ __kernel void generate(WP_STAGE_PARAMETERS) {
     path_sample[slot] = sample;
     path_depth[slot] = 0u;
     path_flags[slot] = WP_PATH_SPECULAR;
+    return 1;
+}
+
+__kernel void generate(WP_STAGE_PARAMETERS) {
+    wp_uint index = get_global_id(0);
+    if (index >= launch.count)
+        return;
+    wp_uint slot = launch.from_finished ? finished_queue[index] : index;
+    if (!wp_generate_path(WP_STAGE_ARGUMENTS, slot))
+        return;
     wp_queue_push(wp_ray_queue(ray_queues, frame, launch.ray_queue), counters, launch.ray_queue,
                   slot);
 }

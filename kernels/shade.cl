@@ -54,14 +54,13 @@ static inline float3 wp_shade_emission(const WpMaterial* material, const WpSurfa
     return sum;
 }
 
-/* Step 2: one shadow ray towards a light point, queued with the contribution
- * it carries if unblocked. */
-static inline void
-wp_shade_next_event(const WpSceneView* scene, const WpMaterial* material, const WpSurface* surface,
-                    float3 wo, float3 normal, float3 shading, float3 origin, float3 beta,
-                    const WpPathRandom* random, wp_uint slot, __global wp_uint* shadow_queue,
-                    __global wp_uint* counters, __global float4* shadow_origin,
-                    __global float4* shadow_direction, __global float4* shadow_contribution) {
+/* Step 2: one shadow ray towards a light point, with the contribution it
+ * carries if unblocked, into *shadow (the shade kernel queues it, a fused
+ * kernel traces it at once). */
+static inline void wp_shade_next_event(const WpSceneView* scene, const WpMaterial* material,
+                                       const WpSurface* surface, float3 wo, float3 normal,
+                                       float3 shading, float3 origin, float3 beta,
+                                       const WpPathRandom* random, WpShadowRay* shadow) {
 #if WP_HAS_LIGHTS && WP_USE_NEE
     WpLightSample light;
     if (!wp_sample_light(
@@ -72,15 +71,15 @@ wp_shade_next_event(const WpSceneView* scene, const WpMaterial* material, const 
                           light.irradiance * (1.0f / WP_PI);
     if (wp_is_black(contribution))
         return;
-    wp_queue_push(shadow_queue, counters, WP_COUNTER_SHADOW_RAYS, slot);
-    shadow_origin[slot] = (float4)(origin, 0.0f);
-    shadow_direction[slot] = (float4)(light.direction, light.length);
-    shadow_contribution[slot] = (float4)(contribution, 0.0f);
+    shadow->origin = origin;
+    shadow->direction = light.direction;
+    shadow->length = light.length;
+    shadow->contribution = contribution;
+    shadow->made = 1;
 #else
     (void)scene, (void)material, (void)surface, (void)wo, (void)normal, (void)shading;
     (void)origin, (void)beta;
-    (void)random, (void)slot, (void)shadow_queue, (void)counters, (void)shadow_origin;
-    (void)shadow_direction, (void)shadow_contribution;
+    (void)random, (void)shadow;
 #endif
 }
 
@@ -112,26 +111,22 @@ static inline int wp_shade_roulette(const WpMaterial* material, const WpBsdfSamp
 #endif
 }
 
-__kernel void shade(WP_STAGE_PARAMETERS) {
-    wp_uint index = get_global_id(0);
-    if (index >= counters[launch.ray_queue])
-        return;
-    wp_uint slot = wp_ray_queue(ray_queues, frame, launch.ray_queue)[index];
-    wp_uint primitive = hit_primitive[slot];
-    if (primitive == WP_NO_HIT) { /* the ray left the scene: the path ends with what it has */
-        wp_queue_push(finished_queue, counters, WP_COUNTER_FINISHED, slot);
-        return;
-    }
+/* Shade's work for one path: slot's ray hit `primitive` at distance t.
+ * Updates the slot's path state, leaves the shadow ray it made (if any) in
+ * *shadow, and says whether the path goes on (else it has finished). */
+static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primitive, float t,
+                                WpShadowRay* shadow) {
+    shadow->made = 0;
+    if (primitive == WP_NO_HIT) /* the ray left the scene: the path ends with what it has */
+        return 0;
 
     WpSceneView scene = WP_SCENE_VIEW();
     float3 direction = ray_direction[slot].xyz;
-    WpSurface surface =
-        wp_surface_at(&scene, primitive, ray_origin[slot].xyz, direction, hit_t[slot]);
+    WpSurface surface = wp_surface_at(&scene, primitive, ray_origin[slot].xyz, direction, t);
     if (surface.inside_solid) {
         /* Inside a mirror sphere such a path would bounce until the depth
          * cap; absorb it instead. */
-        wp_queue_push(finished_queue, counters, WP_COUNTER_FINISHED, slot);
-        return;
+        return 0;
     }
     WpMaterial material = materials[surface.material];
     /* The geometric and the shading normal on the side the ray came from, and
@@ -147,26 +142,21 @@ __kernel void shade(WP_STAGE_PARAMETERS) {
 
     radiance[slot] =
         (float4)(wp_shade_emission(&material, &surface, flags, beta, radiance[slot].xyz), 0.0f);
-    if (wp_bsdf_is_black(&material)) {
-        wp_queue_push(finished_queue, counters, WP_COUNTER_FINISHED, slot);
-        return;
-    }
+    if (wp_bsdf_is_black(&material))
+        return 0;
 
     float3 origin = wp_offset_ray_origin(spawn, normal, surface.scale);
     if (!wp_bsdf_is_delta(&material) && WP_PATH_NEXT_EVENT_SELECTED(flags))
         wp_shade_next_event(&scene, &material, &surface, direction, normal, shading, origin, beta,
-                            &random, slot, shadow_queue, counters, shadow_origin, shadow_direction,
-                            shadow_contribution);
+                            &random, shadow);
 
     float u1 = wp_path_random(&random, WP_DIM_BSDF_U);
     float u2 = wp_path_random(&random, WP_DIM_BSDF_V);
     WpBsdfSample scattered = wp_bsdf_sample(&material, direction, shading, u1, u2);
 #if WP_HAS_SHADING_NORMALS
     /* Scattered by the shading normal into the true surface: absorbed. */
-    if (surface.smooth && !(dot(scattered.direction, normal) > 0.0f)) {
-        wp_queue_push(finished_queue, counters, WP_COUNTER_FINISHED, slot);
-        return;
-    }
+    if (surface.smooth && !(dot(scattered.direction, normal) > 0.0f))
+        return 0;
 #endif
     if (scattered.specular)
         flags |= WP_PATH_SPECULAR;
@@ -182,15 +172,34 @@ __kernel void shade(WP_STAGE_PARAMETERS) {
         atomic_inc(&counters[WP_COUNTER_CAPPED]);
         survives = 0;
     }
-    if (!survives) {
-        wp_queue_push(finished_queue, counters, WP_COUNTER_FINISHED, slot);
-        return;
-    }
+    if (!survives)
+        return 0;
     throughput[slot] = (float4)(beta / survival, 0.0f);
     ray_origin[slot] = (float4)(origin, 0.0f);
     ray_direction[slot] = (float4)(scattered.direction, 0.0f);
     path_depth[slot] = depth + 1u;
     path_flags[slot] = flags;
-    wp_queue_push(wp_ray_queue(ray_queues, frame, 1u - launch.ray_queue), counters,
-                  1u - launch.ray_queue, slot);
+    return 1;
+}
+
+__kernel void shade(WP_STAGE_PARAMETERS) {
+    wp_uint index = get_global_id(0);
+    if (index >= counters[launch.ray_queue])
+        return;
+    wp_uint slot = wp_ray_queue(ray_queues, frame, launch.ray_queue)[index];
+    wp_uint primitive = hit_primitive[slot];
+    WpShadowRay shadow;
+    int goes_on = wp_shade_path(WP_STAGE_ARGUMENTS, slot, primitive,
+                                primitive == WP_NO_HIT ? 0.0f : hit_t[slot], &shadow);
+    if (shadow.made) {
+        wp_queue_push(shadow_queue, counters, WP_COUNTER_SHADOW_RAYS, slot);
+        shadow_origin[slot] = (float4)(shadow.origin, 0.0f);
+        shadow_direction[slot] = (float4)(shadow.direction, shadow.length);
+        shadow_contribution[slot] = (float4)(shadow.contribution, 0.0f);
+    }
+    if (goes_on)
+        wp_queue_push(wp_ray_queue(ray_queues, frame, 1u - launch.ray_queue), counters,
+                      1u - launch.ray_queue, slot);
+    else
+        wp_queue_push(finished_queue, counters, WP_COUNTER_FINISHED, slot);
 }

@@ -22,3 +22,15 @@ __kernel void shadow(WP_STAGE_PARAMETERS) {
         sum[3] += add[3];
     }
 }
+
+/* The same test for a shadow ray that a fused kernel traces as soon as shade
+ * made it (bounce.cl, wave.cl): the same additions to the same radiance. */
+static inline void wp_trace_shadow_ray(const WpSceneView* scene, const WpShadowRay* ray,
+                                       __global float4* radiance, wp_uint slot) {
+    if (!wp_occluded(scene, ray->origin, ray->direction, ray->length)) {
+        __global float* sum = (__global float*)(radiance + slot);
+        sum[0] += ray->contribution.x;
+        sum[1] += ray->contribution.y;
+        sum[2] += ray->contribution.z;
+    }
+}

@@ -44,6 +44,35 @@ static inline WpSceneView wp_scene_view(WpFrame frame WP_SCENE_BUFFERS(WP_SCENE_
     return view;
 }
 
+/* The stages' per-item work lives in functions that take the stage's own
+ * parameters (WP_STAGE_PARAMETERS) and are called with WP_STAGE_ARGUMENTS, so
+ * that a fused kernel (bounce.cl, wave.cl) runs the very same code. */
+#define WP_PATH_ARGUMENT(name, type, per_slot, per_pixel, fixed) , name
+#define WP_STAGE_ARGUMENTS                                                                         \
+    frame, launch WP_SCENE_BUFFERS(WP_SCENE_ARGUMENT) WP_PATH_BUFFERS(WP_PATH_ARGUMENT)
+
+/* The fused kernels' parameters: the same, but every buffer `restrict` (they
+ * are distinct buffers; read-only ones may share a dummy). Without it the
+ * compiler must assume that a store to the path state may change the scene,
+ * and reloads (and recomputes from) the scene's primitives for every
+ * work-item instead of once per work-group loop. */
+#define WP_SCENE_PARAMETER_RESTRICT(name, type) , __global const type* restrict name
+#define WP_PATH_PARAMETER_RESTRICT(name, type, per_slot, per_pixel, fixed)                         \
+    , __global type* restrict name
+#define WP_FUSED_PARAMETERS                                                                        \
+    WpFrame frame, WpLaunch launch WP_SCENE_BUFFERS(WP_SCENE_PARAMETER_RESTRICT)                   \
+                       WP_PATH_BUFFERS(WP_PATH_PARAMETER_RESTRICT)
+
+/* A shadow ray that shade made: the stages plan queues it for the shadow
+ * stage, the fused plans trace it at once (shadow.cl, wp_trace_shadow_ray). */
+typedef struct {
+    float3 origin;
+    float3 direction;
+    float length;
+    float3 contribution; /* added to the path's radiance if unblocked */
+    int made;
+} WpShadowRay;
+
 /* Inside a stage: the scene view of this launch. */
 #define WP_SCENE_ARGUMENT(name, type) , name
 #define WP_SCENE_VIEW() wp_scene_view(frame WP_SCENE_BUFFERS(WP_SCENE_ARGUMENT))

@@ -100,6 +100,12 @@ void add_integrator_options(CLI::App& command, IntegratorOptions& options) {
         "--regeneration,!--no-regeneration", options.regeneration,
         "Refill the slots of finished paths with new samples at once, keeping queues full "
         "(default: off, one wave of samples at a time; see docs/profiling.md)");
+    add_choice(command, "--launch-plan", options.launch_plan,
+               {LaunchPlan::Auto, LaunchPlan::Stages, LaunchPlan::Bounce, LaunchPlan::Wave},
+               "How the stages are launched: 'stages' (a kernel per stage), 'bounce' (intersect, "
+               "shade and shadow fused per bounce), 'wave' (one megakernel per wave, no host "
+               "round trip per bounce) or 'auto' (per device, as measured; `wavepath info` "
+               "says which). The images agree (docs/architecture.md)");
     command.add_option("--pool", options.pool_size,
                        "Path slots on the device (default: one per pixel); fewer use less memory");
     command.add_flag_callback(

@@ -278,6 +278,7 @@ int run_render(const RenderCommand& command) {
         context.build_seconds = integrator.integrator().program().build_seconds;
         context.regeneration = options.regeneration;
         context.pool_size = integrator.integrator().pool_size();
+        context.launch_plan = to_string(integrator.integrator().launch_plan().plan);
         if (command.profile)
             std::printf("\n%s", multi_device_profile_table(integrator, context).c_str());
         if (!command.profile_json.empty())

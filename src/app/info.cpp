@@ -285,10 +285,12 @@ int run_info(const InfoCommand& command) {
                 command.integrator.general_kernels ? "general (--general)" : "specialised");
     std::printf("build options: %s\n", built.options.c_str());
     std::printf("sampler: %s\n", to_string(command.integrator.sampler).c_str());
+    std::printf("launch plan: %s (%s)\n", to_string(integrator.launch_plan().plan).c_str(),
+                integrator.launch_plan().why.c_str());
     print_geometry_memory(integrator.device_scene());
 
     const CachePolicy& cache = command.integrator.program_cache;
-    std::printf("program build (the five kernels are one program):\n");
+    std::printf("program build (the stage and fused kernels are one program):\n");
     std::printf("  compiler start-up (a trivial first build in this process): %s\n",
                 format_seconds(warm_up.build_seconds).c_str());
     std::printf("  this run: %s, cache %s%s%s\n", format_seconds(built.build_seconds).c_str(),

@@ -1,4 +1,5 @@
-// The wavefront stages, in pipeline order: the one table of their names.
+// The wavefront stages, in pipeline order, then the fused kernels that run
+// several stages' work in one launch: the one table of their names.
 // Stage X(Enum, name) is the kernel `name` of kernels/name.cl; the program
 // (src/cl/program.cpp), the integrator, the profiler and `wavepath info` all
 // take the stages from here.
@@ -12,12 +13,15 @@
     X(Intersect, intersect)                                                                        \
     X(Shade, shade)                                                                                \
     X(Shadow, shadow)                                                                              \
-    X(Accumulate, accumulate)
+    X(Accumulate, accumulate)                                                                      \
+    /* the fused kernels of the launch plans (render/launch_plan.hpp) */                           \
+    X(Bounce, bounce)                                                                              \
+    X(Wave, wave)
 
 namespace wp {
 
 #define WP_STAGE_NAME(enum_name, name) #name,
-inline constexpr std::array<std::string_view, 5> kStageKernelNames = {
+inline constexpr std::array<std::string_view, 7> kStageKernelNames = {
     WP_STAGE_KERNELS(WP_STAGE_NAME)};
 #undef WP_STAGE_NAME
 

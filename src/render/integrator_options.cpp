@@ -89,6 +89,20 @@ std::string to_string(Sampler sampler) {
     return "?";
 }
 
+std::string to_string(LaunchPlan plan) {
+    switch (plan) {
+    case LaunchPlan::Auto:
+        return "auto";
+    case LaunchPlan::Stages:
+        return "stages";
+    case LaunchPlan::Bounce:
+        return "bounce";
+    case LaunchPlan::Wave:
+        return "wave";
+    }
+    return "?";
+}
+
 std::string describe_estimator(const IntegratorOptions& options) {
     const std::string diffuse = to_string(options.diffuse_sampling);
     std::string text = options.next_event_estimation

@@ -39,6 +39,16 @@ enum class Traversal {
     Loop,      // always every primitive (the images agree; only the speed differs)
 };
 
+// How the stages are launched (docs/architecture.md, "Launch plans"). Every
+// plan runs the same stage functions in the same order per path, so the
+// images agree (tests/render/test_launch_plans.cpp says how closely).
+enum class LaunchPlan {
+    Auto,   // chosen per device by measurement (choose_launch_plan, wavefront.hpp)
+    Stages, // one kernel per stage, a host synchronisation per bounce
+    Bounce, // intersect, shade and shadow fused: one kernel per bounce
+    Wave,   // one megakernel per wave: each work-item runs its slot's whole paths
+};
+
 // Every path type (kernels/path_type.h): the full estimate.
 inline constexpr std::uint32_t kAllPathTypes = (1u << WP_PATH_TYPE_COUNT) - 1u;
 
@@ -83,6 +93,7 @@ struct IntegratorOptions {
     // Path slots; 0 means one per pixel. Fewer save device memory (about 180
     // bytes each) at some cost in parallelism.
     std::uint32_t pool_size = 0;
+    LaunchPlan launch_plan = LaunchPlan::Auto;
     // Whether the kernel build reads and writes the on-disk program cache,
     // and where. The default follows the environment (WAVEPATH_NO_CACHE,
     // WAVEPATH_CACHE_DIR) as it is when the options are made; `--no-cache`
@@ -96,6 +107,7 @@ std::string to_string(DiffuseSampling sampling);
 std::string to_string(LightSampling sampling);
 std::string to_string(Traversal traversal); // "auto", "bvh", "loop"
 std::string to_string(Sampler sampler);     // "independent", "sobol"
+std::string to_string(LaunchPlan plan);     // "auto", "stages", "bounce", "wave"
 
 // The path types' names, in WP_PATH_TYPE_* order: "camera", "direct",
 // "indirect", "mirror", "caustic".

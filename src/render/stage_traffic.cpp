@@ -65,6 +65,35 @@ constexpr std::array<BufferAccess, 7> kAccumulate{{{"finished_queue", R},
                                                    {"film_sum_squares", RW},
                                                    {"film_odd_sum", RW}}};
 
+// kernels/bounce.cl, per ray: shade's path state, without the hit and the
+// shadow-ray buffers (those stay in registers); as in kShade, a path ends in
+// finished_queue or goes on, never both.
+constexpr std::array<BufferAccess, 10> kBounce{{{"ray_queues", RW},
+                                                {"ray_origin", RW},
+                                                {"ray_direction", RW},
+                                                {"throughput", RW},
+                                                {"radiance", RW},
+                                                {"path_pixel", R},
+                                                {"path_sample", R},
+                                                {"path_depth", RW},
+                                                {"path_flags", RW},
+                                                {"finished_queue", W}}};
+
+// kernels/wave.cl, per sample: a work-item's path state is its own slot's,
+// touched bounce after bounce in cache; what must reach memory is the
+// slot's state once and its pixel's film.
+constexpr std::array<BufferAccess, 11> kWave{{{"path_task", RW},
+                                              {"path_pixel", RW},
+                                              {"path_sample", RW},
+                                              {"path_depth", RW},
+                                              {"path_flags", RW},
+                                              {"ray_origin", RW},
+                                              {"ray_direction", RW},
+                                              {"throughput", RW},
+                                              {"radiance", RW},
+                                              {"film_sum", RW},
+                                              {"film_sum_squares", RW}}};
+
 } // namespace
 
 std::span<const BufferAccess> stage_buffer_accesses(Stage stage) {
@@ -79,6 +108,10 @@ std::span<const BufferAccess> stage_buffer_accesses(Stage stage) {
         return kShadow;
     case Stage::Accumulate:
         return kAccumulate;
+    case Stage::Bounce:
+        return kBounce;
+    case Stage::Wave:
+        return kWave;
     case Stage::Transfer:
         break;
     }

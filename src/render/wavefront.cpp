@@ -4,6 +4,7 @@
 #include <array>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <numeric>
 #include <optional>
 #include <stdexcept>
@@ -22,6 +23,22 @@ constexpr std::uint64_t kIterationsPerFlush = 32;
 // and never depend on the group size. A fixed size matters on PoCL, which
 // compiles a kernel anew for every distinct local size it is given.
 constexpr std::uint32_t kWorkGroupSize = 64;
+
+// The wave plan: with regeneration a megakernel launch runs this many tasks
+// of each slot back to back (without, one: each launch is one wave); the
+// film is folded after this many tasks per slot, about as often as the
+// stages plan folds it (kIterationsPerFlush).
+constexpr std::uint32_t kWaveTasksPerFlush = 8;
+
+// The work-group size: kWorkGroupSize, or WAVEPATH_WORK_GROUP_SIZE (for
+// measuring; docs/performance.md), at most the device's maximum.
+std::size_t work_group_size(const DeviceInfo& device) {
+    std::size_t size = kWorkGroupSize;
+    if (const char* text = std::getenv("WAVEPATH_WORK_GROUP_SIZE"))
+        if (const long value = std::strtol(text, nullptr, 10); value > 0)
+            size = static_cast<std::size_t>(value);
+    return std::min(size, device.max_work_group_size);
+}
 
 std::string gibibytes(std::uint64_t bytes) {
     char text[32];
@@ -50,9 +67,30 @@ void check_device_memory(const DeviceInfo& device, int width, int height, std::u
 
 } // namespace
 
+ChosenLaunchPlan choose_launch_plan(LaunchPlan requested, const DeviceInfo& device,
+                                    bool vectorised_tracing) {
+    if (requested != LaunchPlan::Auto)
+        return {requested, "asked for (--launch-plan " + to_string(requested) + ")"};
+    if (device.type != "CPU")
+        return {LaunchPlan::Stages,
+                "auto: a " + (device.type.empty() ? std::string("non-CPU") : device.type) +
+                    " device: separate stage kernels, full launches (a default, not measured "
+                    "here)"};
+    if (vectorised_tracing)
+        return {LaunchPlan::Stages,
+                "auto: a CPU device and fixed-count tracing, which PoCL vectorises across a "
+                "work-group only in the separate intersect and shadow kernels (fused, it runs "
+                "scalar: 2.4x slower; docs/performance.md, \"Launch plans (fusion), measured\")"};
+    return {LaunchPlan::Wave,
+            "auto: a CPU device and hierarchy or general tracing, which no plan vectorises: the "
+            "wave megakernel saves the stages' memory traffic and host round trips "
+            "(docs/performance.md, \"Launch plans (fusion), measured\")"};
+}
+
 WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const Scene& scene,
                                          IntegratorOptions options)
-    : device_(device), features_(analyse_features(scene)), options_(options) {
+    : device_(device), features_(analyse_features(scene)), options_(options),
+      group_size_(work_group_size(device.info)) {
     if (options_.traversal != Traversal::Auto) {
         features_.bvh = options_.traversal == Traversal::Hierarchy;
         if (features_.bvh)
@@ -66,6 +104,8 @@ WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const Scene& sce
 
     const SceneFeatures compiled =
         options_.general_kernels ? SceneFeatures::general_for(features_) : features_;
+    plan_ = choose_launch_plan(options_.launch_plan, device_.info,
+                               compiled.fixed_counts && !compiled.bvh);
     scene_ = flatten_scene(scene, compiled.bvh);
     program_ =
         build_wavefront_program(device_.context, device_.info.device,
@@ -102,7 +142,7 @@ void WavefrontIntegrator::launch(Stage stage, const WpLaunch& arguments, std::ui
     cl::Kernel& kernel = kernels_[static_cast<std::size_t>(stage)];
     kernel.setArg(kFrameArgument, frame_);
     kernel.setArg(kLaunchArgument, arguments);
-    std::size_t group = std::min<std::size_t>(kWorkGroupSize, device_.info.max_work_group_size);
+    std::size_t group = group_size_;
     std::size_t global = (items + group - 1) / group * group;
     cl::Event* event = profiler_ ? profiler_->begin(stage, items) : nullptr;
     device_.queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global),
@@ -154,6 +194,11 @@ void WavefrontIntegrator::render_range(std::uint32_t first_sample, std::uint32_t
                                        const std::function<void(double)>& on_progress) {
     if (count == 0)
         return;
+    if (plan_.plan == LaunchPlan::Wave) {
+        render_waves(first_sample, count, film, on_progress);
+        return;
+    }
+    const bool fused = plan_.plan == LaunchPlan::Bounce;
     auto start = std::chrono::steady_clock::now();
     cl::CommandQueue& q = device_.queue;
     frame_.first_sample = first_sample;
@@ -191,8 +236,17 @@ void WavefrontIntegrator::render_range(std::uint32_t first_sample, std::uint32_t
         q.enqueueWriteBuffer(buffers_.counters, CL_FALSE, sizeof(cl_uint) * WP_COUNTER_SHADOW_RAYS,
                              2 * sizeof(cl_uint), zeros.data());
         const auto bound = static_cast<std::uint32_t>(upper_bound);
-        launch(Stage::Intersect, make_launch(0, in), bound);
-        launch(Stage::Shade, make_launch(0, in), bound);
+        // The records of this iteration's ray launches (intersect and shade,
+        // or bounce), whose item counts the sync below gives.
+        std::optional<std::size_t> first_ray_record;
+        if (fused) {
+            launch(Stage::Bounce, make_launch(0, in), bound);
+        } else {
+            launch(Stage::Intersect, make_launch(0, in), bound);
+            launch(Stage::Shade, make_launch(0, in), bound);
+        }
+        if (profiler_ && bound > 0)
+            first_ray_record = profiler_->last_record() - (fused ? 0 : 1);
 
         // The one synchronisation per iteration: how long each queue is.
         std::array<cl_uint, 4> counts{};
@@ -214,11 +268,10 @@ void WavefrontIntegrator::render_range(std::uint32_t first_sample, std::uint32_t
         if (profiler_) {
             // Launches were sized for the most the queues could hold; now the
             // device has said how many items there really were.
-            if (bound > 0) {
-                std::size_t shade_record = profiler_->last_record() - 1;
-                profiler_->set_items(shade_record - 1, traced);
-                profiler_->set_items(shade_record, traced);
-            }
+            if (first_ray_record)
+                for (std::size_t r = *first_ray_record; r < *first_ray_record + (fused ? 1 : 2);
+                     ++r)
+                    profiler_->set_items(r, traced);
             if (generate_record)
                 profiler_->set_items(*generate_record, traced - survivors);
             generate_record.reset();
@@ -227,7 +280,8 @@ void WavefrontIntegrator::render_range(std::uint32_t first_sample, std::uint32_t
         if (traced == 0)
             break; // every slot has finished all its samples
 
-        launch(Stage::Shadow, make_launch(shadows, in), shadows);
+        if (!fused) // the bounce kernel traced its shadow rays already
+            launch(Stage::Shadow, make_launch(shadows, in), shadows);
         launch(Stage::Accumulate, make_launch(finished, in), finished);
         finished_total += finished;
         if (on_progress)
@@ -251,6 +305,67 @@ void WavefrontIntegrator::render_range(std::uint32_t first_sample, std::uint32_t
         in = out;
         if ((iteration + 1) % kIterationsPerFlush == 0)
             flush_film(film);
+    }
+    flush_film(film);
+
+    std::array<cl_uint, WP_COUNTER_COUNT> counters{};
+    read(buffers_.counters, sizeof(counters), counters.data(), true);
+    stats_.capped_paths += counters[WP_COUNTER_CAPPED];
+    stats_.nonfinite_samples += counters[WP_COUNTER_NONFINITE];
+    if (profiler_)
+        profiler_->resolve_completed();
+    stats_.render_seconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void WavefrontIntegrator::render_waves(std::uint32_t first_sample, std::uint32_t count, Film& film,
+                                       const std::function<void(double)>& on_progress) {
+    auto start = std::chrono::steady_clock::now();
+    cl::CommandQueue& q = device_.queue;
+    frame_.first_sample = first_sample;
+    frame_.sample_count = count;
+    q.enqueueFillBuffer(buffers_.path_task, cl_uint{0}, 0, sizeof(cl_uint) * pool_size_);
+    q.enqueueFillBuffer(buffers_.counters, cl_uint{0}, 0, sizeof(cl_uint) * WP_COUNTER_COUNT);
+
+    // Without regeneration a launch is one wave, one task per slot; with it a
+    // slot runs several tasks back to back (regeneration within the
+    // work-item). Every slot has at most `owned` x count tasks.
+    const std::uint32_t per_launch = options_.regeneration ? kWaveTasksPerFlush : 1u;
+    const std::uint64_t owned = (pixel_count_ + pool_size_ - 1) / pool_size_;
+    const std::uint64_t tasks = owned * count;
+    const double pixels = static_cast<double>(pixel_count_);
+    std::uint64_t finished_total = 0;
+    std::uint64_t since_flush = 0; // tasks per slot since the film was folded
+    static const std::array<cl_uint, 3> zeros{0, 0, 0};
+    for (std::uint64_t done = 0; done < tasks; done += per_launch) {
+        q.enqueueWriteBuffer(buffers_.counters, CL_FALSE, 0, 3 * sizeof(cl_uint), zeros.data());
+        launch(Stage::Wave, make_launch(per_launch, 0), pool_size_);
+        std::optional<std::size_t> record;
+        if (profiler_)
+            record = profiler_->last_record();
+        std::array<cl_uint, 3> counts{};
+        read(buffers_.counters, sizeof(counts), counts.data(), true);
+        const std::uint32_t rays = counts[WP_COUNTER_QUEUE_A];
+        const std::uint32_t samples = counts[WP_COUNTER_QUEUE_B];
+        stats_.iterations += 1;
+        stats_.queue_lengths.push_back(rays);
+        stats_.camera_rays += samples;
+        stats_.bounce_rays += rays - samples;
+        stats_.shadow_rays += counts[WP_COUNTER_SHADOW_RAYS];
+        if (profiler_) {
+            profiler_->set_items(*record, samples);
+            profiler_->resolve_completed();
+        }
+        if (samples == 0)
+            break; // every slot has done all its tasks (a slot owning fewer pixels ends first)
+        finished_total += samples;
+        if (on_progress)
+            on_progress(static_cast<double>(finished_total) / pixels);
+        since_flush += per_launch;
+        if (since_flush >= kWaveTasksPerFlush && done + per_launch < tasks) {
+            flush_film(film);
+            since_flush = 0;
+        }
     }
     flush_film(film);
 

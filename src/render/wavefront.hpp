@@ -43,6 +43,18 @@ struct RenderStats {
     double host_seconds = 0.0;   // host work inside it (folding the film)
 };
 
+// The launch plan `requested` resolves to on `device` for a program whose
+// tracing is (or is not) the fixed-count kind that PoCL vectorises across a
+// work-group (SceneFeatures::fixed_counts without a hierarchy). Auto: by
+// device type and that, from the measurements of docs/performance.md,
+// "Launch plans (fusion), measured". And why, in one line for `wavepath info`.
+struct ChosenLaunchPlan {
+    LaunchPlan plan = LaunchPlan::Stages;
+    std::string why;
+};
+ChosenLaunchPlan choose_launch_plan(LaunchPlan requested, const DeviceInfo& device,
+                                    bool vectorised_tracing);
+
 // The -D options that compile the kernels for `features` and the estimator
 // of `options` (the one place that makes them).
 std::string kernel_build_options(const SceneFeatures& features, const IntegratorOptions& options);
@@ -69,6 +81,8 @@ class WavefrontIntegrator {
     const SceneFeatures& features() const { return features_; }
     const DeviceScene& device_scene() const { return scene_; }
     const IntegratorOptions& options() const { return options_; }
+    // The plan the render runs (never Auto) and why it was chosen.
+    const ChosenLaunchPlan& launch_plan() const { return plan_; }
     std::uint32_t pool_size() const { return pool_size_; }
     DeviceContext& device() const { return device_; }
     int width() const { return scene_.width; }
@@ -86,6 +100,9 @@ class WavefrontIntegrator {
   private:
     void render_range(std::uint32_t first_sample, std::uint32_t count, Film& film,
                       const std::function<void(double)>& on_progress);
+    // The wave plan's render_range: megakernel launches, no per-bounce sync.
+    void render_waves(std::uint32_t first_sample, std::uint32_t count, Film& film,
+                      const std::function<void(double)>& on_progress);
     // Launches `stage` over `items` work-items (rounded up to whole groups).
     void launch(Stage stage, const WpLaunch& arguments, std::uint32_t items);
     // Device seconds of `repetitions` launches of one stage.
@@ -102,6 +119,8 @@ class WavefrontIntegrator {
     DeviceScene scene_;
     SceneFeatures features_;
     IntegratorOptions options_;
+    ChosenLaunchPlan plan_;
+    std::size_t group_size_ = 0; // work-group size of every launch
     BuiltProgram program_;
     WpFrame frame_{};
     std::uint32_t pixel_count_ = 0;

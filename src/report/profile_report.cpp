@@ -70,16 +70,23 @@ std::string profile_table(const Profiler& profiler, const RenderStats& stats,
     const double busy = profiler.device_busy_seconds();
     const double wall = stats.render_seconds;
     std::string out;
-    out += format_text("profile: %s, %dx%d, %u spp on %s (%s, pool %u)\n", context.scene.c_str(),
-                       context.width, context.height, context.spp, context.device.c_str(),
-                       context.regeneration ? "regeneration" : "one wave at a time",
-                       context.pool_size);
+    out += format_text(
+        "profile: %s, %dx%d, %u spp on %s (%s, pool %u%s%s)\n", context.scene.c_str(),
+        context.width, context.height, context.spp, context.device.c_str(),
+        context.regeneration ? "regeneration" : "one wave at a time", context.pool_size,
+        context.launch_plan.empty() ? "" : ", launch plan ", context.launch_plan.c_str());
     out +=
         format_text("%-12s %9s %14s %11s %7s %16s %13s %7s %8s %7s\n", "stage", "launches", "items",
                     "device ms", "share", "rate", "items/launch", "B/item", "GB/s", "of copy");
     for (int s = 0; s < kStageCount; ++s) {
         const StageTotals& t = totals[s];
         Stage stage = static_cast<Stage>(s);
+        // The fused kernels' rows only when they ran; with a fused plan, only
+        // the kernels that ran (the wave plan's one kernel holds every stage).
+        const bool fused_kernel = stage == Stage::Bounce || stage == Stage::Wave;
+        const bool fused_plan = context.launch_plan == "bounce" || context.launch_plan == "wave";
+        if (t.launches == 0 && stage != Stage::Transfer && (fused_kernel || fused_plan))
+            continue;
         double rate = t.device_seconds > 0 ? static_cast<double>(t.items) / t.device_seconds : 0.0;
         std::string rate_text = stage == Stage::Transfer ? format_text("%.3g MB/s", rate / 1e6)
                                 : traces_rays(stage)     ? format_text("%.3f Mrays/s", rate / 1e6)
@@ -152,6 +159,7 @@ nlohmann::json profile_json(const Profiler& profiler, const RenderStats& stats,
         {"build_cached", context.build_cached},
         {"regeneration", context.regeneration},
         {"pool_size", context.pool_size},
+        {"launch_plan", context.launch_plan},
         {"stages", stages},
         {"copy_bandwidth_gigabytes_per_second", context.memory_bandwidth * 1e-9},
         {"host_seconds", stats.host_seconds},

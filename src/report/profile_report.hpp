@@ -25,6 +25,7 @@ struct ProfileContext {
     bool build_cached = false;
     bool regeneration = true;
     std::uint32_t pool_size = 0;
+    std::string launch_plan; // e.g. "stages"; empty: not said
     // The device's copy bandwidth in bytes/s (cl/memory_bandwidth.hpp), which
     // each stage's memory traffic is compared with; 0: not measured.
     double memory_bandwidth = 0.0;

@@ -53,6 +53,7 @@ inline ProfiledRender profiled_render(const Scene& scene, std::uint32_t spp, boo
     options.seed = 5;
     options.regeneration = regeneration;
     options.pool_size = pool;
+    options.launch_plan = LaunchPlan::Stages; // the tests read the stages' records
     WavefrontIntegrator integrator(profiling_device(), scene, options);
     ProfiledRender out{{}, {}, Film(scene.camera.width, scene.camera.height)};
     integrator.set_profiler(&out.profiler);

@@ -1,0 +1,35 @@
+/* Fused plan "bounce": intersect, shade and shadow of one queued ray in one
+ * work-item (src/render/wavefront.cpp, LaunchPlan::Bounce).
+ *
+ * The same functions as the stage kernels, in the same order, so the image
+ * is the stages plan's: the closest hit stays in registers instead of going
+ * through hit_t/hit_primitive, and the shadow ray that shade makes is traced
+ * at once instead of through the shadow queue. Survivors go to the other ray
+ * queue and finished paths to the finished queue, as shade's do; the shadow
+ * counter only counts the rays (for the statistics). */
+#include "shade.cl"
+#include "shadow.cl"
+#include "stage.h"
+#include "traverse.h"
+
+__kernel void bounce(WP_FUSED_PARAMETERS) {
+    wp_uint index = get_global_id(0);
+    if (index >= counters[launch.ray_queue])
+        return;
+    wp_uint slot = wp_ray_queue(ray_queues, frame, launch.ray_queue)[index];
+    WpSceneView scene = WP_SCENE_VIEW();
+    float t;
+    wp_uint primitive = wp_closest_hit(&scene, wp_load_xyz(ray_origin, slot),
+                                       wp_load_xyz(ray_direction, slot), INFINITY, &t);
+    WpShadowRay shadow;
+    int goes_on = wp_shade_path(WP_STAGE_ARGUMENTS, slot, primitive, t, &shadow);
+    if (shadow.made) {
+        atomic_inc(&counters[WP_COUNTER_SHADOW_RAYS]);
+        wp_trace_shadow_ray(&scene, &shadow, radiance, slot);
+    }
+    if (goes_on)
+        wp_queue_push(wp_ray_queue(ray_queues, frame, 1u - launch.ray_queue), counters,
+                      1u - launch.ray_queue, slot);
+    else
+        wp_queue_push(finished_queue, counters, WP_COUNTER_FINISHED, slot);
+}

@@ -1,0 +1,212 @@
+// Launch plans (render/wavefront.hpp, docs/architecture.md "Launch plans"):
+// the stage kernels, intersect+shade+shadow fused per bounce, and one
+// megakernel per wave must render the same image.
+//
+// Every plan runs the same stage functions (kernels/*.cl) in the same order
+// for each path, and the random numbers are a function of (seed, pixel,
+// sample, depth, dimension), so each sample's radiance is the same float
+// value in every plan. What may differ is only where the device's float32
+// film batches end (render/film.hpp): the stages and bounce plans fold the
+// film every 32 iterations, the wave plan every 8 tasks per slot; a pixel's
+// samples summed in float32 in other groups round differently. So:
+//  - sample counts, ray counts and film sums of whole batches agree exactly;
+//  - stages and bounce (the same host loop, the same batches) agree bit for bit;
+//  - wave agrees bit for bit when every batch holds one sample per pixel
+//    (one sample per render call, as the CLI renders without regeneration);
+//  - otherwise wave agrees within the float32 rounding of the batch sums:
+//    a sum of k non-negative terms in float32 is off by at most
+//    (k - 1) 2^-24 of the sum (one rounding per addition), each of the two
+//    renders may be so off, with k <= 16 here: a relative 32 x 2^-24.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "support/render_helpers.hpp"
+
+using namespace wp;
+
+namespace {
+
+struct PlanRender {
+    Film film;
+    RenderStats stats;
+};
+
+// `spp` samples in calls of `per_call` (the CLI's split), seed 3.
+PlanRender render_plan(const Scene& scene, LaunchPlan plan, IntegratorOptions options,
+                       std::uint32_t spp, std::uint32_t per_call) {
+    options.seed = 3;
+    options.launch_plan = plan;
+    WavefrontIntegrator integrator(test::device(), scene, options);
+    REQUIRE(integrator.launch_plan().plan == plan);
+    PlanRender out{Film(scene.camera.width, scene.camera.height), {}};
+    for (std::uint32_t done = 0; done < spp; done += per_call)
+        integrator.render(done, std::min(per_call, spp - done), out.film);
+    out.stats = integrator.stats();
+    return out;
+}
+
+// The largest |a - b| / max(|a|, |b|) over every pixel and channel (0 where
+// both are 0), and whether any pixel differs at all.
+struct Difference {
+    double relative = 0.0;
+    std::size_t differing = 0;
+};
+
+Difference compare(const Image& a, const Image& b) {
+    REQUIRE(a.rgb.size() == b.rgb.size());
+    Difference d;
+    for (std::size_t i = 0; i < a.rgb.size(); ++i) {
+        const double x = a.rgb[i], y = b.rgb[i];
+        if (x == y)
+            continue;
+        ++d.differing;
+        d.relative = std::max(d.relative, std::abs(x - y) / std::max(std::abs(x), std::abs(y)));
+    }
+    return d;
+}
+
+void check_same_counts(const PlanRender& a, const PlanRender& b) {
+    CHECK(a.stats.camera_rays == b.stats.camera_rays);
+    CHECK(a.stats.bounce_rays == b.stats.bounce_rays);
+    CHECK(a.stats.shadow_rays == b.stats.shadow_rays);
+    CHECK(a.stats.capped_paths == b.stats.capped_paths);
+    CHECK(a.stats.nonfinite_samples == b.stats.nonfinite_samples);
+    const FilmSums x = a.film.sums(), y = b.film.sums();
+    CHECK(x.count == y.count);
+    CHECK(x.odd_count == y.odd_count);
+}
+
+constexpr double kRoundingTolerance = 32.0 / 16777216.0; // 32 x 2^-24, see above
+
+struct Variant {
+    const char* name;
+    IntegratorOptions options;
+};
+
+std::vector<Variant> variants() {
+    std::vector<Variant> out;
+    out.push_back({"default", {}});
+    IntegratorOptions o;
+    o.regeneration = true;
+    o.pool_size = 37;
+    out.push_back({"regeneration, pool 37", o});
+    o = {};
+    o.pool_size = 50; // several pixels a slot, one wave at a time
+    out.push_back({"pool 50", o});
+    o = {};
+    o.next_event_estimation = false;
+    o.sampler = Sampler::Independent;
+    out.push_back({"no NEE, independent sampler", o});
+    o = {};
+    o.diffuse_sampling = DiffuseSampling::Report;
+    o.light_sampling = LightSampling::SolidAngle;
+    o.general_kernels = true;
+    out.push_back({"report, solid angle, general kernels", o});
+    o = {};
+    o.max_depth = 2;
+    out.push_back({"max depth 2 (capped paths)", o});
+    return out;
+}
+
+} // namespace
+
+TEST_CASE("Launch plans: bounce renders the stages plan's image bit for bit, wave within the "
+          "float32 rounding of the film batches, with the same counts",
+          "[render][launch-plan]") {
+    const Scene scene = test::hexroom(20, 16);
+    for (const Variant& v : variants()) {
+        INFO(v.name);
+        const std::uint32_t spp = 6;
+        const PlanRender stages = render_plan(scene, LaunchPlan::Stages, v.options, spp, spp);
+        const PlanRender bounce = render_plan(scene, LaunchPlan::Bounce, v.options, spp, spp);
+        const PlanRender wave = render_plan(scene, LaunchPlan::Wave, v.options, spp, spp);
+        REQUIRE(stages.film.min_samples() == spp);
+        check_same_counts(stages, bounce);
+        check_same_counts(stages, wave);
+        CHECK(compare(stages.film.mean(), bounce.film.mean()).differing == 0);
+        CHECK(compare(stages.film.variance_of_mean(), bounce.film.variance_of_mean()).differing ==
+              0);
+        const Difference mean = compare(stages.film.mean(), wave.film.mean());
+        INFO("wave vs stages: " << mean.differing << " values differ, at most by a relative "
+                                << mean.relative);
+        CHECK(mean.relative <= kRoundingTolerance);
+        CHECK(compare(stages.film.half_mean(1), wave.film.half_mean(1)).relative <=
+              kRoundingTolerance);
+    }
+}
+
+TEST_CASE("Launch plans: one sample per render call (the CLI without regeneration), every plan's "
+          "image is the stages plan's bit for bit",
+          "[render][launch-plan]") {
+    const Scene scene = test::hexroom(24, 20);
+    const std::uint32_t spp = 5;
+    const PlanRender stages = render_plan(scene, LaunchPlan::Stages, {}, spp, 1);
+    for (LaunchPlan plan : {LaunchPlan::Bounce, LaunchPlan::Wave}) {
+        INFO(to_string(plan));
+        const PlanRender other = render_plan(scene, plan, {}, spp, 1);
+        check_same_counts(stages, other);
+        CHECK(compare(stages.film.mean(), other.film.mean()).differing == 0);
+        CHECK(compare(stages.film.variance_of_mean(), other.film.variance_of_mean()).differing ==
+              0);
+        CHECK(compare(stages.film.half_mean(0), other.film.half_mean(0)).differing == 0);
+    }
+}
+
+TEST_CASE("Launch plans: progress reaches the samples asked for in every plan",
+          "[render][launch-plan]") {
+    const Scene scene = test::hexroom(16, 16);
+    for (LaunchPlan plan : {LaunchPlan::Stages, LaunchPlan::Bounce, LaunchPlan::Wave})
+        for (bool regeneration : {false, true}) {
+            INFO(to_string(plan) << (regeneration ? " with regeneration" : ""));
+            IntegratorOptions options;
+            options.launch_plan = plan;
+            options.regeneration = regeneration;
+            WavefrontIntegrator integrator(test::device(), scene, options);
+            Film film(16, 16);
+            double last = 0.0;
+            bool monotonic = true;
+            integrator.render(0, 9, film, [&](double spp) {
+                monotonic = monotonic && spp >= last;
+                last = spp;
+            });
+            CHECK(monotonic);
+            CHECK(last == Approx(9.0));
+            CHECK(film.min_samples() == 9);
+        }
+}
+
+TEST_CASE("Launch plans: auto picks by device type and tracing kind, an explicit plan is kept",
+          "[launch-plan]") {
+    DeviceInfo cpu, gpu;
+    cpu.type = "CPU";
+    gpu.type = "GPU";
+    CHECK(choose_launch_plan(LaunchPlan::Auto, cpu, true).plan == LaunchPlan::Stages);
+    CHECK(choose_launch_plan(LaunchPlan::Auto, cpu, false).plan == LaunchPlan::Wave);
+    for (bool vectorised : {false, true}) {
+        CHECK(choose_launch_plan(LaunchPlan::Auto, gpu, vectorised).plan == LaunchPlan::Stages);
+        CHECK_FALSE(choose_launch_plan(LaunchPlan::Auto, gpu, vectorised).why.empty());
+        for (LaunchPlan plan : {LaunchPlan::Stages, LaunchPlan::Bounce, LaunchPlan::Wave}) {
+            CHECK(choose_launch_plan(plan, cpu, vectorised).plan == plan);
+            CHECK(choose_launch_plan(plan, gpu, vectorised).plan == plan);
+        }
+    }
+}
+
+TEST_CASE("Launch plans: on the test device, auto keeps the stages for the hexroom's specialised "
+          "kernels and takes the wave for its hierarchy",
+          "[launch-plan]") {
+    if (test::device().info.type != "CPU") {
+        WARN("skipped: the test device is not a CPU device");
+        return;
+    }
+    const Scene scene = test::hexroom(8, 8);
+    IntegratorOptions options;
+    CHECK(WavefrontIntegrator(test::device(), scene, options).launch_plan().plan ==
+          LaunchPlan::Stages);
+    options.traversal = Traversal::Hierarchy;
+    CHECK(WavefrontIntegrator(test::device(), scene, options).launch_plan().plan ==
+          LaunchPlan::Wave);
+}
