@@ -25,6 +25,14 @@ typedef cl_float wp_float;
 typedef cl_float4 wp_float4;
 #endif
 
+/* For functions that must be inlined into their callers (the same definition
+ * as traverse.h's). */
+#if defined(__clang__) || defined(__GNUC__)
+#define WP_ALWAYS_INLINE __attribute__((always_inline))
+#else
+#define WP_ALWAYS_INLINE
+#endif
+
 /* Material kinds (WpMaterial.kind). */
 #define WP_MATERIAL_DIFFUSE 0u
 #define WP_MATERIAL_MIRROR 1u
