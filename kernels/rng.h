@@ -71,8 +71,11 @@ static inline wp_float wp_independent_random(wp_uint seed, wp_uint pixel, wp_uin
 #define WP_SAMPLER WP_SAMPLER_INDEPENDENT
 #endif
 
-static inline wp_float wp_random(wp_uint seed, wp_uint pixel, wp_uint sample, wp_uint bounce,
-                                 wp_uint dimension) {
+/* Always inlined: PoCL's inliner left it a call (six in shade), which kept
+ * the parts of the numbers a bounce shares (the pixel's hashes, a pair's
+ * index scramble) from being computed once. */
+static inline WP_ALWAYS_INLINE wp_float wp_random(wp_uint seed, wp_uint pixel, wp_uint sample,
+                                                  wp_uint bounce, wp_uint dimension) {
 #if WP_SAMPLER == WP_SAMPLER_SOBOL
     return wp_sobol_random(seed, pixel, sample, bounce, dimension);
 #else

@@ -41,7 +41,7 @@ typedef struct {
     wp_uint seed, pixel, sample, depth;
 } WpPathRandom;
 
-static inline float wp_path_random(const WpPathRandom* r, wp_uint dimension) {
+static inline WP_ALWAYS_INLINE float wp_path_random(const WpPathRandom* r, wp_uint dimension) {
     return wp_random(r->seed, r->pixel, r->sample, r->depth, dimension);
 }
 

@@ -25,6 +25,14 @@ typedef cl_float wp_float;
 typedef cl_float4 wp_float4;
 #endif
 
+/* For functions that must be inlined into their callers (the same definition
+ * as traverse.h's). */
+#if defined(__clang__) || defined(__GNUC__)
+#define WP_ALWAYS_INLINE __attribute__((always_inline))
+#else
+#define WP_ALWAYS_INLINE
+#endif
+
 /* Material kinds (WpMaterial.kind). */
 #define WP_MATERIAL_DIFFUSE 0u
 #define WP_MATERIAL_MIRROR 1u
@@ -64,10 +72,18 @@ typedef cl_float4 wp_float4;
 
 /* A triangle, 48 bytes: vertices in xyz. Its front face is the side of
  * cross(v1 - v0, v2 - v0); only emitters care which side is the front. The
- * w lanes, which no geometric code reads, hold two uints as their bits (read
- * and written only through the accessors below): v0.w its material, v1.w
- * `normals`, 0 or k + 1 for shading normals in triangle_normals[k]; v2.w is
- * 0. A 0.0f lane is a 0 uint, so material 0 without normals is the default. */
+ * w lanes, which no geometric code reads, hold two uints as float VALUES
+ * (read and written only through the accessors below; exact up to
+ * WP_TRIANGLE_INDEX_LIMIT = 2^24, which the host checks): v0.w its material,
+ * v1.w `normals`, 0 or k + 1 for shading normals in triangle_normals[k]; v2.w
+ * is 0. A 0.0f lane is 0, so material 0 without normals is the default.
+ *
+ * Not the uints' bits: small uints read as floats are denormals, and the
+ * vector code that loads a vertex as a float4 carries its w lane through
+ * the arithmetic on xyz, where every denormal operand costs the CPU extra
+ * cycles. Storing the bits cost shade a third of its time on PoCL (measured,
+ * docs/performance.md, "Shade, measured (2026-12-02, second session)"). */
+#define WP_TRIANGLE_INDEX_LIMIT 16777216u
 typedef struct {
     wp_float4 v0;
     wp_float4 v1;
@@ -76,27 +92,24 @@ typedef struct {
 
 #ifdef __OPENCL_VERSION__
 static inline wp_uint wp_triangle_material(const WpTriangle* t) {
-    return as_uint(t->v0.w);
+    return (wp_uint)t->v0.w;
 }
 static inline wp_uint wp_triangle_normals(const WpTriangle* t) {
-    return as_uint(t->v1.w);
+    return (wp_uint)t->v1.w;
 }
 #else
 static inline wp_uint wp_triangle_material(const WpTriangle* t) {
-    wp_uint u;
-    memcpy(&u, &t->v0.s[3], sizeof u);
-    return u;
+    return (wp_uint)t->v0.s[3];
 }
 static inline wp_uint wp_triangle_normals(const WpTriangle* t) {
-    wp_uint u;
-    memcpy(&u, &t->v1.s[3], sizeof u);
-    return u;
+    return (wp_uint)t->v1.s[3];
 }
+/* Both setters take values up to WP_TRIANGLE_INDEX_LIMIT (the caller checks). */
 static inline void wp_set_triangle_material(WpTriangle* t, wp_uint material) {
-    memcpy(&t->v0.s[3], &material, sizeof material);
+    t->v0.s[3] = (wp_float)material;
 }
 static inline void wp_set_triangle_normals(WpTriangle* t, wp_uint normals) {
-    memcpy(&t->v1.s[3], &normals, sizeof normals);
+    t->v1.s[3] = (wp_float)normals;
 }
 #endif
 

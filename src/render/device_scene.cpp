@@ -292,7 +292,20 @@ SceneFeatures analyse_features(const Scene& scene, std::uint32_t max_fixed_count
     return f;
 }
 
+void check_triangle_indices(std::size_t materials, std::size_t normal_sets) {
+    if (materials > WP_TRIANGLE_INDEX_LIMIT || normal_sets > WP_TRIANGLE_INDEX_LIMIT)
+        throw std::runtime_error("the scene has " + std::to_string(materials) + " materials and " +
+                                 std::to_string(normal_sets) +
+                                 " triangles with vertex normals; the device's triangles hold at "
+                                 "most " +
+                                 std::to_string(WP_TRIANGLE_INDEX_LIMIT) + " of each");
+}
+
 DeviceScene flatten_scene(const Scene& scene, bool hierarchy) {
+    check_triangle_indices(
+        scene.materials.size(),
+        static_cast<std::size_t>(std::count_if(scene.triangles.begin(), scene.triangles.end(),
+                                               [](const Triangle& t) { return t.has_normals; })));
     DeviceScene out;
     out.width = scene.camera.width;
     out.height = scene.camera.height;

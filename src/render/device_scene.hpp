@@ -94,6 +94,11 @@ struct DeviceScene {
 // A double-precision point or vector as the kernels' float4 (w as given).
 wp_float4 to_float4(const glm::dvec3& v, double w = 0.0);
 
+// Throws std::runtime_error unless `materials` materials and `normal_sets`
+// triangles with vertex normals fit the indices a WpTriangle holds as float
+// values (at most WP_TRIANGLE_INDEX_LIMIT each, wp_shared.h).
+void check_triangle_indices(std::size_t materials, std::size_t normal_sets);
+
 // Converts to float32 and builds the light table, and with `hierarchy` the
 // bounding volume hierarchy over triangles and spheres; the camera basis is
 // scaled so that film coordinates in [-1, 1] span the field of view.

@@ -1,13 +1,16 @@
 // The structs of wp_shared.h have the same layout on the device as on the host,
 // a WpFrame passed by value arrives field for field, and the RNG of rng.h gives
 // the same bits on both sides.
+#include "render/device_scene.hpp"
 #include "rng.h"
 #include "support/kernel_test_util.hpp"
 
+#include <cmath>
 #include <cstddef>
 #include <iterator>
 #include <random>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -230,10 +233,22 @@ TEST_CASE("A WpFrame passed by value reaches the kernel field for field", "[cl][
 
 TEST_CASE("A WpTriangle's material and normals, kept in its w lanes, read the same on the device",
           "[cl][layout]") {
-    // Values whose bits are NaN, infinity, a denormal or a normal float when
-    // read as a float: the accessors must carry them bit for bit.
-    const cl_uint values[] = {0u,          1u,          7u,          0x007fffffu,
-                              0x3f800000u, 0x7f800000u, 0x7fc00001u, 0xffffffffu};
+    // Up to WP_TRIANGLE_INDEX_LIMIT, with the values around each power of two
+    // where float's spacing changes; the lanes hold them as float values,
+    // never a denormal (whose arithmetic costs the vector code extra cycles).
+    const cl_uint values[] = {0u,
+                              1u,
+                              2u,
+                              7u,
+                              255u,
+                              65535u,
+                              65536u,
+                              8388607u,
+                              8388608u,
+                              8388609u,
+                              16777214u,
+                              16777215u,
+                              WP_TRIANGLE_INDEX_LIMIT};
     std::vector<WpTriangle> triangles;
     for (cl_uint material : values)
         for (cl_uint normals : values) {
@@ -245,8 +260,13 @@ TEST_CASE("A WpTriangle's material and normals, kept in its w lanes, read the sa
             wp_set_triangle_normals(&t, normals);
             REQUIRE(wp_triangle_material(&t) == material);
             REQUIRE(wp_triangle_normals(&t) == normals);
+            CHECK(double(t.v0.s[3]) == double(material)); // the value, exactly
+            CHECK(double(t.v1.s[3]) == double(normals));
+            CHECK(std::fpclassify(t.v0.s[3]) != FP_SUBNORMAL);
+            CHECK(std::fpclassify(t.v1.s[3]) != FP_SUBNORMAL);
             CHECK(t.v0.s[0] == 1.0f); // the vertices are untouched
             CHECK(t.v1.s[2] == -6.0f);
+            CHECK(t.v2.s[3] == 0.0f);
             triangles.push_back(t);
         }
     const char* source = R"CL(
@@ -271,6 +291,18 @@ __kernel void read_lanes(uint count, __global const WpTriangle* triangles, __glo
         CHECK(got[2 * i] == wp_triangle_material(&triangles[i]));
         CHECK(got[2 * i + 1] == wp_triangle_normals(&triangles[i]));
     }
+}
+
+TEST_CASE("The host refuses scenes whose triangle indices a float lane cannot hold exactly",
+          "[layout]") {
+    CHECK_NOTHROW(wp::check_triangle_indices(WP_TRIANGLE_INDEX_LIMIT, WP_TRIANGLE_INDEX_LIMIT));
+    CHECK_THROWS_AS(wp::check_triangle_indices(WP_TRIANGLE_INDEX_LIMIT + 1u, 0),
+                    std::runtime_error);
+    CHECK_THROWS_AS(wp::check_triangle_indices(1, WP_TRIANGLE_INDEX_LIMIT + 1u),
+                    std::runtime_error);
+    // 2^24 + 1 is the first uint a float cannot hold: the limit is where it must be.
+    CHECK(static_cast<cl_uint>(static_cast<float>(WP_TRIANGLE_INDEX_LIMIT + 1u)) !=
+          WP_TRIANGLE_INDEX_LIMIT + 1u);
 }
 
 TEST_CASE("rng.h gives bit-identical numbers on the device and the host", "[cl][rng]") {
