@@ -14,16 +14,46 @@ static inline void wp_make_basis(float3 n, float3* t, float3* b) {
     *b = (float3)(c, sign + n.y * n.y * a, -n.y);
 }
 
+/* sin(2 pi u) and cos(2 pi u) for u in [0, 1), as polynomials: no library
+ * call, whose general argument reduction PoCL does not inline (and whose
+ * branches stop vectorisation). The reduction is exact: 4u = q + f with q the
+ * nearest integer and |f| <= 1/2 (exact for any float u in [0, 1)), so that
+ * 2 pi u = (pi / 2) (q + f); sin and cos of (pi / 2) f are Taylor polynomials
+ * in f (truncation below 2e-9 on |f| <= 1/2) and the quadrant q swaps and
+ * negates them. Within 1.2e-7 of the double-precision values
+ * (tests/kernels/test_sampling.cpp), more accurate than sin(2 pi u in float),
+ * whose argument alone is rounded by up to 2.4e-7. */
+static inline void wp_sincos_2pi(float u, float* sine, float* cosine) {
+    float q = rint(4.0f * u);
+    float f = 4.0f * u - q;
+    float f2 = f * f;
+    float s = f * (1.5707963267948966f +
+                   f2 * (-0.6459640975062462f +
+                         f2 * (0.07969262624616704f +
+                               f2 * (-0.004681754135318687f + f2 * 0.00016044118478735982f))));
+    float c =
+        1.0f + f2 * (-1.2337005501361697f +
+                     f2 * (0.2536695079010480f +
+                           f2 * (-0.020863480763352960f +
+                                 f2 * (0.0009192602748394261f + f2 * -2.5202042373060605e-05f))));
+    int k = ((int)q) & 3; /* q in 0 .. 4, and 4 is a full turn */
+    float sin_k = (k & 1) ? c : s;
+    float cos_k = (k & 1) ? s : c;
+    *sine = (k & 2) ? -sin_k : sin_k;
+    *cosine = (k == 1 || k == 2) ? -cos_k : cos_k;
+}
+
 /* Cosine-weighted direction on the hemisphere around unit n: pdf cos(theta)/pi.
  * With it the Lambertian estimate's cos/pdf cancels to pi, so the throughput
  * just takes the reflectance. */
 static inline float3 wp_sample_cosine_hemisphere(float3 n, float u1, float u2) {
     float r = sqrt(u1);
-    float phi = 2.0f * WP_PI * u2;
+    float sin_phi, cos_phi; /* phi = 2 pi u2 */
+    wp_sincos_2pi(u2, &sin_phi, &cos_phi);
     float z = sqrt(fmax(0.0f, 1.0f - u1));
     float3 t, b;
     wp_make_basis(n, &t, &b);
-    return normalize(t * (r * cos(phi)) + b * (r * sin(phi)) + n * z);
+    return normalize(t * (r * cos_phi) + b * (r * sin_phi) + n * z);
 }
 
 /* The direction (theta, phi) around unit n, theta from n: the report's

@@ -33,6 +33,14 @@ __kernel void cosine_samples(float4 n, uint seed, uint count, __global float4* o
     out[i] = (float4)(wp_sample_cosine_hemisphere(n.xyz, u1, u2), 0.0f);
 }
 
+__kernel void sincos_2pi(uint count, __global const uint* k, __global float2* out) {
+    uint i = get_global_id(0);
+    if (i >= count) return;
+    float s, c;
+    wp_sincos_2pi((float)k[i] * (1.0f / 16777216.0f), &s, &c); /* u = k / 2^24, as rng.h's */
+    out[i] = (float2)(s, c);
+}
+
 __kernel void triangle_samples(float4 p0, float4 p1, float4 p2, uint seed, uint count,
                                __global float4* out) {
     uint i = get_global_id(0);
@@ -158,6 +166,42 @@ TEST_CASE("wp_sample_cosine_hemisphere has the moments of the cosine distributio
         INFO("chi-square " << statistic << " over " << histogram.size() << " bins");
         CHECK(statistic < chi_square_limit(histogram.size() - 1));
     }
+}
+
+TEST_CASE("wp_sincos_2pi is within 1.2e-7 of double sin and cos of 2 pi u", "[cl][sampling]") {
+    cl::Kernel kernel(program(kSamplingSource, "sampling_test.cl"), "sincos_2pi");
+    // Every 7th of the 2^24 numbers wp_to_unit_float makes, the quarter turns,
+    // and the ends.
+    const cl_uint quarter = 1u << 22;
+    std::vector<cl_uint> ks = {quarter, 2 * quarter, 3 * quarter, 1u, 16777215u};
+    for (cl_uint k = 0; k < (1u << 24); k += 7)
+        ks.push_back(k);
+    const auto count = static_cast<cl_uint>(ks.size());
+    cl::Buffer in = upload(ks);
+    cl::Buffer out = upload(std::vector<cl_float2>(count));
+    set_args(kernel, count, in, out);
+    launch(kernel, count);
+    std::vector<cl_float2> got = download<cl_float2>(out, count);
+    double worst = 0.0, worst_u = 0.0;
+    std::size_t outside = 0; // a sine or cosine outside [-1, 1]
+    for (cl_uint i = 0; i < count; ++i) {
+        const double u = double(ks[i]) / 16777216.0;
+        const double error = std::max(std::fabs(double(got[i].s[0]) - std::sin(2.0 * M_PI * u)),
+                                      std::fabs(double(got[i].s[1]) - std::cos(2.0 * M_PI * u)));
+        if (error > worst)
+            worst = error, worst_u = u;
+        outside += std::fabs(got[i].s[0]) > 1.0f || std::fabs(got[i].s[1]) > 1.0f;
+    }
+    INFO("worst error " << worst << " at u = " << worst_u);
+    CHECK(worst <= 1.2e-7);
+    CHECK(outside == 0);
+    // The quarter turns exactly: (0, 1) at u = 1/4, (-1, 0) at 1/2, (0, -1) at 3/4.
+    CHECK(got[0].s[0] == 1.0f);
+    CHECK(got[0].s[1] == 0.0f);
+    CHECK(got[1].s[0] == 0.0f);
+    CHECK(got[1].s[1] == -1.0f);
+    CHECK(got[2].s[0] == -1.0f);
+    CHECK(got[2].s[1] == 0.0f);
 }
 
 TEST_CASE("wp_sample_triangle gives uniform points inside the triangle", "[cl][sampling]") {

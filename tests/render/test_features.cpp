@@ -120,6 +120,10 @@ double image_sum(const Image& image) {
 void check_specialised_equals_general(const Scene& scene, bool nee = true) {
     IntegratorOptions specialised_options;
     specialised_options.next_event_estimation = nee;
+    // One launch plan for both: on a CPU `auto` takes the wave plan for the
+    // general kernels, whose float32 film batches end elsewhere
+    // (tests/render/test_launch_plans.cpp compares the plans).
+    specialised_options.launch_plan = LaunchPlan::Stages;
     IntegratorOptions general_options = specialised_options;
     general_options.general_kernels = true;
 
@@ -248,6 +252,7 @@ TEST_CASE("features: the hierarchy and the loop over every primitive render the 
          {std::pair<std::string, Scene>{"hexroom", hexroom()}, {"large", large()}}) {
         INFO(name);
         IntegratorOptions bvh, loop;
+        bvh.launch_plan = loop.launch_plan = LaunchPlan::Stages; // as above: one plan for both
         bvh.traversal = Traversal::Hierarchy;
         loop.traversal = Traversal::Loop;
         test::Rendered a = test::render(scene, 8, 3, 0, bvh);
