@@ -48,13 +48,14 @@ TEST_CASE("memory bandwidth: on a CPU device, the copy kernel runs at host memor
         WARN("skipped: not a CPU device, whose memory is not the host's");
         return;
     }
-    // The same memory as the host's memcpy: within a factor of 4 either way
-    // (threads, other processes' load and memcpy's streaming stores differ).
-    // Loose, but it catches a wrong unit, a timing of the wrong event, or a
-    // buffer small enough to stay in cache.
+    // The same memory as the host's memcpy: at most 4x faster (a buffer small
+    // enough to stay in cache, a timing of the wrong event) and at most 16x
+    // slower (a wrong unit). The lower bound is the looser one because the
+    // kernel is measured once, and on a loaded 2-core machine its threads
+    // share the cores with other processes (4x failed there under a load of 8).
     const double kernel = measured_copy_bandwidth(device);
     const double host = host_copy_bandwidth(copy_bandwidth_buffer_bytes(device));
     INFO("copy kernel " << kernel * 1e-9 << " GB/s, host memcpy " << host * 1e-9 << " GB/s");
-    CHECK(kernel > host / 4.0);
+    CHECK(kernel > host / 16.0);
     CHECK(kernel < host * 4.0);
 }
