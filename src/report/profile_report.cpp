@@ -59,8 +59,13 @@ nlohmann::json stage_json(Stage stage, const StageTotals& totals, double memory_
 
 nlohmann::json stages_json(const std::vector<StageTotals>& totals, double memory_bandwidth) {
     nlohmann::json stages = nlohmann::json::array();
-    for (int s = 0; s < kStageCount; ++s)
-        stages.push_back(stage_json(static_cast<Stage>(s), totals[s], memory_bandwidth));
+    for (int s = 0; s < kStageCount; ++s) {
+        const Stage stage = static_cast<Stage>(s);
+        // The fused kernels (launch plans) only when they ran, as in the table.
+        if ((stage == Stage::Bounce || stage == Stage::Wave) && totals[s].launches == 0)
+            continue;
+        stages.push_back(stage_json(stage, totals[s], memory_bandwidth));
+    }
     return stages;
 }
 

@@ -47,7 +47,8 @@ TEST_CASE("The check reads each stage's own remarks: the general intersect stage
         WARN("skipped: the tests do not run on PoCL, whose vectoriser this reads");
         return;
     }
-    const VectorizerRemarks remarks = capture_vectorizer_remarks(kHexroomPath, "--general");
+    const VectorizerRemarks remarks =
+        capture_vectorizer_remarks(kHexroomPath, "--general --launch-plan stages");
     REQUIRE(remarks.captured);
     INFO("intersect's loop vectoriser remarks:\n" << verdicts(remarks, "intersect"));
     CHECK_FALSE(remarks.matching("intersect", "loop not vectorized").empty());
