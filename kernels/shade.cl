@@ -31,6 +31,7 @@
 #include "bsdf.h"
 #include "estimator.h"
 #include "lights.h"
+#include "mirror_light.h"
 #include "path_type.h"
 #include "primitive.h"
 #include "rng.h"
@@ -145,8 +146,16 @@ __kernel void shade(WP_STAGE_PARAMETERS) {
     wp_uint flags = path_flags[slot];
     WpPathRandom random = {frame.seed, path_pixel[slot], path_sample[slot], depth};
 
+    float3 beta_emission = beta;
+#if WP_MIRROR_NEE /* weighed against the mirrored light sample (mirror_light.h) */
+    if (flags & WP_PATH_PLANAR_MIRROR)
+        beta_emission *=
+            wp_mirror_emission_weight(&scene, primitive, mirror_vertex[slot], ray_origin[slot].xyz,
+                                      hit_t[slot], &surface, direction);
+#endif
     radiance[slot] =
-        (float4)(wp_shade_emission(&material, &surface, flags, beta, radiance[slot].xyz), 0.0f);
+        (float4)(wp_shade_emission(&material, &surface, flags, beta_emission, radiance[slot].xyz),
+                 0.0f);
     if (wp_bsdf_is_black(&material)) {
         wp_queue_push(finished_queue, counters, WP_COUNTER_FINISHED, slot);
         return;
@@ -157,6 +166,22 @@ __kernel void shade(WP_STAGE_PARAMETERS) {
         wp_shade_next_event(&scene, &material, &surface, direction, normal, shading, origin, beta,
                             &random, slot, shadow_queue, counters, shadow_origin, shadow_direction,
                             shadow_contribution);
+#if WP_MIRROR_NEE /* and one through a planar mirror, two legs, in the mirror queue */
+    WpMirrorShadow mirrored;
+    if (!wp_bsdf_is_delta(&material) && WP_MIRROR_NEXT_EVENT_SELECTED(flags) &&
+        wp_mirror_next_event(&scene, &material, &surface, direction, shading, origin, beta,
+                             wp_path_random(&random, WP_DIM_LIGHT_PICK),
+                             wp_path_random(&random, WP_DIM_LIGHT_U),
+                             wp_path_random(&random, WP_DIM_LIGHT_V), &mirrored)) {
+        wp_queue_push(shadow_queue + frame.pool_size, counters, WP_COUNTER_MIRROR_SHADOW_RAYS,
+                      slot);
+        mirror_shadow_origin[slot] = mirrored.origin;
+        mirror_shadow_direction[slot] = mirrored.direction;
+        mirror_shadow_origin2[slot] = mirrored.origin2;
+        mirror_shadow_direction2[slot] = mirrored.direction2;
+        mirror_shadow_contribution[slot] = mirrored.contribution;
+    }
+#endif
 
     float u1 = wp_path_random(&random, WP_DIM_BSDF_U);
     float u2 = wp_path_random(&random, WP_DIM_BSDF_V);
@@ -167,6 +192,14 @@ __kernel void shade(WP_STAGE_PARAMETERS) {
         wp_queue_push(finished_queue, counters, WP_COUNTER_FINISHED, slot);
         return;
     }
+#endif
+#if WP_MIRROR_NEE /* what the emission weight at the next vertex needs */
+    if (!scattered.specular)
+        mirror_vertex[slot] = (float4)(surface.position, scattered.pdf);
+    flags = (scattered.specular && !(flags & WP_PATH_SPECULAR) &&
+             wp_is_planar_mirror(&scene, primitive, &surface))
+                ? flags | WP_PATH_PLANAR_MIRROR
+                : flags & ~WP_PATH_PLANAR_MIRROR;
 #endif
     if (scattered.specular)
         flags |= WP_PATH_SPECULAR;
