@@ -27,6 +27,12 @@ __kernel void bounce(WP_FUSED_PARAMETERS) {
         atomic_inc(&counters[WP_COUNTER_SHADOW_RAYS]);
         wp_trace_shadow_ray(&scene, &shadow, radiance, slot);
     }
+#if WP_MIRROR_NEE /* after the plain one, as the stages plan adds them */
+    if (shadow.mirror_made) {
+        atomic_add(&counters[WP_COUNTER_SHADOW_RAYS], 2u); /* two legs, as the stages count */
+        wp_trace_mirror_shadow_ray(&scene, &shadow.mirror, radiance, slot);
+    }
+#endif
     if (goes_on)
         wp_queue_push(wp_ray_queue(ray_queues, frame, 1u - launch.ray_queue), counters,
                       1u - launch.ray_queue, slot);

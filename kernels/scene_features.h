@@ -25,6 +25,9 @@
 #ifndef WP_HAS_LIGHTS /* emissive triangles to sample by next-event estimation */
 #define WP_HAS_LIGHTS 1
 #endif
+#ifndef WP_HAS_PLANAR_MIRRORS /* flat mirror triangles and lights (kernels/mirror_light.h) */
+#define WP_HAS_PLANAR_MIRRORS 1
+#endif
 
 /* Acceleration switch, not a scene feature: traverse a bounding volume
  * hierarchy (bvh.h) instead of testing every primitive. The host turns it on

@@ -31,6 +31,7 @@
 #include "bsdf.h"
 #include "estimator.h"
 #include "lights.h"
+#include "mirror_light.h"
 #include "path_type.h"
 #include "primitive.h"
 #include "rng.h"
@@ -117,6 +118,9 @@ static inline int wp_shade_roulette(const WpMaterial* material, const WpBsdfSamp
 static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primitive, float t,
                                 WpShadowRay* shadow) {
     shadow->made = 0;
+#if WP_MIRROR_NEE
+    shadow->mirror_made = 0;
+#endif
     if (primitive == WP_NO_HIT) /* the ray left the scene: the path ends with what it has */
         return 0;
 
@@ -140,8 +144,16 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
     wp_uint flags = path_flags[slot];
     WpPathRandom random = {frame.seed, path_pixel[slot], path_sample[slot], depth};
 
+    float3 beta_emission = beta;
+#if WP_MIRROR_NEE /* weighed against the mirrored light sample (mirror_light.h) */
+    if (flags & WP_PATH_PLANAR_MIRROR)
+        beta_emission *=
+            wp_mirror_emission_weight(&scene, primitive, mirror_vertex[slot], ray_origin[slot].xyz, t,
+                                      &surface, direction);
+#endif
     radiance[slot] =
-        (float4)(wp_shade_emission(&material, &surface, flags, beta, radiance[slot].xyz), 0.0f);
+        (float4)(wp_shade_emission(&material, &surface, flags, beta_emission, radiance[slot].xyz),
+                 0.0f);
     if (wp_bsdf_is_black(&material))
         return 0;
 
@@ -149,6 +161,14 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
     if (!wp_bsdf_is_delta(&material) && WP_PATH_NEXT_EVENT_SELECTED(flags))
         wp_shade_next_event(&scene, &material, &surface, direction, normal, shading, origin, beta,
                             &random, shadow);
+#if WP_MIRROR_NEE /* and one through a planar mirror, with two legs */
+    shadow->mirror_made =
+        !wp_bsdf_is_delta(&material) && WP_MIRROR_NEXT_EVENT_SELECTED(flags) &&
+        wp_mirror_next_event(&scene, &material, &surface, direction, shading, origin, beta,
+                             wp_path_random(&random, WP_DIM_LIGHT_PICK),
+                             wp_path_random(&random, WP_DIM_LIGHT_U),
+                             wp_path_random(&random, WP_DIM_LIGHT_V), &shadow->mirror);
+#endif
 
     float u1 = wp_path_random(&random, WP_DIM_BSDF_U);
     float u2 = wp_path_random(&random, WP_DIM_BSDF_V);
@@ -157,6 +177,14 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
     /* Scattered by the shading normal into the true surface: absorbed. */
     if (surface.smooth && !(dot(scattered.direction, normal) > 0.0f))
         return 0;
+#endif
+#if WP_MIRROR_NEE /* what the emission weight at the next vertex needs */
+    if (!scattered.specular)
+        mirror_vertex[slot] = (float4)(surface.position, scattered.pdf);
+    flags = (scattered.specular && !(flags & WP_PATH_SPECULAR) &&
+             wp_is_planar_mirror(&scene, primitive, &surface))
+                ? flags | WP_PATH_PLANAR_MIRROR
+                : flags & ~WP_PATH_PLANAR_MIRROR;
 #endif
     if (scattered.specular)
         flags |= WP_PATH_SPECULAR;
@@ -197,6 +225,17 @@ __kernel void shade(WP_STAGE_PARAMETERS) {
         shadow_direction[slot] = (float4)(shadow.direction, shadow.length);
         shadow_contribution[slot] = (float4)(shadow.contribution, 0.0f);
     }
+#if WP_MIRROR_NEE /* the two-leg ray goes to the mirror queue (shadow.cl, mirror_shadow) */
+    if (shadow.mirror_made) {
+        wp_queue_push(shadow_queue + frame.pool_size, counters, WP_COUNTER_MIRROR_SHADOW_RAYS,
+                      slot);
+        mirror_shadow_origin[slot] = shadow.mirror.origin;
+        mirror_shadow_direction[slot] = shadow.mirror.direction;
+        mirror_shadow_origin2[slot] = shadow.mirror.origin2;
+        mirror_shadow_direction2[slot] = shadow.mirror.direction2;
+        mirror_shadow_contribution[slot] = shadow.mirror.contribution;
+    }
+#endif
     if (goes_on)
         wp_queue_push(wp_ray_queue(ray_queues, frame, 1u - launch.ray_queue), counters,
                       1u - launch.ray_queue, slot);

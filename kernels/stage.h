@@ -31,6 +31,7 @@ typedef struct {
     wp_uint sphere_count;
     wp_uint light_count;
     float light_area; /* total emissive area: 1 / pdf of uniform area sampling */
+    wp_uint mirror_group_count;
 } WpSceneView;
 
 #define WP_SCENE_ASSIGN(name, type) view.name = name;
@@ -41,6 +42,7 @@ static inline WpSceneView wp_scene_view(WpFrame frame WP_SCENE_BUFFERS(WP_SCENE_
     view.sphere_count = frame.sphere_count;
     view.light_count = frame.light_count;
     view.light_area = frame.light_area;
+    view.mirror_group_count = frame.mirror_group_count;
     return view;
 }
 
@@ -63,14 +65,27 @@ static inline WpSceneView wp_scene_view(WpFrame frame WP_SCENE_BUFFERS(WP_SCENE_
     WpFrame frame, WpLaunch launch WP_SCENE_BUFFERS(WP_SCENE_PARAMETER_RESTRICT)                   \
                        WP_PATH_BUFFERS(WP_PATH_PARAMETER_RESTRICT)
 
-/* A shadow ray that shade made: the stages plan queues it for the shadow
- * stage, the fused plans trace it at once (shadow.cl, wp_trace_shadow_ray). */
+/* A two-segment shadow ray through a planar mirror (mirror_light.h) and what
+ * it adds if both legs are unblocked. */
+typedef struct {
+    float4 origin, direction;   /* leg 1, x to the mirror (direction w: length) */
+    float4 origin2, direction2; /* leg 2, the mirror to the light */
+    float4 contribution;
+} WpMirrorShadow;
+
+/* The shadow rays that shade made: the stages plan queues them for the
+ * shadow stage (the two-leg one for its mirror queue), the fused plans trace
+ * them at once (shadow.cl, wp_trace_shadow_ray, wp_trace_mirror_shadow_ray).
+ * Without WP_MIRROR_NEE the mirror members are never set nor read, and the
+ * compiler drops them. */
 typedef struct {
     float3 origin;
     float3 direction;
     float length;
     float3 contribution; /* added to the path's radiance if unblocked */
     int made;
+    WpMirrorShadow mirror;
+    int mirror_made;
 } WpShadowRay;
 
 /* Inside a stage: the scene view of this launch. */

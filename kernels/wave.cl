@@ -38,6 +38,12 @@ __kernel void wave(WP_FUSED_PARAMETERS) {
                 ++shadows;
                 wp_trace_shadow_ray(&scene, &shadow, radiance, slot);
             }
+#if WP_MIRROR_NEE /* after the plain one, as the stages plan adds them */
+            if (shadow.mirror_made) {
+                shadows += 2u; /* two legs, as the stages plan counts them */
+                wp_trace_mirror_shadow_ray(&scene, &shadow.mirror, radiance, slot);
+            }
+#endif
         }
         wp_accumulate_path(WP_STAGE_ARGUMENTS, slot);
     }

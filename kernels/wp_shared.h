@@ -47,6 +47,10 @@ typedef cl_float4 wp_float4;
  * kept only when the kernels are built with WP_PATH_TYPE_MASK. */
 #define WP_PATH_HISTORY_SHIFT 1u
 #define WP_PATH_HISTORY_BITS (7u << WP_PATH_HISTORY_SHIFT)
+/* The path went diffuse vertex -> one planar mirror -> here: emission found
+ * now gets the multiple importance sampling weight against mirrored-light
+ * sampling (kernels/mirror_light.h). Set only with WP_MIRROR_NEE. */
+#define WP_PATH_PLANAR_MIRROR 16u
 
 /* Path types: every contribution to a pixel falls in exactly one, by the
  * bounces before the light reached the path (docs/convergence.md, "Where the
@@ -68,6 +72,8 @@ typedef cl_float4 wp_float4;
 #define WP_COUNTER_FINISHED 3u    /* length of the finished-path queue */
 #define WP_COUNTER_CAPPED 4u      /* paths cut by the safety depth cap */
 #define WP_COUNTER_NONFINITE 5u   /* samples dropped at the film for NaN or Inf */
+#define WP_COUNTER_MIRROR_SHADOW_RAYS                                                              \
+    6u /* the mirror queue: two-leg shadow rays (mirror_light.h) */
 #define WP_COUNTER_COUNT 8u
 
 /* A triangle, 48 bytes: vertices in xyz. Its front face is the side of
@@ -142,6 +148,18 @@ typedef struct {
     wp_uint pad0, pad1;
 } WpLight;
 
+/* A planar mirror: coplanar mirror triangles (without vertex normals) found
+ * by the host (src/render/planar_mirrors.hpp), for next-event estimation
+ * through it (kernels/mirror_light.h). plane: unit normal xyz, offset w
+ * (points p of the plane have dot(normal, p) == w); its triangles are
+ * mirror_triangles[first .. first + count - 1], copies of the scene's. */
+typedef struct {
+    wp_float4 plane;
+    wp_uint first;
+    wp_uint count;
+    wp_uint pad0, pad1;
+} WpMirrorGroup;
+
 /* A node of the bounding volume hierarchy, four children wide: the
  * builder's binary tree (src/scene/bvh.hpp) collapsed two levels into one
  * (src/render/device_scene.cpp), 128 bytes of scalars. Child i's box is
@@ -198,9 +216,9 @@ typedef struct {
     wp_uint triangle_count;
     wp_uint sphere_count;
     wp_uint light_count;
-    wp_float light_area; /* total emissive area: 1 / pdf of uniform area sampling */
-    wp_uint max_depth;   /* safety cap on bounces; paths cut are counted */
-    wp_uint pad0;
+    wp_float light_area;        /* total emissive area: 1 / pdf of uniform area sampling */
+    wp_uint max_depth;          /* safety cap on bounces; paths cut are counted */
+    wp_uint mirror_group_count; /* planar mirrors (WpMirrorGroup) */
 } WpFrame;
 
 /* What changes from one launch of a stage to the next, passed by value after
@@ -212,7 +230,8 @@ typedef struct {
  *   intersect,  read ray queue `ray_queue` (its length is in
  *   shade       counters[ray_queue], as generate appended to it after the host
  *               last looked); shade pushes survivors onto the other queue.
- *   shadow      count shadow rays.
+ *   shadow      count shadow rays (mirror_shadow: count two-leg rays of the
+ *               mirror queue, shadow_queue + pool_size).
  *   accumulate  count finished paths. */
 typedef struct {
     wp_uint count;
@@ -239,7 +258,9 @@ typedef struct {
     X(materials, WpMaterial)                                                                       \
     X(lights, WpLight)                                                                             \
     X(triangle_normals, WpShadingNormals) /* shading normals of the triangles that have them */    \
-    X(bvh_nodes, WpBvhNode)               /* with WP_USE_BVH; a dummy without */
+    X(bvh_nodes, WpBvhNode)               /* with WP_USE_BVH; a dummy without */                   \
+    X(mirror_groups, WpMirrorGroup)       /* planar mirrors (kernels/mirror_light.h) */            \
+    X(mirror_triangles, WpTriangle)       /* their triangles */
 
 #define WP_PATH_BUFFERS(X)                                                                         \
     /* path state, one entry per slot (structure of arrays) */                                     \
@@ -257,9 +278,16 @@ typedef struct {
     X(shadow_origin, wp_float4, 1, 0, 0) /* the slot's shadow ray (direction w: length) */         \
     X(shadow_direction, wp_float4, 1, 0, 0)                                                        \
     X(shadow_contribution, wp_float4, 1, 0, 0) /* rgb added if unblocked */                        \
+    /* next-event estimation through a planar mirror (kernels/mirror_light.h): */                  \
+    X(mirror_vertex, wp_float4, 1, 0, 0)        /* last diffuse vertex (xyz), its BSDF pdf (w) */  \
+    X(mirror_shadow_origin, wp_float4, 1, 0, 0) /* leg 1: to the mirror (w: length) */             \
+    X(mirror_shadow_direction, wp_float4, 1, 0, 0)                                                 \
+    X(mirror_shadow_origin2, wp_float4, 1, 0, 0) /* leg 2: mirror to light (w: length) */          \
+    X(mirror_shadow_direction2, wp_float4, 1, 0, 0)                                                \
+    X(mirror_shadow_contribution, wp_float4, 1, 0, 0) /* added if both legs are unblocked */       \
     /* queues of slot indices, pushed with atomics on `counters` */                                \
-    X(ray_queues, wp_uint, 2, 0, 0) /* queues A and B, pool_size entries each */                   \
-    X(shadow_queue, wp_uint, 1, 0, 0)                                                              \
+    X(ray_queues, wp_uint, 2, 0, 0)   /* queues A and B, pool_size entries each */                 \
+    X(shadow_queue, wp_uint, 2, 0, 0) /* shadow rays, then (at pool_size) mirror ones */           \
     X(finished_queue, wp_uint, 1, 0, 0)                                                            \
     X(counters, wp_uint, 0, 0, WP_COUNTER_COUNT)                                                   \
     /* the film of the current batch of iterations, per pixel (kernels/accumulate.cl) */           \

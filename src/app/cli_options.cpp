@@ -64,6 +64,15 @@ void add_integrator_options(CLI::App& command, IntegratorOptions& options) {
         ->check(CLI::Range(1u, cli_limits::max_depth));
     command.add_flag("!--no-nee", options.next_event_estimation,
                      "Next-event estimation off: light only from paths that hit an emitter");
+    command
+        .add_option_function<std::string>(
+            "--mirror-nee",
+            [&options](const std::string& value) { options.mirror_next_event = value == "on"; },
+            "Next-event estimation through planar mirrors, weighed against BSDF sampling by "
+            "multiple importance sampling: 'on' or 'off' (scenes without planar mirrors and "
+            "lights compile none of it; docs/convergence.md)")
+        ->default_str(options.mirror_next_event ? "on" : "off")
+        ->check(CLI::IsMember({"on", "off"}));
     add_choice(command, "--diffuse", options.diffuse_sampling,
                {DiffuseSampling::Cosine, DiffuseSampling::Report},
                "Lambertian sampling: 'cosine' (cosine-weighted, throughput roulette) or "

@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "render/float_range.hpp"
+#include "render/planar_mirrors.hpp"
 
 namespace wp {
 
@@ -282,6 +283,8 @@ SceneFeatures analyse_features(const Scene& scene, std::uint32_t max_fixed_count
     f.lights = false;
     for (const Triangle& t : scene.triangles)
         f.lights = f.lights || scene.materials[t.material].is_emissive();
+    // Next-event estimation through planar mirrors needs both (kernels/mirror_light.h).
+    f.planar_mirrors = f.lights && !find_planar_mirrors(scene).empty();
     const std::size_t primitives = scene.triangles.size() + scene.spheres.size();
     f.bvh = primitives >= kMinBvhPrimitives;
     f.fixed_counts = !f.bvh && primitives <= max_fixed_count_primitives;
@@ -358,6 +361,18 @@ DeviceScene flatten_scene(const Scene& scene, bool hierarchy) {
     if (!out.lights.empty())
         out.lights.back().cdf = 1.0f; // never let rounding leave u in no bin
     out.light_area = static_cast<float>(total_area);
+
+    // Planar mirrors in the float frame: the plane from the frame's vertices.
+    for (const PlanarMirror& mirror : find_planar_mirrors(scene)) {
+        WpMirrorGroup g{};
+        const Triangle& first = scene.triangles[mirror.triangles.front()];
+        g.plane = to_float4(mirror.normal, glm::dot(mirror.normal, frame.point(first.v[0])));
+        g.first = static_cast<wp_uint>(out.mirror_triangles.size());
+        g.count = static_cast<wp_uint>(mirror.triangles.size());
+        for (std::uint32_t i : mirror.triangles)
+            out.mirror_triangles.push_back(out.triangles[i]);
+        out.mirror_groups.push_back(g);
+    }
 
     for (const Sphere& s : scene.spheres) {
         WpSphere w{};

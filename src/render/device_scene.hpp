@@ -31,7 +31,8 @@ inline constexpr std::uint32_t kMinBvhPrimitives = kMaxFixedCountPrimitives + 1;
     X(diffuse, WP_HAS_DIFFUSE) /* material kinds in use */                                         \
     X(mirror, WP_HAS_MIRROR)                                                                       \
     X(shading_normals, WP_HAS_SHADING_NORMALS) /* triangles with vertex normals */                 \
-    X(lights, WP_HAS_LIGHTS)                   /* emissive triangles for next-event estimation */
+    X(lights, WP_HAS_LIGHTS)                   /* emissive triangles for next-event estimation */  \
+    X(planar_mirrors, WP_HAS_PLANAR_MIRRORS)   /* flat mirror triangles, and lights */
 
 // Which kinds of primitive, material and light the scene uses.
 struct SceneFeatures {
@@ -84,6 +85,8 @@ struct DeviceScene {
     std::vector<WpLight> lights;                    // emissive triangles with their area CDF
     std::vector<WpShadingNormals> triangle_normals; // of the triangles that have them
     std::vector<WpBvhNode> bvh_nodes;               // empty without a hierarchy
+    std::vector<WpMirrorGroup> mirror_groups;       // planar mirrors (render/planar_mirrors.hpp)
+    std::vector<WpTriangle> mirror_triangles;       // copies of their triangles
     BvhStats bvh_stats;
     float light_area = 0.0f; // total emissive area
     WpCamera camera{};

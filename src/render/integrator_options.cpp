@@ -108,6 +108,8 @@ std::string describe_estimator(const IntegratorOptions& options) {
     std::string text = options.next_event_estimation
                            ? diffuse + "+nee+" + to_string(options.light_sampling)
                            : diffuse + "+no-nee";
+    if (options.next_event_estimation && !options.mirror_next_event)
+        text += "+no-mirror-nee";
     if (options.roulette_depth != IntegratorOptions{}.roulette_depth)
         text += "+roulette-from-" + std::to_string(options.roulette_depth);
     if (options.path_types != kAllPathTypes)

@@ -67,6 +67,10 @@ struct IntegratorOptions {
     // Next-event estimation: one shadow ray to a light per diffuse hit. Off,
     // light is found only by paths that hit emitters.
     bool next_event_estimation = true;
+    // Next-event estimation through planar mirrors as well (kernels/mirror_light.h),
+    // weighed against BSDF sampling by multiple importance sampling; compiled
+    // only for scenes with planar mirrors and lights (--mirror-nee on|off).
+    bool mirror_next_event = true;
     // The defaults are the most efficient variant measured on the hexroom
     // (docs/convergence.md); solid-angle light sampling wins by an order of
     // magnitude where surfaces come close to a light.

@@ -31,8 +31,9 @@ constexpr std::array<BufferAccess, 5> kIntersect{{{"ray_queues", R},
 
 // kernels/shade.cl: ray_queues is read (its own queue) and written (the
 // survivors' queue); a path ends in finished_queue or goes on, never both,
-// so the table overcounts one 4-byte push.
-constexpr std::array<BufferAccess, 16> kShade{{{"ray_queues", RW},
+// so the table overcounts one 4-byte push. The mirror_* buffers only with
+// next-event estimation through planar mirrors (kernels/mirror_light.h).
+constexpr std::array<BufferAccess, 22> kShade{{{"ray_queues", RW},
                                                {"hit_primitive", R},
                                                {"hit_t", R},
                                                {"ray_origin", RW},
@@ -47,14 +48,26 @@ constexpr std::array<BufferAccess, 16> kShade{{{"ray_queues", RW},
                                                {"shadow_origin", W},
                                                {"shadow_direction", W},
                                                {"shadow_contribution", W},
+                                               {"mirror_vertex", RW},
+                                               {"mirror_shadow_origin", W},
+                                               {"mirror_shadow_direction", W},
+                                               {"mirror_shadow_origin2", W},
+                                               {"mirror_shadow_direction2", W},
+                                               {"mirror_shadow_contribution", W},
                                                {"finished_queue", W}}};
 
-// kernels/shadow.cl: radiance is written only when the ray is unblocked.
-constexpr std::array<BufferAccess, 5> kShadow{{{"shadow_queue", R},
-                                               {"shadow_origin", R},
-                                               {"shadow_direction", R},
-                                               {"shadow_contribution", R},
-                                               {"radiance", RW}}};
+// kernels/shadow.cl: radiance is written only when the ray is unblocked; the
+// mirror_shadow_* buffers only for entries through a planar mirror.
+constexpr std::array<BufferAccess, 10> kShadow{{{"shadow_queue", R},
+                                                {"shadow_origin", R},
+                                                {"shadow_direction", R},
+                                                {"shadow_contribution", R},
+                                                {"mirror_shadow_origin", R},
+                                                {"mirror_shadow_direction", R},
+                                                {"mirror_shadow_origin2", R},
+                                                {"mirror_shadow_direction2", R},
+                                                {"mirror_shadow_contribution", R},
+                                                {"radiance", RW}}};
 
 // kernels/accumulate.cl: film_odd_sum only for odd samples.
 constexpr std::array<BufferAccess, 7> kAccumulate{{{"finished_queue", R},

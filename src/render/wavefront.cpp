@@ -110,6 +110,10 @@ WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const Scene& sce
     program_ =
         build_wavefront_program(device_.context, device_.info.device,
                                 kernel_build_options(compiled, options_), options_.program_cache);
+    mirror_shadows_ =
+        kernel_build_options(compiled, options_).find("WP_MIRROR_NEE=1") != std::string::npos;
+    if (mirror_shadows_)
+        mirror_shadow_kernel_ = cl::Kernel(program_.program, "mirror_shadow");
     for (std::size_t i = 0; i < kStageKernelNames.size(); ++i)
         kernels_[i] = cl::Kernel(program_.program, std::string(kStageKernelNames[i]).c_str());
 
@@ -122,12 +126,15 @@ WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const Scene& sce
     frame_.sphere_count = static_cast<wp_uint>(scene_.spheres.size());
     frame_.light_count = static_cast<wp_uint>(scene_.lights.size());
     frame_.light_area = scene_.light_area;
+    frame_.mirror_group_count = static_cast<wp_uint>(scene_.mirror_groups.size());
     frame_.max_depth = options_.max_depth;
 
     buffers_ = allocate_device_buffers(device_.context, scene_, pool_size_, pixel_count_);
     clear_film();
     for (cl::Kernel& kernel : kernels_)
         bind_buffers(kernel, buffers_);
+    if (mirror_shadows_)
+        bind_buffers(mirror_shadow_kernel_, buffers_);
 }
 
 void WavefrontIntegrator::clear_film() {
@@ -136,10 +143,11 @@ void WavefrontIntegrator::clear_film() {
         device_.queue.enqueueFillBuffer(*b, zero4, 0, sizeof(cl_float4) * pixel_count_);
 }
 
-void WavefrontIntegrator::launch(Stage stage, const WpLaunch& arguments, std::uint32_t items) {
+void WavefrontIntegrator::launch(Stage stage, const WpLaunch& arguments, std::uint32_t items,
+                                 cl::Kernel* other) {
     if (items == 0)
         return;
-    cl::Kernel& kernel = kernels_[static_cast<std::size_t>(stage)];
+    cl::Kernel& kernel = other ? *other : kernels_[static_cast<std::size_t>(stage)];
     kernel.setArg(kFrameArgument, frame_);
     kernel.setArg(kLaunchArgument, arguments);
     std::size_t group = group_size_;
@@ -217,8 +225,11 @@ void WavefrontIntegrator::render_range(std::uint32_t first_sample, std::uint32_t
     // The first wave: every slot gets a camera ray.
     launch(Stage::Generate, make_launch(pool_size_, in), pool_size_);
     // The profiler record of the last generate launch, whose item count (the
-    // slots that really got a sample) is known only at the next sync.
-    std::optional<std::size_t> generate_record;
+    // slots that really got a sample) is known only at the next sync; a
+    // sentinel rather than std::optional, which GCC 12 wrongly calls
+    // maybe-uninitialized here.
+    constexpr std::size_t kNoRecord = static_cast<std::size_t>(-1);
+    std::size_t generate_record = kNoRecord;
     if (profiler_)
         generate_record = profiler_->last_record();
 
@@ -235,6 +246,10 @@ void WavefrontIntegrator::render_range(std::uint32_t first_sample, std::uint32_t
                              zeros.data());
         q.enqueueWriteBuffer(buffers_.counters, CL_FALSE, sizeof(cl_uint) * WP_COUNTER_SHADOW_RAYS,
                              2 * sizeof(cl_uint), zeros.data());
+        if (mirror_shadows_)
+            q.enqueueWriteBuffer(buffers_.counters, CL_FALSE,
+                                 sizeof(cl_uint) * WP_COUNTER_MIRROR_SHADOW_RAYS, sizeof(cl_uint),
+                                 zeros.data());
         const auto bound = static_cast<std::uint32_t>(upper_bound);
         // The records of this iteration's ray launches (intersect and shade,
         // or bounce), whose item counts the sync below gives.
@@ -249,8 +264,9 @@ void WavefrontIntegrator::render_range(std::uint32_t first_sample, std::uint32_t
             first_ray_record = profiler_->last_record() - (fused ? 0 : 1);
 
         // The one synchronisation per iteration: how long each queue is.
-        std::array<cl_uint, 4> counts{};
-        read(buffers_.counters, sizeof(counts), counts.data(), true);
+        std::array<cl_uint, WP_COUNTER_MIRROR_SHADOW_RAYS + 1> counts{};
+        read(buffers_.counters, mirror_shadows_ ? sizeof(counts) : 4 * sizeof(cl_uint),
+             counts.data(), true);
         const std::uint32_t traced = counts[in];
         const std::uint32_t next = counts[out];
         const std::uint32_t shadows = counts[WP_COUNTER_SHADOW_RAYS];
@@ -272,16 +288,27 @@ void WavefrontIntegrator::render_range(std::uint32_t first_sample, std::uint32_t
                 for (std::size_t r = *first_ray_record; r < *first_ray_record + (fused ? 1 : 2);
                      ++r)
                     profiler_->set_items(r, traced);
-            if (generate_record)
-                profiler_->set_items(*generate_record, traced - survivors);
-            generate_record.reset();
+            if (generate_record != kNoRecord)
+                profiler_->set_items(generate_record, traced - survivors);
+            generate_record = kNoRecord;
             profiler_->resolve_completed();
         }
         if (traced == 0)
             break; // every slot has finished all its samples
 
-        if (!fused) // the bounce kernel traced its shadow rays already
+        if (!fused) { // the bounce kernel traced its shadow rays already
             launch(Stage::Shadow, make_launch(shadows, in), shadows);
+            if (const std::uint32_t mirrored = counts[WP_COUNTER_MIRROR_SHADOW_RAYS];
+                mirrored > 0) {
+                // Two-leg rays through planar mirrors (kernels/mirror_light.h),
+                // after the plain ones, so that no two work-items add to one
+                // slot at once.
+                launch(Stage::Shadow, make_launch(mirrored, in), mirrored, &mirror_shadow_kernel_);
+                stats_.shadow_rays += 2u * mirrored; // two legs each, as the profile counts them
+                if (profiler_)
+                    profiler_->set_items(profiler_->last_record(), 2u * mirrored);
+            }
+        }
         launch(Stage::Accumulate, make_launch(finished, in), finished);
         finished_total += finished;
         if (on_progress)
@@ -442,6 +469,8 @@ std::string kernel_build_options(const SceneFeatures& features, const Integrator
     if (options.path_types != kAllPathTypes) // only then is anything tracked (path_type.h)
         text += " -D WP_PATH_TYPE_MASK=" + std::to_string(options.path_types);
     text += options.sampler == Sampler::Sobol ? " -D WP_SAMPLER=1" : " -D WP_SAMPLER=0";
+    if (features.planar_mirrors && options.next_event_estimation && options.mirror_next_event)
+        text += " -D WP_MIRROR_NEE=1";
     if (features.shading_normals && !options.shadow_terminator_fix)
         text += " -D WP_SHADOW_TERMINATOR_FIX=0";
     return text;

@@ -104,7 +104,9 @@ class WavefrontIntegrator {
     void render_waves(std::uint32_t first_sample, std::uint32_t count, Film& film,
                       const std::function<void(double)>& on_progress);
     // Launches `stage` over `items` work-items (rounded up to whole groups).
-    void launch(Stage stage, const WpLaunch& arguments, std::uint32_t items);
+    // `other`: a kernel that is not the stage's, profiled as the stage.
+    void launch(Stage stage, const WpLaunch& arguments, std::uint32_t items,
+                cl::Kernel* other = nullptr);
     // Device seconds of `repetitions` launches of one stage.
     double time_launches(Stage stage, const WpLaunch& arguments, std::uint32_t items,
                          int repetitions);
@@ -125,6 +127,10 @@ class WavefrontIntegrator {
     WpFrame frame_{};
     std::uint32_t pixel_count_ = 0;
     std::uint32_t pool_size_ = 0;
+    // Kernels built with WP_MIRROR_NEE: the mirror queue's two-leg shadow rays
+    // go to mirror_shadow (kernels/shadow.cl) after the shadow stage.
+    bool mirror_shadows_ = false;
+    cl::Kernel mirror_shadow_kernel_;
     Profiler* profiler_ = nullptr;
 
     std::array<cl::Kernel, kStageKernelNames.size()> kernels_; // by Stage

@@ -22,7 +22,8 @@ namespace {
 #define WP_LAYOUT_STRUCTS(X)                                                                       \
     X(WpTriangle)                                                                                  \
     X(WpShadingNormals)                                                                            \
-    X(WpSphere) X(WpMaterial) X(WpLight) X(WpBvhNode) X(WpCamera) X(WpFrame) X(WpLaunch)
+    X(WpSphere)                                                                                    \
+    X(WpMaterial) X(WpLight) X(WpMirrorGroup) X(WpBvhNode) X(WpCamera) X(WpFrame) X(WpLaunch)
 
 #define WP_LAYOUT_FIELDS(X)                                                                        \
     X(WpTriangle, v0)                                                                              \
@@ -54,6 +55,11 @@ namespace {
     X(WpLight, cdf)                                                                                \
     X(WpLight, pad0)                                                                               \
     X(WpLight, pad1)                                                                               \
+    X(WpMirrorGroup, plane)                                                                        \
+    X(WpMirrorGroup, first)                                                                        \
+    X(WpMirrorGroup, count)                                                                        \
+    X(WpMirrorGroup, pad0)                                                                         \
+    X(WpMirrorGroup, pad1)                                                                         \
     X(WpCamera, eye)                                                                               \
     X(WpCamera, forward)                                                                           \
     X(WpCamera, right)                                                                             \
@@ -70,7 +76,7 @@ namespace {
     X(WpFrame, light_count)                                                                        \
     X(WpFrame, light_area)                                                                         \
     X(WpFrame, max_depth)                                                                          \
-    X(WpFrame, pad0)                                                                               \
+    X(WpFrame, mirror_group_count)                                                                 \
     X(WpLaunch, count)                                                                             \
     X(WpLaunch, ray_queue)                                                                         \
     X(WpLaunch, from_finished)                                                                     \
@@ -144,7 +150,7 @@ __kernel void echo_frame(WpFrame frame, __global uint* out) {
     out[i++] = frame.light_count;
     out[i++] = as_uint(frame.light_area);
     out[i++] = frame.max_depth;
-    out[i++] = frame.pad0;
+    out[i++] = frame.mirror_group_count;
 }
 )CL";
 
@@ -206,7 +212,7 @@ TEST_CASE("A WpFrame passed by value reaches the kernel field for field", "[cl][
     frame.light_count = 2;
     frame.light_area = 0.3125f;
     frame.max_depth = 1024;
-    frame.pad0 = 0x11111111u;
+    frame.mirror_group_count = 0x11111111u;
 
     std::vector<cl_uint> expected;
     for (const cl_float4* v :
@@ -217,7 +223,7 @@ TEST_CASE("A WpFrame passed by value reaches the kernel field for field", "[cl][
                       frame.pool_size, frame.triangle_count, frame.sphere_count, frame.light_count})
         expected.push_back(u);
     expected.push_back(float_bits(frame.light_area));
-    for (cl_uint u : {frame.max_depth, frame.pad0})
+    for (cl_uint u : {frame.max_depth, frame.mirror_group_count})
         expected.push_back(u);
 
     cl::Kernel kernel(program(kFrameEchoSource, "frame_echo_test.cl"), "echo_frame");
