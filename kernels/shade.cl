@@ -147,9 +147,8 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
     float3 beta_emission = beta;
 #if WP_MIRROR_NEE /* weighed against the mirrored light sample (mirror_light.h) */
     if (flags & WP_PATH_PLANAR_MIRROR)
-        beta_emission *=
-            wp_mirror_emission_weight(&scene, primitive, mirror_vertex[slot], ray_origin[slot].xyz, t,
-                                      &surface, direction);
+        beta_emission *= wp_mirror_emission_weight(&scene, primitive, mirror_vertex[slot],
+                                                   ray_origin[slot].xyz, t, &surface, direction);
 #endif
     radiance[slot] =
         (float4)(wp_shade_emission(&material, &surface, flags, beta_emission, radiance[slot].xyz),
