@@ -202,17 +202,32 @@ void WavefrontIntegrator::render_range(std::uint32_t first_sample, std::uint32_t
                                        const std::function<void(double)>& on_progress) {
     if (count == 0)
         return;
-    if (plan_.plan == LaunchPlan::Wave) {
-        render_waves(first_sample, count, film, on_progress);
-        return;
-    }
-    const bool fused = plan_.plan == LaunchPlan::Bounce;
     auto start = std::chrono::steady_clock::now();
     cl::CommandQueue& q = device_.queue;
     frame_.first_sample = first_sample;
     frame_.sample_count = count;
     q.enqueueFillBuffer(buffers_.path_task, cl_uint{0}, 0, sizeof(cl_uint) * pool_size_);
     q.enqueueFillBuffer(buffers_.counters, cl_uint{0}, 0, sizeof(cl_uint) * WP_COUNTER_COUNT);
+    if (plan_.plan == LaunchPlan::Wave)
+        trace_waves(count, film, on_progress);
+    else
+        trace_bounces(film, on_progress);
+    flush_film(film);
+
+    std::array<cl_uint, WP_COUNTER_COUNT> counters{};
+    read(buffers_.counters, sizeof(counters), counters.data(), true);
+    stats_.capped_paths += counters[WP_COUNTER_CAPPED];
+    stats_.nonfinite_samples += counters[WP_COUNTER_NONFINITE];
+    if (profiler_)
+        profiler_->resolve_completed();
+    stats_.render_seconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void WavefrontIntegrator::trace_bounces(Film& film,
+                                        const std::function<void(double)>& on_progress) {
+    const bool fused = plan_.plan == LaunchPlan::Bounce;
+    cl::CommandQueue& q = device_.queue;
 
     // The two ray queues swap roles every iteration: intersect and shade read
     // queue `in`, shade pushes survivors onto the other one, and generate
@@ -333,26 +348,11 @@ void WavefrontIntegrator::render_range(std::uint32_t first_sample, std::uint32_t
         if ((iteration + 1) % kIterationsPerFlush == 0)
             flush_film(film);
     }
-    flush_film(film);
-
-    std::array<cl_uint, WP_COUNTER_COUNT> counters{};
-    read(buffers_.counters, sizeof(counters), counters.data(), true);
-    stats_.capped_paths += counters[WP_COUNTER_CAPPED];
-    stats_.nonfinite_samples += counters[WP_COUNTER_NONFINITE];
-    if (profiler_)
-        profiler_->resolve_completed();
-    stats_.render_seconds +=
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-void WavefrontIntegrator::render_waves(std::uint32_t first_sample, std::uint32_t count, Film& film,
-                                       const std::function<void(double)>& on_progress) {
-    auto start = std::chrono::steady_clock::now();
+void WavefrontIntegrator::trace_waves(std::uint32_t count, Film& film,
+                                      const std::function<void(double)>& on_progress) {
     cl::CommandQueue& q = device_.queue;
-    frame_.first_sample = first_sample;
-    frame_.sample_count = count;
-    q.enqueueFillBuffer(buffers_.path_task, cl_uint{0}, 0, sizeof(cl_uint) * pool_size_);
-    q.enqueueFillBuffer(buffers_.counters, cl_uint{0}, 0, sizeof(cl_uint) * WP_COUNTER_COUNT);
 
     // Without regeneration a launch is one wave, one task per slot; with it a
     // slot runs several tasks back to back (regeneration within the
@@ -394,16 +394,6 @@ void WavefrontIntegrator::render_waves(std::uint32_t first_sample, std::uint32_t
             since_flush = 0;
         }
     }
-    flush_film(film);
-
-    std::array<cl_uint, WP_COUNTER_COUNT> counters{};
-    read(buffers_.counters, sizeof(counters), counters.data(), true);
-    stats_.capped_paths += counters[WP_COUNTER_CAPPED];
-    stats_.nonfinite_samples += counters[WP_COUNTER_NONFINITE];
-    if (profiler_)
-        profiler_->resolve_completed();
-    stats_.render_seconds +=
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 // Stage benchmarks: rays written straight into the path (or shadow) state of

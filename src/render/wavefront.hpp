@@ -98,11 +98,17 @@ class WavefrontIntegrator {
                        const std::vector<cl_float4>& directions, int repetitions);
 
   private:
+    // One call's samples: resets the slots and counters, traces them by the
+    // launch plan, folds the film and reads the final counters.
     void render_range(std::uint32_t first_sample, std::uint32_t count, Film& film,
                       const std::function<void(double)>& on_progress);
-    // The wave plan's render_range: megakernel launches, no per-bounce sync.
-    void render_waves(std::uint32_t first_sample, std::uint32_t count, Film& film,
-                      const std::function<void(double)>& on_progress);
+    // The stages and bounce plans: a launch per stage (or one fused launch)
+    // and one sync per bounce, until every slot has finished its samples.
+    void trace_bounces(Film& film, const std::function<void(double)>& on_progress);
+    // The wave plan: megakernel launches of `count` samples' tasks, no
+    // per-bounce sync.
+    void trace_waves(std::uint32_t count, Film& film,
+                     const std::function<void(double)>& on_progress);
     // Launches `stage` over `items` work-items (rounded up to whole groups).
     // `other`: a kernel that is not the stage's, profiled as the stage.
     void launch(Stage stage, const WpLaunch& arguments, std::uint32_t items,
