@@ -33,9 +33,5 @@ __kernel void bounce(WP_FUSED_PARAMETERS) {
         wp_trace_mirror_shadow_ray(&scene, &shadow.mirror, radiance, slot);
     }
 #endif
-    if (goes_on)
-        wp_queue_push(wp_ray_queue(ray_queues, frame, 1u - launch.ray_queue), counters,
-                      1u - launch.ray_queue, slot);
-    else
-        wp_queue_push(finished_queue, counters, WP_COUNTER_FINISHED, slot);
+    wp_queue_shaded_path(ray_queues, finished_queue, counters, frame, launch, slot, goes_on);
 }

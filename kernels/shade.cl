@@ -55,18 +55,16 @@ static inline float3 wp_shade_emission(const WpMaterial* material, const WpSurfa
     return sum;
 }
 
-/* Step 2: one shadow ray towards a light point, with the contribution it
- * carries if unblocked, into *shadow (the shade kernel queues it, a fused
- * kernel traces it at once). */
+/* Step 2: one shadow ray towards the light point the numbers (u_pick, u, v)
+ * pick, with the contribution it carries if unblocked, into *shadow (the
+ * shade kernel queues it, a fused kernel traces it at once). */
 static inline void wp_shade_next_event(const WpSceneView* scene, const WpMaterial* material,
                                        const WpSurface* surface, float3 wo, float3 normal,
-                                       float3 shading, float3 origin, float3 beta,
-                                       const WpPathRandom* random, WpShadowRay* shadow) {
+                                       float3 shading, float3 origin, float3 beta, float u_pick,
+                                       float u, float v, WpShadowRay* shadow) {
 #if WP_HAS_LIGHTS && WP_USE_NEE
     WpLightSample light;
-    if (!wp_sample_light(
-            scene, surface->position, origin, shading, wp_path_random(random, WP_DIM_LIGHT_PICK),
-            wp_path_random(random, WP_DIM_LIGHT_U), wp_path_random(random, WP_DIM_LIGHT_V), &light))
+    if (!wp_sample_light(scene, surface->position, origin, shading, u_pick, u, v, &light))
         return;
     float3 contribution = beta * wp_bsdf_eval_pi(material, wo, light.direction, shading) *
                           light.irradiance * (1.0f / WP_PI);
@@ -80,7 +78,7 @@ static inline void wp_shade_next_event(const WpSceneView* scene, const WpMateria
 #else
     (void)scene, (void)material, (void)surface, (void)wo, (void)normal, (void)shading;
     (void)origin, (void)beta;
-    (void)random, (void)shadow;
+    (void)u_pick, (void)u, (void)v, (void)shadow;
 #endif
 }
 
@@ -157,16 +155,23 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
         return 0;
 
     float3 origin = wp_offset_ray_origin(spawn, normal, surface.scale);
-    if (!wp_bsdf_is_delta(&material) && WP_PATH_NEXT_EVENT_SELECTED(flags))
-        wp_shade_next_event(&scene, &material, &surface, direction, normal, shading, origin, beta,
-                            &random, shadow);
-#if WP_MIRROR_NEE /* and one through a planar mirror, with two legs */
-    shadow->mirror_made =
-        !wp_bsdf_is_delta(&material) && WP_MIRROR_NEXT_EVENT_SELECTED(flags) &&
-        wp_mirror_next_event(&scene, &material, &surface, direction, shading, origin, beta,
-                             wp_path_random(&random, WP_DIM_LIGHT_PICK),
-                             wp_path_random(&random, WP_DIM_LIGHT_U),
-                             wp_path_random(&random, WP_DIM_LIGHT_V), &shadow->mirror);
+#if WP_HAS_LIGHTS && WP_USE_NEE
+    if (!wp_bsdf_is_delta(&material)) {
+        /* One light point's numbers serve the light seen directly and, with
+         * WP_MIRROR_NEE, by way of a planar mirror (two legs). */
+        float u_pick = wp_path_random(&random, WP_DIM_LIGHT_PICK);
+        float u_light = wp_path_random(&random, WP_DIM_LIGHT_U);
+        float v_light = wp_path_random(&random, WP_DIM_LIGHT_V);
+        if (WP_PATH_NEXT_EVENT_SELECTED(flags))
+            wp_shade_next_event(&scene, &material, &surface, direction, normal, shading, origin,
+                                beta, u_pick, u_light, v_light, shadow);
+#if WP_MIRROR_NEE
+        shadow->mirror_made =
+            WP_MIRROR_NEXT_EVENT_SELECTED(flags) &&
+            wp_mirror_next_event(&scene, &material, &surface, direction, shading, origin, beta,
+                                 u_pick, u_light, v_light, &shadow->mirror);
+#endif
+    }
 #endif
 
     float u1 = wp_path_random(&random, WP_DIM_BSDF_U);
@@ -209,6 +214,19 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
     return 1;
 }
 
+/* Where a shaded path goes next (the shade and the bounce kernel alike): onto
+ * the other ray queue if it goes on, else onto the finished queue. */
+static inline void wp_queue_shaded_path(__global wp_uint* ray_queues,
+                                        __global wp_uint* finished_queue,
+                                        __global wp_uint* counters, WpFrame frame, WpLaunch launch,
+                                        wp_uint slot, int goes_on) {
+    if (goes_on)
+        wp_queue_push(wp_ray_queue(ray_queues, frame, 1u - launch.ray_queue), counters,
+                      1u - launch.ray_queue, slot);
+    else
+        wp_queue_push(finished_queue, counters, WP_COUNTER_FINISHED, slot);
+}
+
 __kernel void shade(WP_STAGE_PARAMETERS) {
     wp_uint index = get_global_id(0);
     if (index >= counters[launch.ray_queue])
@@ -235,9 +253,5 @@ __kernel void shade(WP_STAGE_PARAMETERS) {
         mirror_shadow_contribution[slot] = shadow.mirror.contribution;
     }
 #endif
-    if (goes_on)
-        wp_queue_push(wp_ray_queue(ray_queues, frame, 1u - launch.ray_queue), counters,
-                      1u - launch.ray_queue, slot);
-    else
-        wp_queue_push(finished_queue, counters, WP_COUNTER_FINISHED, slot);
+    wp_queue_shaded_path(ray_queues, finished_queue, counters, frame, launch, slot, goes_on);
 }
