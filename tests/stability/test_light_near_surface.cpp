@@ -22,24 +22,14 @@
 // geometry term taken at the surface point (docs/stability.md, case 6; the
 // offset origin biased it by the factor above).
 #include "stability.hpp"
+#include "support/form_factor.hpp"
 
 using namespace wp;
 using namespace wp::stability;
 
 namespace {
 
-// Form factor from a differential area at the origin, normal +z, to the
-// rectangle [0, a] x [0, b] in the parallel plane at height c (odd in a and b).
-double corner_form_factor(double a, double b, double c) {
-    double x = a / c, y = b / c;
-    double sx = std::sqrt(1.0 + x * x), sy = std::sqrt(1.0 + y * y);
-    return (x / sx * std::atan(y / sx) + y / sy * std::atan(x / sy)) / (2.0 * M_PI);
-}
-
-double rectangle_form_factor(double x0, double x1, double y0, double y1, double c) {
-    return corner_form_factor(x1, y1, c) - corner_form_factor(x0, y1, c) -
-           corner_form_factor(x1, y0, c) + corner_form_factor(x0, y0, c);
-}
+using test::rectangle_form_factor;
 
 struct Exact {
     std::vector<double> radiance; // per pixel, green
