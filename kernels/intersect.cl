@@ -9,12 +9,16 @@
 
 __kernel void intersect(WP_STAGE_PARAMETERS) {
     wp_uint index = get_global_id(0);
-    if (index >= counters[launch.ray_queue])
+    int queued = index < counters[launch.ray_queue];
+    if (!WP_TRACE_SURPLUS_ITEMS && !queued)
         return;
-    wp_uint slot = wp_ray_queue(ray_queues, frame, launch.ray_queue)[index];
+    wp_uint slot = queued ? wp_ray_queue(ray_queues, frame, launch.ray_queue)[index] : 0u;
     WpSceneView scene = WP_SCENE_VIEW();
     float t;
-    hit_primitive[slot] = wp_closest_hit(&scene, wp_load_xyz(ray_origin, slot),
-                                         wp_load_xyz(ray_direction, slot), INFINITY, &t);
-    hit_t[slot] = t;
+    wp_uint hit = wp_closest_hit(&scene, wp_load_xyz(ray_origin, slot),
+                                 wp_load_xyz(ray_direction, slot), INFINITY, &t);
+    if (queued) {
+        hit_primitive[slot] = hit;
+        hit_t[slot] = t;
+    }
 }

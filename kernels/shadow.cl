@@ -8,16 +8,19 @@
 
 __kernel void shadow(WP_STAGE_PARAMETERS) {
     wp_uint index = get_global_id(0);
-    if (index >= launch.count)
+    int queued = index < launch.count;
+    if (!WP_TRACE_SURPLUS_ITEMS && !queued)
         return;
     WpSceneView scene = WP_SCENE_VIEW();
-    wp_uint slot = shadow_queue[index];
+    wp_uint slot = queued ? shadow_queue[index] : 0u;
 
     /* Scalar loads and a per-component update keep vector instructions out
      * of the stage, so that it vectorises (traverse.h). The direction's w is
      * the segment's length. */
-    if (!wp_occluded(&scene, wp_load_xyz(shadow_origin, slot), wp_load_xyz(shadow_direction, slot),
-                     wp_load_w(shadow_direction, slot))) {
+    int blocked =
+        wp_occluded(&scene, wp_load_xyz(shadow_origin, slot), wp_load_xyz(shadow_direction, slot),
+                    wp_load_w(shadow_direction, slot));
+    if (queued && !blocked) {
         __global float* sum = (__global float*)(radiance + slot);
         __global const float* add = (__global const float*)(shadow_contribution + slot);
         sum[0] += add[0];
@@ -61,9 +64,10 @@ static inline void wp_trace_mirror_shadow_ray(const WpSceneView* scene, const Wp
  * shadow stage's name), so that shadow stays as it was and vectorises. */
 __kernel void mirror_shadow(WP_STAGE_PARAMETERS) {
     wp_uint index = get_global_id(0);
-    if (index >= launch.count)
+    int queued = index < launch.count;
+    if (!WP_TRACE_SURPLUS_ITEMS && !queued)
         return;
-    wp_uint slot = shadow_queue[frame.pool_size + index];
+    wp_uint slot = queued ? shadow_queue[frame.pool_size + index] : 0u;
     WpSceneView scene = WP_SCENE_VIEW();
     int blocked = wp_occluded(&scene, wp_load_xyz(mirror_shadow_origin, slot),
                               wp_load_xyz(mirror_shadow_direction, slot),
@@ -71,7 +75,7 @@ __kernel void mirror_shadow(WP_STAGE_PARAMETERS) {
     blocked |= wp_occluded(&scene, wp_load_xyz(mirror_shadow_origin2, slot),
                            wp_load_xyz(mirror_shadow_direction2, slot),
                            wp_load_w(mirror_shadow_direction2, slot));
-    if (!blocked) {
+    if (queued && !blocked) {
         __global float* sum = (__global float*)(radiance + slot);
         __global const float* add = (__global const float*)(mirror_shadow_contribution + slot);
         sum[0] += add[0];

@@ -40,6 +40,20 @@
 #define WP_ANY_HIT_EARLY_EXIT 1
 #endif
 
+/* Work-items past the end of their queue (the last work-group's surplus).
+ * Where the stage vectorises (fixed counts), whatever such an item skips
+ * under `if (index < count)` becomes predicated, and a predicated load of
+ * the scene, the same address in every lane, becomes a masked gather: nine
+ * per triangle test, each as costly as eight loads (PoCL 3.1 on AVX-512).
+ * So there surplus items trace slot 0's ray too and only their stores are
+ * skipped: every scene load is then unconditional, one load for all lanes.
+ * Where the stage does not vectorise, they leave at once. */
+#ifdef WP_TRIANGLE_COUNT
+#define WP_TRACE_SURPLUS_ITEMS 1
+#else
+#define WP_TRACE_SURPLUS_ITEMS 0
+#endif
+
 #if defined(__clang__) || defined(__GNUC__)
 #define WP_ALWAYS_INLINE __attribute__((always_inline))
 #else
