@@ -79,15 +79,23 @@ inline const cl::Program& program(const std::string& source, const std::string& 
     }
 }
 
-// The five wavefront stages with every feature compiled in, built once.
-inline const cl::Program& wavefront_program() {
-    static const cl::Program& built = *new cl::Program( // never released
-        build_wavefront_program(device().context, device().info.device, "").program);
-    return built;
+// The five wavefront stages with every feature compiled in, built once per
+// set of extra build options (say "-D WP_TRIANGLE_COUNT=2 -D WP_SPHERE_COUNT=1",
+// the fixed-count specialisation that PoCL vectorises).
+inline const cl::Program& wavefront_program(const std::string& options = "") {
+    static auto& cache = *new std::map<std::string, cl::Program>; // never released
+    auto found = cache.find(options);
+    if (found == cache.end())
+        found = cache
+                    .emplace(options, build_wavefront_program(device().context,
+                                                              device().info.device, options)
+                                          .program)
+                    .first;
+    return found->second;
 }
 
-inline cl::Kernel wavefront_kernel(const char* name) {
-    return cl::Kernel(wavefront_program(), name);
+inline cl::Kernel wavefront_kernel(const char* name, const std::string& options = "") {
+    return cl::Kernel(wavefront_program(options), name);
 }
 
 // Every buffer a stage kernel takes, for `slots` path slots and `pixels`
@@ -100,8 +108,9 @@ inline DeviceBuffers stage_buffers(std::size_t slots, std::size_t pixels) {
 // Runs stage `name` with `frame` and `arguments` over `items` work-items,
 // bound to `buffers` exactly as the integrator binds them.
 inline void run_stage(const char* name, const WpFrame& frame, const WpLaunch& arguments,
-                      const DeviceBuffers& buffers, std::size_t items) {
-    cl::Kernel kernel = wavefront_kernel(name);
+                      const DeviceBuffers& buffers, std::size_t items,
+                      const std::string& options = "") {
+    cl::Kernel kernel = wavefront_kernel(name, options);
     bind_buffers(kernel, buffers);
     kernel.setArg(kFrameArgument, frame);
     kernel.setArg(kLaunchArgument, arguments);
