@@ -40,8 +40,9 @@
 #define WP_ANY_HIT_EARLY_EXIT 1
 #endif
 
-/* Work-items past the end of their queue (the last work-group's surplus).
- * Where the stage vectorises (fixed counts), whatever such an item skips
+/* Work-items past the end of their queue (the last work-group's surplus;
+ * for intersect also the rays the host's bound allowed for but the queue
+ * did not get). Where the stage vectorises (fixed counts), whatever such an item skips
  * under `if (index < count)` becomes predicated, and a predicated load of
  * the scene, the same address in every lane, becomes a masked gather: nine
  * per triangle test, each as costly as eight loads (PoCL 3.1 on AVX-512).
