@@ -22,7 +22,7 @@ __kernel void bounce(WP_FUSED_PARAMETERS) {
     wp_uint primitive = wp_closest_hit(&scene, wp_load_xyz(ray_origin, slot),
                                        wp_load_xyz(ray_direction, slot), INFINITY, &t);
     WpShadowRay shadow;
-    int goes_on = wp_shade_path(WP_STAGE_ARGUMENTS, slot, primitive, t, &shadow);
+    int outcome = wp_shade_path(WP_STAGE_ARGUMENTS, slot, primitive, t, &shadow);
     if (shadow.made) {
         atomic_inc(&counters[WP_COUNTER_SHADOW_RAYS]);
         wp_trace_shadow_ray(&scene, &shadow, radiance, slot);
@@ -33,5 +33,5 @@ __kernel void bounce(WP_FUSED_PARAMETERS) {
         wp_trace_mirror_shadow_ray(&scene, &shadow.mirror, radiance, slot);
     }
 #endif
-    wp_queue_shaded_path(ray_queues, finished_queue, counters, frame, launch, slot, goes_on);
+    wp_queue_shaded_path(ray_queues, finished_queue, counters, frame, launch, slot, outcome);
 }

@@ -18,9 +18,23 @@
  * itself is never taken for an occluder. */
 #define WP_SHADOW_END_MARGIN 4.0f
 
-/* The first light whose cumulative area fraction exceeds u (count > 0). */
+/* The first light whose cumulative area fraction exceeds u (count > 0), by
+ * binary search. With the count compiled in (WP_LIGHT_COUNT, small scenes)
+ * the search takes its fixed number of steps, ceil(log2(count)), each a
+ * select, so that shade has no loop whose trip count depends on the data and
+ * PoCL can vectorise it; the light it finds is the same. */
 static inline wp_uint wp_pick_light(__global const WpLight* lights, wp_uint count, float u) {
     wp_uint low = 0, high = count - 1u;
+#ifdef WP_LIGHT_COUNT
+    (void)count;
+    _Pragma("unroll") for (wp_uint span = (wp_uint)(WP_LIGHT_COUNT)-1u; span > 0u; span >>= 1) {
+        wp_uint mid = (low + high) / 2u;
+        int left = lights[mid].cdf > u;
+        int searching = low < high;
+        high = searching && left ? mid : high;
+        low = searching && !left ? mid + 1u : low;
+    }
+#else
     while (low < high) {
         wp_uint mid = (low + high) / 2u;
         if (lights[mid].cdf > u)
@@ -28,6 +42,7 @@ static inline wp_uint wp_pick_light(__global const WpLight* lights, wp_uint coun
         else
             low = mid + 1u;
     }
+#endif
     return low;
 }
 

@@ -67,6 +67,14 @@ static inline float wp_mis_power(float own, float other) {
     return 1.0f / (1.0f + r * r);
 }
 
+/* Whether the point p of t's plane lies inside t or on its edge. */
+static inline int wp_mirror_triangle_holds(WpTriangle t, float3 p) {
+    float3 v0 = t.v0.xyz, v1 = t.v1.xyz, v2 = t.v2.xyz;
+    float3 nt = cross(v1 - v0, v2 - v0);
+    return dot(cross(v1 - v0, p - v0), nt) >= 0.0f && dot(cross(v2 - v1, p - v1), nt) >= 0.0f &&
+           dot(cross(v0 - v2, p - v2), nt) >= 0.0f;
+}
+
 /* The mirror point between x and y in the plane of `group`: 1 when x and y lie
  * strictly on the same side of the plane and the point where x -> y' (y
  * reflected in the plane) crosses it lies inside one of the group's
@@ -83,17 +91,28 @@ static inline int wp_mirror_connect(const WpSceneView* scene, const WpMirrorGrou
     float3 p = x + (sx / (sx + sy)) * (mirrored - x);
     p -= (dot(n, p) - group->plane.w) * n;
     *m = p;
+#ifdef WP_MIRROR_GROUP_TRIANGLES
+    /* The largest group's count compiled in: a fixed-count loop (shade
+     * vectorises) that keeps the first triangle holding p, as the loop
+     * below does. */
+    int found = 0;
+    _Pragma("unroll") for (wp_uint j = 0; j < (wp_uint)(WP_MIRROR_GROUP_TRIANGLES); ++j) {
+        wp_uint k = group->first + j;
+        if (j < group->count && !found && wp_mirror_triangle_holds(scene->mirror_triangles[k], p)) {
+            *triangle = k;
+            found = 1;
+        }
+    }
+    return found;
+#else
     for (wp_uint k = group->first; k < group->first + group->count; ++k) {
-        WpTriangle t = scene->mirror_triangles[k];
-        float3 v0 = t.v0.xyz, v1 = t.v1.xyz, v2 = t.v2.xyz;
-        float3 nt = cross(v1 - v0, v2 - v0);
-        if (dot(cross(v1 - v0, p - v0), nt) >= 0.0f && dot(cross(v2 - v1, p - v1), nt) >= 0.0f &&
-            dot(cross(v0 - v2, p - v2), nt) >= 0.0f) {
+        if (wp_mirror_triangle_holds(scene->mirror_triangles[k], p)) {
             *triangle = k;
             return 1;
         }
     }
     return 0;
+#endif
 }
 
 /* The mirrored strategy's solid-angle density at x of the direction to a light

@@ -110,9 +110,16 @@ static inline int wp_shade_roulette(const WpMaterial* material, const WpBsdfSamp
 #endif
 }
 
+/* What became of a shaded path (wp_shade_path). */
+#define WP_SHADED_ENDS 0    /* missed, absorbed or out of roulette: finished */
+#define WP_SHADED_GOES_ON 1 /* scattered: it traces its next ray */
+#define WP_SHADED_CAPPED 2  /* cut at frame.max_depth: finished, and counted */
+
 /* Shade's work for one path: slot's ray hit `primitive` at distance t.
  * Updates the slot's path state, leaves the shadow ray it made (if any) in
- * *shadow, and says whether the path goes on (else it has finished). */
+ * *shadow, and says what became of the path (WP_SHADED_*). It bumps no
+ * counter and pushes onto no queue, so that the caller can do both for a
+ * whole work-group at once (the shade kernel below). */
 static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primitive, float t,
                                 WpShadowRay* shadow) {
     shadow->made = 0;
@@ -120,7 +127,7 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
     shadow->mirror_made = 0;
 #endif
     if (primitive == WP_NO_HIT) /* the ray left the scene: the path ends with what it has */
-        return 0;
+        return WP_SHADED_ENDS;
 
     WpSceneView scene = WP_SCENE_VIEW();
     float3 direction = ray_direction[slot].xyz;
@@ -128,7 +135,7 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
     if (surface.inside_solid) {
         /* Inside a mirror sphere such a path would bounce until the depth
          * cap; absorb it instead. */
-        return 0;
+        return WP_SHADED_ENDS;
     }
     WpMaterial material = materials[surface.material];
     /* The geometric and the shading normal on the side the ray came from, and
@@ -152,7 +159,7 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
         (float4)(wp_shade_emission(&material, &surface, flags, beta_emission, radiance[slot].xyz),
                  0.0f);
     if (wp_bsdf_is_black(&material))
-        return 0;
+        return WP_SHADED_ENDS;
 
     float3 origin = wp_offset_ray_origin(spawn, normal, surface.scale);
 #if WP_HAS_LIGHTS && WP_USE_NEE
@@ -180,7 +187,7 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
 #if WP_HAS_SHADING_NORMALS
     /* Scattered by the shading normal into the true surface: absorbed. */
     if (surface.smooth && !(dot(scattered.direction, normal) > 0.0f))
-        return 0;
+        return WP_SHADED_ENDS;
 #endif
 #if WP_MIRROR_NEE /* what the emission weight at the next vertex needs */
     if (!scattered.specular)
@@ -199,59 +206,123 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
 #endif
 
     float survival;
-    int survives = wp_shade_roulette(&material, &scattered, &random, u1, &beta, &survival);
-    if (survives && depth + 1u > frame.max_depth) {
-        atomic_inc(&counters[WP_COUNTER_CAPPED]);
-        survives = 0;
-    }
-    if (!survives)
-        return 0;
+    if (!wp_shade_roulette(&material, &scattered, &random, u1, &beta, &survival))
+        return WP_SHADED_ENDS;
+    if (depth + 1u > frame.max_depth)
+        return WP_SHADED_CAPPED;
     throughput[slot] = (float4)(beta / survival, 0.0f);
     ray_origin[slot] = (float4)(origin, 0.0f);
     ray_direction[slot] = (float4)(scattered.direction, 0.0f);
     path_depth[slot] = depth + 1u;
     path_flags[slot] = flags;
-    return 1;
+    return WP_SHADED_GOES_ON;
 }
 
-/* Where a shaded path goes next (the shade and the bounce kernel alike): onto
- * the other ray queue if it goes on, else onto the finished queue. */
+/* Where a shaded path goes next, one atomic per path (the fused kernels):
+ * onto the other ray queue if it goes on, else onto the finished queue. */
 static inline void wp_queue_shaded_path(__global wp_uint* ray_queues,
                                         __global wp_uint* finished_queue,
                                         __global wp_uint* counters, WpFrame frame, WpLaunch launch,
-                                        wp_uint slot, int goes_on) {
-    if (goes_on)
+                                        wp_uint slot, int outcome) {
+    if (outcome == WP_SHADED_GOES_ON) {
         wp_queue_push(wp_ray_queue(ray_queues, frame, 1u - launch.ray_queue), counters,
                       1u - launch.ray_queue, slot);
-    else
-        wp_queue_push(finished_queue, counters, WP_COUNTER_FINISHED, slot);
+        return;
+    }
+    if (outcome == WP_SHADED_CAPPED)
+        atomic_inc(&counters[WP_COUNTER_CAPPED]);
+    wp_queue_push(finished_queue, counters, WP_COUNTER_FINISHED, slot);
 }
 
+/* The queues a shaded path is pushed onto, as bits of one word. */
+#define WP_PUSH_NEXT_RAY 1u      /* the other ray queue */
+#define WP_PUSH_FINISHED 2u      /* the finished queue */
+#define WP_PUSH_SHADOW 4u        /* the shadow queue */
+#define WP_PUSH_MIRROR_SHADOW 8u /* the mirror queue (two-leg shadow rays) */
+#define WP_PUSH_CAPPED 16u       /* counted as cut by the depth cap (no queue) */
+
+/* Shade kernel: one work-item per queued ray.
+ *
+ * Its queue pushes are compacted per work-group instead of taking one global
+ * atomic each: every work-item shades its path and says in pushes[] which
+ * queues it joins; work-item 0 numbers them within the group and reserves
+ * each queue's range with one atomic_add; then every work-item writes its
+ * slot at its place. Besides saving the atomics this keeps them out of the
+ * shading, which PoCL can then vectorise across the work-group (an atomic in
+ * the work-item loop stops its vectoriser; the barriers split the kernel into
+ * separate loops). Surplus work-items (past the queue's end) shade nothing
+ * and push nothing, but reach the barriers like the rest. Which place a slot
+ * takes in a queue changes nothing that is computed: every slot owns its own
+ * pixels. */
 __kernel void shade(WP_STAGE_PARAMETERS) {
+    __local wp_uint pushes[WP_MAX_WORK_GROUP_SIZE];
+    __local wp_uint path_place[WP_MAX_WORK_GROUP_SIZE]; /* in the next-ray or finished queue */
+    __local wp_uint shadow_place[WP_MAX_WORK_GROUP_SIZE];
+    __local wp_uint mirror_place[WP_MAX_WORK_GROUP_SIZE];
+    __local wp_uint first_place[4]; /* next ray, finished, shadow, mirror */
+
     wp_uint index = get_global_id(0);
-    if (index >= counters[launch.ray_queue])
-        return;
-    wp_uint slot = wp_ray_queue(ray_queues, frame, launch.ray_queue)[index];
-    wp_uint primitive = hit_primitive[slot];
-    WpShadowRay shadow;
-    int goes_on = wp_shade_path(WP_STAGE_ARGUMENTS, slot, primitive,
-                                primitive == WP_NO_HIT ? 0.0f : hit_t[slot], &shadow);
-    if (shadow.made) {
-        wp_queue_push(shadow_queue, counters, WP_COUNTER_SHADOW_RAYS, slot);
-        shadow_origin[slot] = (float4)(shadow.origin, 0.0f);
-        shadow_direction[slot] = (float4)(shadow.direction, shadow.length);
-        shadow_contribution[slot] = (float4)(shadow.contribution, 0.0f);
-    }
+    wp_uint item = get_local_id(0);
+    wp_uint slot = 0u, push = 0u;
+    if (index < counters[launch.ray_queue]) {
+        slot = wp_ray_queue(ray_queues, frame, launch.ray_queue)[index];
+        wp_uint primitive = hit_primitive[slot];
+        WpShadowRay shadow;
+        int outcome = wp_shade_path(WP_STAGE_ARGUMENTS, slot, primitive,
+                                    primitive == WP_NO_HIT ? 0.0f : hit_t[slot], &shadow);
+        push = outcome == WP_SHADED_GOES_ON ? WP_PUSH_NEXT_RAY : WP_PUSH_FINISHED;
+        if (outcome == WP_SHADED_CAPPED)
+            push |= WP_PUSH_CAPPED;
+        if (shadow.made) {
+            push |= WP_PUSH_SHADOW;
+            shadow_origin[slot] = (float4)(shadow.origin, 0.0f);
+            shadow_direction[slot] = (float4)(shadow.direction, shadow.length);
+            shadow_contribution[slot] = (float4)(shadow.contribution, 0.0f);
+        }
 #if WP_MIRROR_NEE /* the two-leg ray goes to the mirror queue (shadow.cl, mirror_shadow) */
-    if (shadow.mirror_made) {
-        wp_queue_push(shadow_queue + frame.pool_size, counters, WP_COUNTER_MIRROR_SHADOW_RAYS,
-                      slot);
-        mirror_shadow_origin[slot] = shadow.mirror.origin;
-        mirror_shadow_direction[slot] = shadow.mirror.direction;
-        mirror_shadow_origin2[slot] = shadow.mirror.origin2;
-        mirror_shadow_direction2[slot] = shadow.mirror.direction2;
-        mirror_shadow_contribution[slot] = shadow.mirror.contribution;
-    }
+        if (shadow.mirror_made) {
+            push |= WP_PUSH_MIRROR_SHADOW;
+            mirror_shadow_origin[slot] = shadow.mirror.origin;
+            mirror_shadow_direction[slot] = shadow.mirror.direction;
+            mirror_shadow_origin2[slot] = shadow.mirror.origin2;
+            mirror_shadow_direction2[slot] = shadow.mirror.direction2;
+            mirror_shadow_contribution[slot] = shadow.mirror.contribution;
+        }
 #endif
-    wp_queue_shaded_path(ray_queues, finished_queue, counters, frame, launch, slot, goes_on);
+    }
+    pushes[item] = push;
+    barrier(CLK_LOCAL_MEM_FENCE);
+
+    if (item == 0u) {
+        wp_uint next_rays = 0u, finished = 0u, shadows = 0u, mirrors = 0u, capped = 0u;
+        for (wp_uint i = 0u; i < get_local_size(0); ++i) {
+            wp_uint p = pushes[i];
+            path_place[i] = (p & WP_PUSH_NEXT_RAY) ? next_rays : finished;
+            next_rays += p & WP_PUSH_NEXT_RAY ? 1u : 0u;
+            finished += p & WP_PUSH_FINISHED ? 1u : 0u;
+            shadow_place[i] = shadows;
+            shadows += p & WP_PUSH_SHADOW ? 1u : 0u;
+            mirror_place[i] = mirrors;
+            mirrors += p & WP_PUSH_MIRROR_SHADOW ? 1u : 0u;
+            capped += p & WP_PUSH_CAPPED ? 1u : 0u;
+        }
+        first_place[0] = next_rays ? atomic_add(&counters[1u - launch.ray_queue], next_rays) : 0u;
+        first_place[1] = finished ? atomic_add(&counters[WP_COUNTER_FINISHED], finished) : 0u;
+        first_place[2] = shadows ? atomic_add(&counters[WP_COUNTER_SHADOW_RAYS], shadows) : 0u;
+        first_place[3] =
+            mirrors ? atomic_add(&counters[WP_COUNTER_MIRROR_SHADOW_RAYS], mirrors) : 0u;
+        if (capped)
+            atomic_add(&counters[WP_COUNTER_CAPPED], capped);
+    }
+    barrier(CLK_LOCAL_MEM_FENCE);
+
+    if (push & WP_PUSH_NEXT_RAY)
+        wp_ray_queue(ray_queues, frame, 1u - launch.ray_queue)[first_place[0] + path_place[item]] =
+            slot;
+    if (push & WP_PUSH_FINISHED)
+        finished_queue[first_place[1] + path_place[item]] = slot;
+    if (push & WP_PUSH_SHADOW)
+        shadow_queue[first_place[2] + shadow_place[item]] = slot;
+    if (push & WP_PUSH_MIRROR_SHADOW)
+        shadow_queue[frame.pool_size + first_place[3] + mirror_place[item]] = slot;
 }

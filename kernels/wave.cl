@@ -33,7 +33,10 @@ __kernel void wave(WP_FUSED_PARAMETERS) {
                                                wp_load_xyz(ray_direction, slot), INFINITY, &t);
             ++rays;
             WpShadowRay shadow;
-            goes_on = wp_shade_path(WP_STAGE_ARGUMENTS, slot, primitive, t, &shadow);
+            int outcome = wp_shade_path(WP_STAGE_ARGUMENTS, slot, primitive, t, &shadow);
+            if (outcome == WP_SHADED_CAPPED)
+                atomic_inc(&counters[WP_COUNTER_CAPPED]);
+            goes_on = outcome == WP_SHADED_GOES_ON;
             if (shadow.made) {
                 ++shadows;
                 wp_trace_shadow_ray(&scene, &shadow, radiance, slot);

@@ -76,6 +76,10 @@ typedef cl_float4 wp_float4;
     6u /* the mirror queue: two-leg shadow rays (mirror_light.h) */
 #define WP_COUNTER_COUNT 8u
 
+/* The largest work-group the host launches (src/render/wavefront.cpp): shade
+ * compacts its queue pushes through local arrays of this many entries. */
+#define WP_MAX_WORK_GROUP_SIZE 256u
+
 /* A triangle, 48 bytes: vertices in xyz. Its front face is the side of
  * cross(v1 - v0, v2 - v0); only emitters care which side is the front. The
  * w lanes, which no geometric code reads, hold two uints as float VALUES

@@ -243,7 +243,9 @@ std::string SceneFeatures::build_options() const {
 #undef WP_FEATURE_FLAG
     if (fixed_counts)
         options += " -D WP_TRIANGLE_COUNT=" + std::to_string(triangle_count) +
-                   " -D WP_SPHERE_COUNT=" + std::to_string(sphere_count);
+                   " -D WP_SPHERE_COUNT=" + std::to_string(sphere_count) +
+                   " -D WP_LIGHT_COUNT=" + std::to_string(light_count) +
+                   " -D WP_MIRROR_GROUP_TRIANGLES=" + std::to_string(mirror_group_triangles);
     if (bvh)
         options += " -D WP_USE_BVH=1";
     return options;
@@ -280,17 +282,24 @@ SceneFeatures analyse_features(const Scene& scene, std::uint32_t max_fixed_count
                                     [](const Triangle& t) { return t.has_normals; });
     f.diffuse = uses(MaterialKind::Diffuse);
     f.mirror = uses(MaterialKind::Mirror);
-    f.lights = false;
-    for (const Triangle& t : scene.triangles)
-        f.lights = f.lights || scene.materials[t.material].is_emissive();
+    const auto lights = static_cast<std::uint32_t>(
+        std::count_if(scene.triangles.begin(), scene.triangles.end(), [&](const Triangle& t) {
+            return scene.materials[t.material].is_emissive();
+        }));
+    f.lights = lights > 0;
     // Next-event estimation through planar mirrors needs both (kernels/mirror_light.h).
-    f.planar_mirrors = f.lights && !find_planar_mirrors(scene).empty();
+    const std::vector<PlanarMirror> mirrors = find_planar_mirrors(scene);
+    f.planar_mirrors = f.lights && !mirrors.empty();
     const std::size_t primitives = scene.triangles.size() + scene.spheres.size();
     f.bvh = primitives >= kMinBvhPrimitives;
     f.fixed_counts = !f.bvh && primitives <= max_fixed_count_primitives;
     if (f.fixed_counts) {
         f.triangle_count = static_cast<std::uint32_t>(scene.triangles.size());
         f.sphere_count = static_cast<std::uint32_t>(scene.spheres.size());
+        f.light_count = lights;
+        for (const PlanarMirror& mirror : mirrors)
+            f.mirror_group_triangles = std::max(
+                f.mirror_group_triangles, static_cast<std::uint32_t>(mirror.triangles.size()));
     }
     return f;
 }

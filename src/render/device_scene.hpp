@@ -46,6 +46,12 @@ struct SceneFeatures {
     bool fixed_counts = false;
     std::uint32_t triangle_count = 0;
     std::uint32_t sphere_count = 0;
+    // With fixed counts, the lights' and the largest planar mirror's triangle
+    // counts too (-D WP_LIGHT_COUNT=n -D WP_MIRROR_GROUP_TRIANGLES=m), so the
+    // light pick and the mirror outline test are fixed-count loops and shade
+    // vectorises (kernels/lights.h, kernels/mirror_light.h).
+    std::uint32_t light_count = 0;
+    std::uint32_t mirror_group_triangles = 0;
     // Large scenes: traversal through a bounding volume hierarchy
     // (-D WP_USE_BVH=1, kernels/bvh.h). Like fixed counts an acceleration,
     // not a feature: the images are the same either way, up to which of two

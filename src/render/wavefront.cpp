@@ -31,13 +31,14 @@ constexpr std::uint32_t kWorkGroupSize = 64;
 constexpr std::uint32_t kWaveTasksPerFlush = 8;
 
 // The work-group size: kWorkGroupSize, or WAVEPATH_WORK_GROUP_SIZE (for
-// measuring; docs/performance.md), at most the device's maximum.
+// measuring; docs/performance.md), at most the device's maximum and
+// WP_MAX_WORK_GROUP_SIZE (shade's compaction arrays, kernels/shade.cl).
 std::size_t work_group_size(const DeviceInfo& device) {
     std::size_t size = kWorkGroupSize;
     if (const char* text = std::getenv("WAVEPATH_WORK_GROUP_SIZE"))
         if (const long value = std::strtol(text, nullptr, 10); value > 0)
             size = static_cast<std::size_t>(value);
-    return std::min(size, device.max_work_group_size);
+    return std::min({size, device.max_work_group_size, std::size_t{WP_MAX_WORK_GROUP_SIZE}});
 }
 
 std::string gibibytes(std::uint64_t bytes) {

@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <string>
 
 #include "support/render_helpers.hpp"
@@ -152,6 +153,37 @@ TEST_CASE("Launch plans: one sample per render call (the CLI without regeneratio
         CHECK(compare(stages.film.variance_of_mean(), other.film.variance_of_mean()).differing ==
               0);
         CHECK(compare(stages.film.half_mean(0), other.film.half_mean(0)).differing == 0);
+    }
+}
+
+TEST_CASE("Shade's work-group compaction of its queue pushes: the image and the counts do not "
+          "depend on the work-group size",
+          "[render][launch-plan]") {
+    // The stages plan's shade numbers each work-group's pushes in local
+    // memory and reserves every queue's range with one atomic per group
+    // (kernels/shade.cl). A slot lost or queued twice would change the image
+    // or the ray counts; sizes past WP_MAX_WORK_GROUP_SIZE must be clamped to
+    // it by the host (the local arrays hold no more). 20x16 pixels: 320
+    // slots, several groups of each size, the last one partly surplus.
+    const Scene scene = test::hexroom(20, 16);
+    const std::uint32_t spp = 4;
+    IntegratorOptions capped;
+    capped.max_depth = 2;
+    for (const IntegratorOptions& options : {IntegratorOptions{}, capped}) {
+        INFO("max depth " << options.max_depth);
+        const PlanRender reference = render_plan(scene, LaunchPlan::Stages, options, spp, spp);
+        if (options.max_depth == 2)
+            REQUIRE(reference.stats.capped_paths > 0);
+        for (const char* size : {"1", "7", "256", "1000"}) {
+            INFO("work-group size " << size);
+            REQUIRE(setenv("WAVEPATH_WORK_GROUP_SIZE", size, 1) == 0);
+            const PlanRender other = render_plan(scene, LaunchPlan::Stages, options, spp, spp);
+            unsetenv("WAVEPATH_WORK_GROUP_SIZE");
+            check_same_counts(reference, other);
+            CHECK(compare(reference.film.mean(), other.film.mean()).differing == 0);
+            CHECK(compare(reference.film.variance_of_mean(), other.film.variance_of_mean())
+                      .differing == 0);
+        }
     }
 }
 
