@@ -316,13 +316,16 @@ __kernel void shade(WP_STAGE_PARAMETERS) {
     }
     barrier(CLK_LOCAL_MEM_FENCE);
 
+    wp_uint next_place = first_place[0] + path_place[item];
+    wp_uint finished_place = first_place[1] + path_place[item];
+    wp_uint shadow_ray_place = first_place[2] + shadow_place[item];
+    wp_uint mirror_ray_place = frame.pool_size + first_place[3] + mirror_place[item];
     if (push & WP_PUSH_NEXT_RAY)
-        wp_ray_queue(ray_queues, frame, 1u - launch.ray_queue)[first_place[0] + path_place[item]] =
-            slot;
+        wp_ray_queue(ray_queues, frame, 1u - launch.ray_queue)[next_place] = slot;
     if (push & WP_PUSH_FINISHED)
-        finished_queue[first_place[1] + path_place[item]] = slot;
+        finished_queue[finished_place] = slot;
     if (push & WP_PUSH_SHADOW)
-        shadow_queue[first_place[2] + shadow_place[item]] = slot;
-    if (push & WP_PUSH_MIRROR_SHADOW)
-        shadow_queue[frame.pool_size + first_place[3] + mirror_place[item]] = slot;
+        shadow_queue[shadow_ray_place] = slot;
+    if (push & WP_PUSH_MIRROR_SHADOW) /* the mirror queue follows the shadow queue */
+        shadow_queue[mirror_ray_place] = slot;
 }

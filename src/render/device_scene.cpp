@@ -297,9 +297,10 @@ SceneFeatures analyse_features(const Scene& scene, std::uint32_t max_fixed_count
         f.triangle_count = static_cast<std::uint32_t>(scene.triangles.size());
         f.sphere_count = static_cast<std::uint32_t>(scene.spheres.size());
         f.light_count = lights;
-        for (const PlanarMirror& mirror : mirrors)
-            f.mirror_group_triangles = std::max(
-                f.mirror_group_triangles, static_cast<std::uint32_t>(mirror.triangles.size()));
+        if (f.planar_mirrors)
+            for (const PlanarMirror& mirror : mirrors)
+                f.mirror_group_triangles = std::max(
+                    f.mirror_group_triangles, static_cast<std::uint32_t>(mirror.triangles.size()));
     }
     return f;
 }

@@ -147,27 +147,32 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 -D "
           "WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_TRIANGLE_COUNT=26 -D "
-          "WP_SPHERE_COUNT=2");
+          "WP_SPHERE_COUNT=2 -D WP_LIGHT_COUNT=2 -D "
+          "WP_MIRROR_GROUP_TRIANGLES=2");
     CHECK(analyse_features(triangles_only()).build_options() ==
           "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=0 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 -D "
           "WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_TRIANGLE_COUNT=26 -D "
-          "WP_SPHERE_COUNT=0");
+          "WP_SPHERE_COUNT=0 -D WP_LIGHT_COUNT=2 -D "
+          "WP_MIRROR_GROUP_TRIANGLES=2");
     CHECK(analyse_features(spheres_only()).build_options() ==
           "-D WP_HAS_TRIANGLES=0 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 -D "
           "WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=0 -D WP_HAS_PLANAR_MIRRORS=0 -D WP_TRIANGLE_COUNT=0 -D "
-          "WP_SPHERE_COUNT=4");
+          "WP_SPHERE_COUNT=4 -D WP_LIGHT_COUNT=0 -D "
+          "WP_MIRROR_GROUP_TRIANGLES=0");
     CHECK(analyse_features(no_mirror()).build_options() ==
           "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=0 -D "
           "WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=0 -D WP_TRIANGLE_COUNT=26 -D "
-          "WP_SPHERE_COUNT=2");
+          "WP_SPHERE_COUNT=2 -D WP_LIGHT_COUNT=2 -D "
+          "WP_MIRROR_GROUP_TRIANGLES=0");
     CHECK(analyse_features(no_light()).build_options() ==
           "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 -D "
           "WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=0 -D WP_HAS_PLANAR_MIRRORS=0 -D WP_TRIANGLE_COUNT=24 -D "
-          "WP_SPHERE_COUNT=2");
+          "WP_SPHERE_COUNT=2 -D WP_LIGHT_COUNT=0 -D "
+          "WP_MIRROR_GROUP_TRIANGLES=0");
     // Past the fixed-count limit: runtime counts and the hierarchy.
     CHECK(analyse_features(large()).build_options() ==
           "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 -D "
