@@ -26,6 +26,22 @@
  * alike work on different operands are written in different ways where the
  * SLP vectoriser would otherwise pack them into short vectors. */
 
+/* The larger and the smaller of two floats as one compare and select (on
+ * x86 one maxps or minps), where OpenCL's fmax and fmin must also return the
+ * number when the other operand is a NaN (a compare, a max and a blend). The
+ * sliver guard below needs no such care: for numbers both give the same
+ * value (up to a zero's sign, which only comparisons see, and they see
+ * -0 == +0). Only a NaN corner coordinate, which comes from a NaN ray (or a
+ * zero direction), can make them differ, and for such a ray the edge values
+ * are NaN and the decision was never meaningful: a path that met one
+ * carries a NaN sample, which the film drops and counts (accumulate.cl). */
+static inline float wp_max(float a, float b) {
+    return a > b ? a : b;
+}
+static inline float wp_min(float a, float b) {
+    return a < b ? a : b;
+}
+
 /* Component `axis` (0, 1, 2 for x, y, z) of (x, y, z): selects, not an
  * index. The three forms give the same value; each axis of the sheared frame
  * uses its own, so that SLP finds no two alike selects to pack. */
@@ -118,27 +134,27 @@ static inline int wp_triangle_test(const WpShearedRay* ray, float p0x, float p0y
      * this rejects only wrong decisions, and it keeps the test watertight:
      * a ray through a shared edge or vertex lies in both triangles' boxes.
      *
-     * The corners' largest coordinate, as one chain of fmax (exact and
+     * The corners' largest coordinate, as one chain of maxima (exact and
      * order-free, so the axis order does not matter; max(x, -x) = |x|),
      * each link depending on the last, so that SLP finds no two alike
      * operations side by side. A zero's sign may differ from fabs's, which
      * only comparisons see. */
-    float m = fmax(a_x, -a_x);
-    m = fmax(fmax(m, a_y), -a_y);
-    m = fmax(fmax(m, az), -az);
-    m = fmax(fmax(m, b_x), -b_x);
-    m = fmax(fmax(m, b_y), -b_y);
-    m = fmax(fmax(m, bz), -bz);
-    m = fmax(fmax(m, c_x), -c_x);
-    m = fmax(fmax(m, c_y), -c_y);
-    m = fmax(fmax(m, cz), -cz);
+    float m = wp_max(a_x, -a_x);
+    m = wp_max(wp_max(m, a_y), -a_y);
+    m = wp_max(wp_max(m, az), -az);
+    m = wp_max(wp_max(m, b_x), -b_x);
+    m = wp_max(wp_max(m, b_y), -b_y);
+    m = wp_max(wp_max(m, bz), -bz);
+    m = wp_max(wp_max(m, c_x), -c_x);
+    m = wp_max(wp_max(m, c_y), -c_y);
+    m = wp_max(wp_max(m, cz), -cz);
     float slack = WP_SLIVER_GUARD_RELATIVE * m;
-    /* The box's sides, as chains from an infinite start (fmin(inf, x) == x)
-     * for the same reason: equal to fmin(fmin(ax, bx), cx) and so on. */
-    float low_x = fmin(fmin(fmin(INFINITY, ax), bx), cx);
-    float high_x = fmax(fmax(fmax(-INFINITY, ax), bx), cx);
-    float low_y = fmin(fmin(fmin(INFINITY, ay), by), cy);
-    float high_y = fmax(fmax(fmax(-INFINITY, ay), by), cy);
+    /* The box's sides, as chains from an infinite start (min(inf, x) == x)
+     * for the same reason: equal to min(min(ax, bx), cx) and so on. */
+    float low_x = wp_min(wp_min(wp_min(INFINITY, ax), bx), cx);
+    float high_x = wp_max(wp_max(wp_max(-INFINITY, ax), bx), cx);
+    float low_y = wp_min(wp_min(wp_min(INFINITY, ay), by), cy);
+    float high_y = wp_max(wp_max(wp_max(-INFINITY, ay), by), cy);
     int in_box = !(low_x > slack || high_x < -slack || low_y > slack || high_y < -slack);
     float det = u + v + w; /* 0: the ray lies in the triangle's plane */
 
