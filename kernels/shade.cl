@@ -248,9 +248,9 @@ static inline void wp_queue_shaded_path(__global wp_uint* ray_queues,
  * queues it joins; work-item 0 numbers them within the group and reserves
  * each queue's range with one atomic_add; then every work-item writes its
  * slot at its place. Besides saving the atomics this keeps them out of the
- * shading, which PoCL can then vectorise across the work-group (an atomic in
- * the work-item loop stops its vectoriser; the barriers split the kernel into
- * separate loops). Surplus work-items (past the queue's end) shade nothing
+ * shading's work-item loop (PoCL splits the kernel into one loop per region
+ * between barriers, and an atomic stops its vectoriser; on PoCL 3.1 the
+ * float3 code still does, docs/profiling.md "Vectorising shade"). Surplus work-items (past the queue's end) shade nothing
  * and push nothing, but reach the barriers like the rest. Which place a slot
  * takes in a queue changes nothing that is computed: every slot owns its own
  * pixels. */
