@@ -21,8 +21,9 @@
 /* The first light whose cumulative area fraction exceeds u (count > 0), by
  * binary search. With the count compiled in (WP_LIGHT_COUNT, small scenes)
  * the search takes its fixed number of steps, ceil(log2(count)), each a
- * select, so that shade has no loop whose trip count depends on the data and
- * PoCL can vectorise it; the light it finds is the same. */
+ * select, so that no loop whose trip count depends on the data stands in
+ * the way of vectorising shade (docs/profiling.md, "Vectorising shade"); the
+ * light it finds is the same. */
 static inline wp_uint wp_pick_light(__global const WpLight* lights, wp_uint count, float u) {
     wp_uint low = 0, high = count - 1u;
 #ifdef WP_LIGHT_COUNT

@@ -92,9 +92,9 @@ static inline int wp_mirror_connect(const WpSceneView* scene, const WpMirrorGrou
     p -= (dot(n, p) - group->plane.w) * n;
     *m = p;
 #ifdef WP_MIRROR_GROUP_TRIANGLES
-    /* The largest group's count compiled in: a fixed-count loop (shade
-     * vectorises) that keeps the first triangle holding p, as the loop
-     * below does. */
+    /* The largest group's count compiled in: a fixed-count loop (no
+     * data-dependent loop in shade, as for the light pick) that keeps the
+     * first triangle holding p, as the loop below does. */
     int found = 0;
     _Pragma("unroll") for (wp_uint j = 0; j < (wp_uint)(WP_MIRROR_GROUP_TRIANGLES); ++j) {
         wp_uint k = group->first + j;

@@ -48,8 +48,9 @@ struct SceneFeatures {
     std::uint32_t sphere_count = 0;
     // With fixed counts, the lights' and the largest planar mirror's triangle
     // counts too (-D WP_LIGHT_COUNT=n -D WP_MIRROR_GROUP_TRIANGLES=m), so the
-    // light pick and the mirror outline test are fixed-count loops and shade
-    // vectorises (kernels/lights.h, kernels/mirror_light.h).
+    // light pick and the mirror outline test are fixed-count loops, not
+    // data-dependent ones that would stop shade's vectorisation
+    // (kernels/lights.h, kernels/mirror_light.h, docs/profiling.md).
     std::uint32_t light_count = 0;
     std::uint32_t mirror_group_triangles = 0;
     // Large scenes: traversal through a bounding volume hierarchy
