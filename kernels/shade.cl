@@ -250,9 +250,10 @@ static inline void wp_queue_shaded_path(__global wp_uint* ray_queues,
  * slot at its place. Besides saving the atomics this keeps them out of the
  * shading's work-item loop (PoCL splits the kernel into one loop per region
  * between barriers, and an atomic stops its vectoriser; on PoCL 3.1 the
- * float3 code still does, docs/profiling.md "Vectorising shade"). Surplus work-items (past the
- * queue's end) shade nothing and push nothing, but reach the barriers like the rest. Which place a
- * slot takes in a queue changes nothing that is computed: every slot owns its own pixels. */
+ * float3 code still does, docs/profiling.md "Vectorising shade").
+ * Surplus work-items (past the queue's end) shade nothing and push nothing,
+ * but reach the barriers like the rest. Which place a slot takes in a queue
+ * changes nothing that is computed: every slot owns its own pixels. */
 __kernel void shade(WP_STAGE_PARAMETERS) {
     __local wp_uint pushes[WP_MAX_WORK_GROUP_SIZE];
     __local wp_uint path_place[WP_MAX_WORK_GROUP_SIZE]; /* in the next-ray or finished queue */
