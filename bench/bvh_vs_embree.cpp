@@ -2,9 +2,13 @@
 // with Embree 3 on the same rays (docs/performance.md).
 //
 // For each size: the room of bench/room.json around a displaced sphere of
-// 12 N^2 triangles (N = 0: the room alone). Both BVHs are built over the same
-// float32 triangles (wavepath's DeviceScene), and both trace the same rays:
-//   incoherent: origins uniform in the scene's box, directions uniform;
+// 12 N^2 triangles (N = 0: the room alone), wavepath tracing it with its
+// hierarchy. Or, with --scene, one scene as it is (the hexroom: its own
+// traversal plan, analytic spheres as Embree's sphere primitives). Both
+// renderers trace the same float32 primitives (wavepath's DeviceScene) and
+// the same rays:
+//   incoherent: origins uniform in the scene's box (with --scene: in its free
+//               space), directions uniform;
 //   camera:     one jittered ray per pixel of the scene's camera;
 //   bounce:     cosine-sampled from the camera rays' hits (Embree's hits);
 //   shadow:     the incoherent rays with a random segment length, and from
@@ -23,6 +27,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <map>
 #include <random>
@@ -112,6 +117,7 @@ void add_displaced_sphere(Scene& scene, int n, std::uint32_t material) {
 struct Rays {
     std::string name;
     std::vector<cl_float4> origins, directions; // direction w: segment length (shadow)
+    std::size_t candidates = 0;                 // origins drawn, kept or not
 };
 
 cl_float4 f4(const glm::vec3& v, float w = 0.0f) {
@@ -135,21 +141,38 @@ Box bounds(const DeviceScene& ds) {
             b.lo = glm::min(b.lo, v3(v));
             b.hi = glm::max(b.hi, v3(v));
         }
+    for (const WpSphere& s : ds.spheres) {
+        const float r = s.center_radius.s[3];
+        b.lo = glm::min(b.lo, v3(s.center_radius) - r);
+        b.hi = glm::max(b.hi, v3(s.center_radius) + r);
+    }
     return b;
 }
 
-// Origins uniform in the box shrunk by 1 %, directions uniform on the sphere,
-// segment lengths uniform in (0, half the box's diagonal).
-Rays incoherent_rays(const Box& box, std::size_t count, std::uint32_t seed) {
+// Which origins to keep: given a candidate origin and a random unit
+// direction, whether the origin lies where rays are wanted.
+using OriginFilter = std::function<bool(const glm::vec3& origin, const glm::vec3& probe)>;
+
+// Origins uniform in the box shrunk by 1 % (of them those `keep` keeps, when
+// given), directions uniform on the sphere, segment lengths uniform in
+// (0, half the box's diagonal).
+Rays incoherent_rays(const Box& box, std::size_t count, std::uint32_t seed,
+                     const OriginFilter& keep = nullptr) {
     Rays r{"incoherent", {}, {}};
     glm::vec3 centre = 0.5f * (box.lo + box.hi), half = 0.495f * (box.hi - box.lo);
     float diagonal = glm::length(box.hi - box.lo);
     std::mt19937 rng(seed);
     std::uniform_real_distribution<float> u(-1.0f, 1.0f);
     std::normal_distribution<float> normal;
-    for (std::size_t i = 0; i < count; ++i) {
+    auto direction = [&] {
+        return glm::normalize(glm::vec3(normal(rng), normal(rng), normal(rng)));
+    };
+    while (r.origins.size() < count) {
         glm::vec3 o = centre + half * glm::vec3(u(rng), u(rng), u(rng));
-        glm::vec3 d = glm::normalize(glm::vec3(normal(rng), normal(rng), normal(rng)));
+        ++r.candidates;
+        if (keep && !keep(o, direction()))
+            continue;
+        glm::vec3 d = direction();
         r.origins.push_back(f4(o));
         r.directions.push_back(f4(d, 0.25f * diagonal * (u(rng) + 1.0f)));
     }
@@ -188,10 +211,18 @@ bool monitor(void* user, ssize_t bytes, bool) {
     return true;
 }
 
+// Geometry 0 holds the triangles, geometry 1 (when there are any) the
+// spheres, as Embree's sphere primitives (RTC_GEOMETRY_TYPE_SPHERE_POINT: an
+// analytic ray-sphere test, as wavepath's).
 struct EmbreeScene {
     RTCScene scene = nullptr;
     double build_seconds = 0.0;
-    long long bytes = 0; // held after the build (geometry buffers and BVH)
+    long long bytes = 0;         // held after the build (geometry buffers and BVH)
+    unsigned triangle_count = 0; // wavepath numbers sphere i triangle_count + i
+
+    unsigned primitive(unsigned geometry, unsigned index) const {
+        return geometry == 1 ? triangle_count + index : index;
+    }
 };
 
 EmbreeScene build_embree(RTCDevice device, EmbreeMemory& memory, const DeviceScene& ds,
@@ -216,8 +247,20 @@ EmbreeScene build_embree(RTCDevice device, EmbreeMemory& memory, const DeviceSce
         }
     }
     rtcCommitGeometry(g);
-    rtcAttachGeometry(e.scene, g);
+    rtcAttachGeometryByID(e.scene, g, 0);
     rtcReleaseGeometry(g);
+    e.triangle_count = unsigned(n);
+    if (!ds.spheres.empty()) {
+        RTCGeometry s = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+        rtcSetGeometryBuildQuality(s, quality);
+        auto* point = static_cast<float*>(rtcSetNewGeometryBuffer(
+            s, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), ds.spheres.size()));
+        for (std::size_t i = 0; i < ds.spheres.size(); ++i)
+            std::memcpy(point + 4 * i, ds.spheres[i].center_radius.s, 4 * sizeof(float));
+        rtcCommitGeometry(s);
+        rtcAttachGeometryByID(e.scene, s, 1);
+        rtcReleaseGeometry(s);
+    }
     double start = now();
     rtcCommitScene(e.scene);
     e.build_seconds = now() - start;
@@ -231,8 +274,9 @@ struct Hits {
 };
 
 // Traces `rays` on `threads` threads in chunks of 4096; returns wall seconds.
-double embree_trace(RTCScene scene, const Rays& rays, bool shadow, int width, int threads,
-                    Hits& out) {
+double embree_trace(const EmbreeScene& embree, const Rays& rays, bool shadow, int width,
+                    int threads, Hits& out) {
+    RTCScene scene = embree.scene;
     const std::size_t n = rays.origins.size();
     out.t.assign(n, 0.0f);
     out.primitive.assign(n, WP_NO_HIT);
@@ -269,7 +313,7 @@ double embree_trace(RTCScene scene, const Rays& rays, bool shadow, int width, in
                         rtcIntersect1(scene, &context, &rh);
                         if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
                             out.t[i] = rh.ray.tfar;
-                            out.primitive[i] = rh.hit.primID;
+                            out.primitive[i] = embree.primitive(rh.hit.geomID, rh.hit.primID);
                         }
                     }
                 }
@@ -306,7 +350,7 @@ double embree_trace(RTCScene scene, const Rays& rays, bool shadow, int width, in
                             out.t[i] = rh.ray.tfar[k] < 0.0f ? 1.0f : 0.0f;
                         } else if (rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID) {
                             out.t[i] = rh.ray.tfar[k];
-                            out.primitive[i] = rh.hit.primID[k];
+                            out.primitive[i] = embree.primitive(rh.hit.geomID[k], rh.hit.primID[k]);
                         }
                     }
                 }
@@ -320,6 +364,60 @@ double embree_trace(RTCScene scene, const Rays& rays, bool shadow, int width, in
     for (std::thread& t : pool)
         t.join();
     return now() - start;
+}
+
+// The material of wavepath's primitive p (a triangle, or sphere p - T).
+std::uint32_t primitive_material(const DeviceScene& ds, unsigned p) {
+    return p < ds.triangles.size() ? wp_triangle_material(&ds.triangles[p])
+                                   : ds.spheres[p - ds.triangles.size()].material;
+}
+
+// The geometric normal of primitive p at x (the front side's; a triangle's
+// front is the side its vertices wind anticlockwise on) and the magnitude of
+// its coordinates, which kernels/ray_offset.h scales the offset by.
+void primitive_frame(const DeviceScene& ds, unsigned p, const glm::vec3& x, glm::vec3& normal,
+                     float& scale) {
+    auto max_abs = [](glm::vec3 q) {
+        return std::max({std::fabs(q.x), std::fabs(q.y), std::fabs(q.z)});
+    };
+    if (p < ds.triangles.size()) {
+        const WpTriangle& tri = ds.triangles[p];
+        glm::vec3 a = v3(tri.v0), b = v3(tri.v1), c = v3(tri.v2);
+        normal = glm::normalize(glm::cross(b - a, c - a));
+        scale = std::max({max_abs(a), max_abs(b), max_abs(c)});
+    } else {
+        const cl_float4& s = ds.spheres[p - ds.triangles.size()].center_radius;
+        normal = glm::normalize(x - v3(s));
+        scale = max_abs(v3(s)) + s.s[3];
+    }
+}
+
+// Whether o lies in the free space of a closed scene whose surfaces all face
+// that space (the hexroom's walls face into the room, its objects outwards):
+// whether the closest surface along `probe` shows o its front. From inside an
+// object, from behind a wall or with nothing in the way, it does not.
+bool faces_origin(const EmbreeScene& embree, const DeviceScene& ds, const glm::vec3& o,
+                  const glm::vec3& probe) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rh{};
+    rh.ray.org_x = o.x;
+    rh.ray.org_y = o.y;
+    rh.ray.org_z = o.z;
+    rh.ray.dir_x = probe.x;
+    rh.ray.dir_y = probe.y;
+    rh.ray.dir_z = probe.z;
+    rh.ray.tfar = std::numeric_limits<float>::infinity();
+    rh.ray.mask = ~0u;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(embree.scene, &context, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+        return false;
+    glm::vec3 normal;
+    float scale;
+    primitive_frame(ds, embree.primitive(rh.hit.geomID, rh.hit.primID), o + rh.ray.tfar * probe,
+                    normal, scale);
+    return glm::dot(normal, probe) < 0.0f;
 }
 
 // Bounce rays: from each camera ray's hit (on a non-emitting surface), offset
@@ -338,19 +436,16 @@ void bounce_rays(const DeviceScene& ds, const Rays& camera, const Hits& hits, st
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     for (std::size_t i = 0; i < camera.origins.size(); ++i) {
         unsigned p = hits.primitive[i];
-        if (p == WP_NO_HIT || ds.materials[wp_triangle_material(&ds.triangles[p])].kind == 2u)
+        if (p == WP_NO_HIT || ds.materials[primitive_material(ds, p)].kind == 2u)
             continue;
-        const WpTriangle& tri = ds.triangles[p];
-        glm::vec3 a = v3(tri.v0), b = v3(tri.v1), c = v3(tri.v2);
         glm::vec3 d = v3(camera.directions[i]);
         glm::vec3 x = v3(camera.origins[i]) + hits.t[i] * d;
-        glm::vec3 n = glm::normalize(glm::cross(b - a, c - a));
+        glm::vec3 n;
+        float scale;
+        primitive_frame(ds, p, x, n, scale);
         if (glm::dot(n, d) > 0.0f)
             n = -n;
-        auto max_abs = [](glm::vec3 q) {
-            return std::max({std::fabs(q.x), std::fabs(q.y), std::fabs(q.z)});
-        };
-        float scale = std::max({max_abs(a), max_abs(b), max_abs(c), max_abs(x)});
+        scale = std::max({scale, std::fabs(x.x), std::fabs(x.y), std::fabs(x.z)});
         glm::vec3 o = x + n * (2.0e-6f * scale + 1.0e-30f);
         glm::vec3 s = std::fabs(n.x) > 0.5f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
         glm::vec3 e1 = glm::normalize(glm::cross(s, n)), e2 = glm::cross(n, e1);
@@ -402,10 +497,8 @@ struct Checker {
     DeviceBuffers buffers;
     WpFrame frame{};
 
-    Checker(DeviceContext& d, const Scene& scene, const DeviceScene& ds) : device(d) {
-        SceneFeatures features = analyse_features(scene);
-        features.fixed_counts = false;
-        features.bvh = true;
+    // `features`: the traced integrator's, so that the same traversal runs.
+    Checker(DeviceContext& d, const SceneFeatures& features, const DeviceScene& ds) : device(d) {
         BuiltProgram built = build_program(device.context, device.info.device, kCheckSource,
                                            "bench_check.cl", features.build_options());
         kernel = cl::Kernel(built.program, "check");
@@ -615,6 +708,12 @@ int main(int argc, char** argv) {
     app.add_option("--threads", threads, "Embree's threads")->capture_default_str();
     app.add_option("--device", device_selector, "OpenCL device")->capture_default_str();
     app.add_option("--room", room, "Scene around the sphere")->capture_default_str();
+    std::string scene_path;
+    app.add_option("--scene", scene_path,
+                   "Trace this scene as it is, with its own traversal plan and its spheres "
+                   "(incoherent origins in its free space) instead of the room around a "
+                   "displaced sphere; --resolutions and --room are ignored")
+        ->check(CLI::ExistingFile);
     app.add_option("--json", json_path, "Write every figure here");
     app.add_option("--svg", svg_path, "Write the Mrays/s plot here");
     std::vector<std::string> merge;
@@ -638,20 +737,28 @@ int main(int argc, char** argv) {
                 RTC_VERSION_MINOR, RTC_VERSION_PATCH, threads, uptime().c_str());
     json results = json::array();
 
+    const bool as_is = !scene_path.empty();
+    if (as_is)
+        resolutions = {0};
     for (int n : resolutions) {
-        Scene scene = load_scene(room);
-        std::uint32_t white = 0;
-        for (std::uint32_t m = 0; m < scene.materials.size(); ++m)
-            if (scene.materials[m].name == "white")
-                white = m;
-        add_displaced_sphere(scene, n, white);
+        Scene scene = load_scene(as_is ? scene_path : room);
+        if (!as_is) {
+            std::uint32_t white = 0;
+            for (std::uint32_t m = 0; m < scene.materials.size(); ++m)
+                if (scene.materials[m].name == "white")
+                    white = m;
+            add_displaced_sphere(scene, n, white);
+        }
         scene.camera.width = scene.camera.height = size;
         json r;
+        r["scene"] = as_is ? scene_path : room;
         r["resolution"] = n;
         r["triangles"] = scene.triangles.size();
+        r["spheres"] = scene.spheres.size();
         r["load_start"] = uptime();
-        std::printf("\n== N = %d: %zu triangles (load %s)\n", n, scene.triangles.size(),
-                    uptime().c_str());
+        std::printf("\n== %s: %zu triangles, %zu spheres (load %s)\n",
+                    as_is ? scene_path.c_str() : ("N = " + std::to_string(n)).c_str(),
+                    scene.triangles.size(), scene.spheres.size(), uptime().c_str());
         std::fflush(stdout);
 
         // Builds: wavepath's (flatten_scene with the hierarchy) and Embree's at
@@ -682,7 +789,8 @@ int main(int argc, char** argv) {
         std::fflush(stdout);
 
         IntegratorOptions options;
-        options.traversal = Traversal::Hierarchy;
+        if (!as_is)
+            options.traversal = Traversal::Hierarchy;
         options.pool_size = 0;
         WavefrontIntegrator integrator(device, scene, options);
         const DeviceScene& ds = integrator.device_scene();
@@ -703,14 +811,24 @@ int main(int argc, char** argv) {
 
         // The ray sets; bounce and light rays come from Embree's camera hits.
         std::vector<Rays> sets;
-        sets.push_back(incoherent_rays(bounds(ds), ray_count, 1));
+        OriginFilter free_space; // with --scene: origins whose closest surface faces them
+        if (as_is)
+            free_space = [&](const glm::vec3& o, const glm::vec3& probe) {
+                return faces_origin(scenes["medium"], ds, o, probe);
+            };
+        sets.push_back(incoherent_rays(bounds(ds), ray_count, 1, free_space));
+        r["incoherent_origins"] = as_is ? "free space" : "box";
+        r["incoherent_kept"] = double(sets[0].origins.size()) / double(sets[0].candidates);
+        std::printf("incoherent origins: %s, %zu of %zu candidates kept\n",
+                    as_is ? "in the free space" : "in the box", sets[0].origins.size(),
+                    sets[0].candidates);
         sets.push_back(camera_rays(ds, 2));
         Hits camera_hits;
-        embree_trace(scenes["medium"].scene, sets[1], false, 1, threads, camera_hits);
+        embree_trace(scenes["medium"], sets[1], false, 1, threads, camera_hits);
         Rays bounce, light;
         bounce_rays(ds, sets[1], camera_hits, 3, bounce, light);
         sets.push_back(std::move(bounce));
-        Checker checker(device, scene, ds);
+        Checker checker(device, integrator.features(), ds);
 
         json traced = json::array();
         auto trace = [&](const Rays& rays, bool shadow, const std::string& label) {
@@ -730,8 +848,8 @@ int main(int argc, char** argv) {
                 for (const char* quality : {"medium", "high"})
                     for (int width : {1, 16}) {
                         std::string key = std::string(quality) + "_" + std::to_string(width);
-                        double e = embree_trace(scenes[quality].scene, rays, shadow, width, threads,
-                                                hits[key]);
+                        double e =
+                            embree_trace(scenes[quality], rays, shadow, width, threads, hits[key]);
                         best[key] = best.count(key) ? std::min(best[key], e) : e;
                     }
             }

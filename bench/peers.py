@@ -7,7 +7,12 @@
                                  [--modes two-threads,one-core] [--wp-variant "--sampler sobol"]
 
 throughput: whole-render time and samples/s of wavepath, Mitsuba 3 llvm_ad_rgb
-and (with --baseline) an earlier wavepath build, at each size, 2 threads each.
+and (with --baseline) an earlier wavepath build, at each size, 2 threads each;
+then wavepath's intersect and shadow stages against Embree 1-ray and 16-ray
+on the same 4x10^6 incoherent rays of the scene's free space (and its camera,
+bounce and light rays), hits checked ray by ray, by build/bench/
+wavepath_bench_bvh --scene (built with -DWAVEPATH_BUILD_BENCH=ON; skipped,
+saying so, when it is not there).
 error: MSE, relMSE, time, efficiency 1/(MSE t) and the time to relMSE 0.05 of
 wavepath (its default and each --wp-variant), Blender Cycles and Mitsuba 3,
 against a high-sample reference, on 2 threads and pinned to one core.
@@ -33,6 +38,7 @@ import math
 import os
 import shlex
 import statistics
+import subprocess
 import sys
 import tempfile
 import time
@@ -199,9 +205,43 @@ def run_throughput(args, workdir):
     loads = [x["load_before"] for x in runs]
     md.append("")
     md.append(f"Load averages (1, 5, 15 min) before each run: first {loads[0]}, last {loads[-1]}.")
+    tracing = run_tracing(args, md)
     finish(args, {"mode": "throughput", "header": header, "calibration": report,
-                  "equal_work": equal, "rows": rows, "runs": runs,
+                  "equal_work": equal, "rows": rows, "runs": runs, "tracing": tracing,
                   "command": " ".join(shlex.quote(a) for a in sys.argv)}, md)
+
+
+def run_tracing(args, md):
+    """wavepath's intersect and shadow stages against Embree on the scene's rays
+    (bench/bvh_vs_embree.cpp --scene); appends its table to md, returns its JSON."""
+    binary = Path(args.embree_bench)
+    if not binary.is_file():
+        note = (f"tracing against Embree skipped: {binary} does not exist (cmake -DWAVEPATH_BUILD_BENCH=ON, "
+                "build target wavepath_bench_bvh; bash tools/install-deps.sh --bench)")
+        print(f"peers: {note}", flush=True)
+        md += ["", note]
+        return None
+    out = Path(args.out_dir) / "tracing.json"
+    command = [str(binary), "--scene", args.scene, "--threads", str(args.threads), "--json", str(out)]
+    print(f"peers: {' '.join(shlex.quote(c) for c in command)} (load {load_average()})", flush=True)
+    completed = subprocess.run(command, capture_output=True, text=True)
+    if completed.returncode != 0:
+        fail(f"{binary} failed: {completed.stderr.strip().splitlines()[-1:] or completed.returncode}")
+    result = json.loads(out.read_text())[0]
+    md += ["", f"Tracing, Mrays/s, best of 3 (wavepath's stage kernels on PoCL; Embree {args.threads} threads, "
+           f"its high-quality BVH; load {result['load_start']} to {result['load_end']}; incoherent origins in "
+           f"the free space, {result['incoherent_kept']:.1%} of the box's candidates kept):", "",
+           "| stage | rays | count | wavepath | Embree 1-ray | Embree 16-ray | wavepath / Embree 16 | "
+           "hits vs Embree (same / tie / differ) |",
+           "| --- | --- | ---: | ---: | ---: | ---: | ---: | --- |"]
+    for t in result["traced"]:
+        check = t["check_vs_embree_medium_1"]
+        differ = check["t_differs"] + check["other"] + check["hit_miss"]
+        md.append(f"| {t['kind']} | {t['rays']} | {t['count']} | {t['wavepath_mrays']:.2f} | "
+                  f"{t['embree_high_1_mrays']:.2f} | {t['embree_high_16_mrays']:.2f} | "
+                  f"{t['wavepath_mrays'] / t['embree_high_16_mrays']:.2f} | "
+                  f"{check['same']} / {check['tie']} / {differ} |")
+    return result
 
 
 # ---------------------------------------------------------------------------
@@ -366,6 +406,8 @@ def main():
     group.add_argument("--threads", type=int, default=2, help="threads of every renderer (default: 2)")
     group.add_argument("--baseline", help="an earlier wavepath commit: built in a git worktree under /tmp")
     group.add_argument("--baseline-binary", help="an earlier wavepath binary")
+    group.add_argument("--embree-bench", default=str(REPOSITORY / "build" / "bench" / "wavepath_bench_bvh"),
+                       help="the tracing benchmark against Embree (default: build/bench/wavepath_bench_bvh)")
     group = parser.add_argument_group("error")
     group.add_argument("--reference", help="high-sample reference image (.exr) of the hexroom")
     group.add_argument("--spp", default="16,64,256,1024", help="sample counts (default: 16,64,256,1024)")
