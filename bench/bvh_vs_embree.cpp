@@ -481,7 +481,7 @@ __kernel void check(WpFrame frame WP_SCENE_BUFFERS(WP_SCENE_PARAMETER), wp_uint 
     WpSceneView scene = WP_SCENE_VIEW();
     float3 o = origins[i].xyz, d = directions[i].xyz;
     if (shadow) {
-        t_out[i] = wp_occluded(&scene, o, d, directions[i].w) ? 1.0f : 0.0f;
+        t_out[i] = wp_shadow_occluded(&scene, o, d, directions[i].w) ? 1.0f : 0.0f;
         hit_out[i] = WP_NO_HIT;
     } else {
         float t = 0.0f;
@@ -642,19 +642,22 @@ int summarise(const json& results, const std::string& svg_path) {
     // The summary table.
     std::printf("\n| triangles | build wavepath s | build Embree medium s | build Embree high s | "
                 "intersect incoherent wp / E1 / E16 Mrays/s | camera wp / E16 | bounce wp / E16 | "
-                "shadow incoherent wp / E1 / E16 | shadow light wp / E16 | B/tri wp / Embree "
-                "medium / high |\n|---|---|---|---|---|---|---|---|---|---|\n");
+                "shadow incoherent wp / E1 / E16 | shadow light wp / E16 | shadow light wp, "
+                "all faces | B/tri wp / Embree medium / high |\n"
+                "|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (const json& r : results) {
         auto m = [&](int i, const char* key) { return r["traced"][i][key].get<double>(); };
         std::printf(
             "| %zu | %.4f | %.4f | %.4f | %.2f / %.2f / %.2f | %.2f / %.2f | %.2f / %.2f | "
-            "%.2f / %.2f / %.2f | %.2f / %.2f | %.1f / %.1f / %.1f |\n",
+            "%.2f / %.2f / %.2f | %.2f / %.2f | %s | %.1f / %.1f / %.1f |\n",
             r["triangles"].get<std::size_t>(), r["build"]["wavepath_bvh_s"].get<double>(),
             r["build"]["embree_medium_s"].get<double>(), r["build"]["embree_high_s"].get<double>(),
             m(0, "wavepath_mrays"), m(0, "embree_high_1_mrays"), m(0, "embree_high_16_mrays"),
             m(1, "wavepath_mrays"), m(1, "embree_high_16_mrays"), m(2, "wavepath_mrays"),
             m(2, "embree_high_16_mrays"), m(3, "wavepath_mrays"), m(3, "embree_high_1_mrays"),
             m(3, "embree_high_16_mrays"), m(4, "wavepath_mrays"), m(4, "embree_high_16_mrays"),
+            r["traced"].size() > 5 ? std::to_string(m(5, "wavepath_mrays")).substr(0, 5).c_str()
+                                   : "(no culling)",
             r["memory"]["wavepath_bytes_per_triangle"].get<double>(),
             r["memory"]["embree_medium_bytes_per_triangle"].get<double>(),
             r["memory"]["embree_high_bytes_per_triangle"].get<double>());
@@ -829,9 +832,20 @@ int main(int argc, char** argv) {
         bounce_rays(ds, sets[1], camera_hits, 3, bounce, light);
         sets.push_back(std::move(bounce));
         Checker checker(device, integrator.features(), ds);
+        // Shadow culling (render/shadow_occluders.hpp) holds for segments
+        // between points of the scene's surfaces, as the light rays are; the
+        // incoherent segments may end beyond the walls, so they, and the
+        // light rays once more for comparison, are traced without it.
+        IntegratorOptions all_faces_options = options;
+        all_faces_options.shadow_culling = false;
+        WavefrontIntegrator all_faces(device, scene, all_faces_options);
+        Checker all_faces_checker(device, all_faces.features(), all_faces.device_scene());
+        const bool culling = integrator.features().shadow_culling;
+        r["shadow_culling"] = culling ? integrator.features().describe() : "off";
 
         json traced = json::array();
-        auto trace = [&](const Rays& rays, bool shadow, const std::string& label) {
+        auto trace = [&](const Rays& rays, bool shadow, const std::string& label,
+                         WavefrontIntegrator& integrator, Checker& checker) {
             json t;
             t["rays"] = label;
             t["kind"] = shadow ? "shadow" : "intersect";
@@ -871,9 +885,11 @@ int main(int argc, char** argv) {
             traced.push_back(t);
         };
         for (const Rays& rays : sets)
-            trace(rays, false, rays.name);
-        trace(sets[0], true, "incoherent");
-        trace(light, true, "light");
+            trace(rays, false, rays.name, integrator, checker);
+        trace(sets[0], true, "incoherent", all_faces, all_faces_checker);
+        trace(light, true, "light", integrator, checker);
+        if (culling)
+            trace(light, true, "light-all", all_faces, all_faces_checker);
         r["traced"] = traced;
         r["load_end"] = uptime();
         r["max_rss_mib"] = max_rss_mib();

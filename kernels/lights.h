@@ -18,6 +18,17 @@
  * itself is never taken for an occluder. */
 #define WP_SHADOW_END_MARGIN 4.0f
 
+/* How far short of its end point `end` (on a primitive whose coordinates
+ * reach `scale`) a shadow segment of length `length` stops: the margin above,
+ * in offsets of the end's magnitude or of the segment's length, whichever is
+ * larger. A hit's t carries the rounding of the unit direction, a few ulps of
+ * the distance travelled, so a segment much longer than its end primitive's
+ * coordinates (a small light 1e3 away) would otherwise meet the light's own
+ * plane before it stops (docs/stability.md, case 9). */
+static inline float wp_shadow_end_margin(float3 end, float scale, float length) {
+    return WP_SHADOW_END_MARGIN * wp_offset_distance(end, fmax(scale, length));
+}
+
 /* The first light whose cumulative area fraction exceeds u (count > 0), by
  * binary search. With the count compiled in (WP_LIGHT_COUNT, small scenes)
  * the search takes its fixed number of steps, ceil(log2(count)), each a
@@ -60,7 +71,7 @@ static inline int wp_aim_shadow_ray(float3 origin, float3 point, const WpTriangl
     float3 ray = point - origin;
     float ray_length = length(ray);
     float length_to_test =
-        ray_length - WP_SHADOW_END_MARGIN * wp_offset_distance(point, wp_triangle_scale(light));
+        ray_length - wp_shadow_end_margin(point, wp_triangle_scale(light), ray_length);
     if (!(length_to_test > 0.0f))
         return 0;
     out->direction = ray / ray_length;

@@ -162,12 +162,12 @@ static inline int wp_mirror_next_event(const WpSceneView* scene, const WpMateria
     float mirror_scale = wp_triangle_scale(&mirror);
     float3 leg1 = m - origin;
     float length1 = length(leg1);
-    float test1 = length1 - WP_SHADOW_END_MARGIN * wp_offset_distance(m, mirror_scale);
+    float test1 = length1 - wp_shadow_end_margin(m, mirror_scale, length1);
     float3 side = dot(n, x) > group.plane.w ? n : -n;
     float3 start2 = wp_offset_ray_origin(m, side, mirror_scale);
     float3 leg2 = y - start2;
     float length2 = length(leg2);
-    float test2 = length2 - WP_SHADOW_END_MARGIN * wp_offset_distance(y, wp_triangle_scale(&light));
+    float test2 = length2 - wp_shadow_end_margin(y, wp_triangle_scale(&light), length2);
     if (!(test1 > 0.0f && test2 > 0.0f))
         return 0;
 

@@ -18,8 +18,8 @@ __kernel void shadow(WP_STAGE_PARAMETERS) {
      * of the stage, so that it vectorises (traverse.h). The direction's w is
      * the segment's length. */
     int blocked =
-        wp_occluded(&scene, wp_load_xyz(shadow_origin, slot), wp_load_xyz(shadow_direction, slot),
-                    wp_load_w(shadow_direction, slot));
+        wp_shadow_occluded(&scene, wp_load_xyz(shadow_origin, slot),
+                           wp_load_xyz(shadow_direction, slot), wp_load_w(shadow_direction, slot));
     if (queued && !blocked) {
         __global float* sum = (__global float*)(radiance + slot);
         __global const float* add = (__global const float*)(shadow_contribution + slot);
@@ -34,7 +34,7 @@ __kernel void shadow(WP_STAGE_PARAMETERS) {
  * made it (bounce.cl, wave.cl): the same additions to the same radiance. */
 static inline void wp_trace_shadow_ray(const WpSceneView* scene, const WpShadowRay* ray,
                                        __global float4* radiance, wp_uint slot) {
-    if (!wp_occluded(scene, ray->origin, ray->direction, ray->length)) {
+    if (!wp_shadow_occluded(scene, ray->origin, ray->direction, ray->length)) {
         __global float* sum = (__global float*)(radiance + slot);
         sum[0] += ray->contribution.x;
         sum[1] += ray->contribution.y;
@@ -47,8 +47,8 @@ static inline void wp_trace_shadow_ray(const WpSceneView* scene, const WpShadowR
  * for the fused kernels). */
 static inline void wp_trace_mirror_shadow_ray(const WpSceneView* scene, const WpMirrorShadow* ray,
                                               __global float4* radiance, wp_uint slot) {
-    int blocked = wp_occluded(scene, ray->origin.xyz, ray->direction.xyz, ray->direction.w);
-    blocked |= wp_occluded(scene, ray->origin2.xyz, ray->direction2.xyz, ray->direction2.w);
+    int blocked = wp_shadow_occluded(scene, ray->origin.xyz, ray->direction.xyz, ray->direction.w);
+    blocked |= wp_shadow_occluded(scene, ray->origin2.xyz, ray->direction2.xyz, ray->direction2.w);
     if (!blocked) {
         __global float* sum = (__global float*)(radiance + slot);
         sum[0] += ray->contribution.x;
@@ -69,12 +69,12 @@ __kernel void mirror_shadow(WP_STAGE_PARAMETERS) {
         return;
     wp_uint slot = queued ? shadow_queue[frame.pool_size + index] : 0u;
     WpSceneView scene = WP_SCENE_VIEW();
-    int blocked = wp_occluded(&scene, wp_load_xyz(mirror_shadow_origin, slot),
-                              wp_load_xyz(mirror_shadow_direction, slot),
-                              wp_load_w(mirror_shadow_direction, slot));
-    blocked |= wp_occluded(&scene, wp_load_xyz(mirror_shadow_origin2, slot),
-                           wp_load_xyz(mirror_shadow_direction2, slot),
-                           wp_load_w(mirror_shadow_direction2, slot));
+    int blocked = wp_shadow_occluded(&scene, wp_load_xyz(mirror_shadow_origin, slot),
+                                     wp_load_xyz(mirror_shadow_direction, slot),
+                                     wp_load_w(mirror_shadow_direction, slot));
+    blocked |= wp_shadow_occluded(&scene, wp_load_xyz(mirror_shadow_origin2, slot),
+                                  wp_load_xyz(mirror_shadow_direction2, slot),
+                                  wp_load_w(mirror_shadow_direction2, slot));
     if (queued && !blocked) {
         __global float* sum = (__global float*)(radiance + slot);
         __global const float* add = (__global const float*)(mirror_shadow_contribution + slot);

@@ -74,14 +74,36 @@ static inline WP_ALWAYS_INLINE float wp_load_w(__global const float4* buffer, wp
     return ((__global const float*)(buffer + index))[3];
 }
 
+/* Shadow culling (src/render/shadow_occluders.hpp): with fixed counts the
+ * host may name the triangles that can block a segment between two points of
+ * the scene's surfaces, leaving out the bounding faces (a closed convex
+ * room's walls), which cannot: WP_SHADOW_OCCLUDER_COUNT of them, listed in
+ * WP_SHADOW_OCCLUDERS. The list is a constant table, so in the unrolled loop
+ * each entry folds into its load's address. */
+#if defined(WP_TRIANGLE_COUNT) && defined(WP_SHADOW_OCCLUDER_COUNT) && !WP_USE_BVH
+#define WP_SHADOW_CULLING 1
+#if WP_SHADOW_OCCLUDER_COUNT > 0
+__constant wp_uint wp_shadow_occluder_table[WP_SHADOW_OCCLUDER_COUNT] = {WP_SHADOW_OCCLUDERS};
+#define WP_SHADOW_OCCLUDER(k) wp_shadow_occluder_table[k]
+#else
+#define WP_SHADOW_OCCLUDER(k) (k)
+#endif
+#else
+#define WP_SHADOW_CULLING 0
+#define WP_SHADOW_OCCLUDER_COUNT 0
+#define WP_SHADOW_OCCLUDER(k) (k)
+#endif
+
 /* The primitives on the ray origin + t direction, 0 < t < t_max: the closest
  * one, or with any_hit (a compile-time constant wherever it is called) some
  * one of them: without fixed counts the first one found, without shrinking
- * t_max; with them the closest. Returns the primitive number or WP_NO_HIT,
- * and the hit's t in *t_hit (t_max on a miss). */
+ * t_max; with them the closest. With `culled` (any-hit only, a compile-time
+ * constant too) only the triangles of the shadow culling list are tested.
+ * Returns the primitive number or WP_NO_HIT, and the hit's t in *t_hit
+ * (t_max on a miss). */
 static inline WP_ALWAYS_INLINE wp_uint wp_loop_trace(const WpSceneView* scene, float3 origin,
                                                      float3 direction, float t_max, int any_hit,
-                                                     float* t_hit) {
+                                                     int culled, float* t_hit) {
     WpShearedRay ray = wp_shear_ray(origin, direction);
     /* The ray's own components again, taken back out of the sheared frame:
      * the same values, but no longer from consecutive loads, which is what
@@ -95,8 +117,12 @@ static inline WP_ALWAYS_INLINE wp_uint wp_loop_trace(const WpSceneView* scene, f
     wp_uint hit = WP_NO_HIT;
     float closest = t_max;
 #if WP_HAS_TRIANGLES
+    const int skip_faces = WP_SHADOW_CULLING && culled && any_hit;
+    const wp_uint triangle_tests =
+        skip_faces ? (wp_uint)WP_SHADOW_OCCLUDER_COUNT : WP_TRIANGLE_LOOP_COUNT(scene);
     WP_TRAVERSE_UNROLL
-    for (wp_uint i = 0; i < WP_TRIANGLE_LOOP_COUNT(scene); ++i) {
+    for (wp_uint k = 0; k < triangle_tests; ++k) {
+        wp_uint i = skip_faces ? (wp_uint)WP_SHADOW_OCCLUDER(k) : k;
         __global const WpTriangle* triangle = &scene->triangles[i];
         float3 p0 = wp_load_xyz(&triangle->v0, 0), p1 = wp_load_xyz(&triangle->v1, 0),
                p2 = wp_load_xyz(&triangle->v2, 0);
@@ -130,32 +156,42 @@ static inline WP_ALWAYS_INLINE wp_uint wp_loop_trace(const WpSceneView* scene, f
         hit = found ? wp_sphere_primitive(scene, i) : hit;
     }
 #endif
-    (void)ox, (void)oy, (void)oz, (void)dx, (void)dy, (void)dz, (void)any_hit;
+    (void)ox, (void)oy, (void)oz, (void)dx, (void)dy, (void)dz, (void)any_hit, (void)culled;
     *t_hit = closest;
     return hit;
 }
 
 static inline WP_ALWAYS_INLINE wp_uint wp_trace(const WpSceneView* scene, float3 origin,
                                                 float3 direction, float t_max, int any_hit,
-                                                float* t_hit) {
+                                                int culled, float* t_hit) {
 #if WP_USE_BVH
+    (void)culled;
     return wp_bvh_trace(scene, origin, direction, t_max, any_hit, t_hit);
 #else
-    return wp_loop_trace(scene, origin, direction, t_max, any_hit, t_hit);
+    return wp_loop_trace(scene, origin, direction, t_max, any_hit, culled, t_hit);
 #endif
 }
 
 /* Closest hit with 0 < t < t_max. Returns the primitive number or WP_NO_HIT. */
 static inline WP_ALWAYS_INLINE wp_uint wp_closest_hit(const WpSceneView* scene, float3 origin,
                                                       float3 direction, float t_max, float* t_hit) {
-    return wp_trace(scene, origin, direction, t_max, 0, t_hit);
+    return wp_trace(scene, origin, direction, t_max, 0, 0, t_hit);
 }
 
 /* 1 if any primitive lies on the segment origin + t * direction, 0 < t < t_max. */
 static inline WP_ALWAYS_INLINE int wp_occluded(const WpSceneView* scene, float3 origin,
                                                float3 direction, float t_max) {
     float t;
-    return wp_trace(scene, origin, direction, t_max, 1, &t) != WP_NO_HIT;
+    return wp_trace(scene, origin, direction, t_max, 1, 0, &t) != WP_NO_HIT;
+}
+
+/* The same for a shadow ray: a segment between two points of the scene's
+ * surfaces (its origin offset from the first), which with shadow culling
+ * skips the faces that cannot block it. The shadow stages call this. */
+static inline WP_ALWAYS_INLINE int wp_shadow_occluded(const WpSceneView* scene, float3 origin,
+                                                      float3 direction, float t_max) {
+    float t;
+    return wp_trace(scene, origin, direction, t_max, 1, 1, &t) != WP_NO_HIT;
 }
 
 #endif /* WP_TRAVERSE_H */

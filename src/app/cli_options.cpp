@@ -73,6 +73,14 @@ void add_integrator_options(CLI::App& command, IntegratorOptions& options) {
             "lights compile none of it; docs/convergence.md)")
         ->default_str(options.mirror_next_event ? "on" : "off")
         ->check(CLI::IsMember({"on", "off"}));
+    command
+        .add_option_function<std::string>(
+            "--shadow-culling",
+            [&options](const std::string& value) { options.shadow_culling = value == "on"; },
+            "Shadow rays skip the scene's bounding faces (a closed convex room's walls), which "
+            "cannot block them: 'on' or 'off' (small scenes only; docs/performance.md)")
+        ->default_str(options.shadow_culling ? "on" : "off")
+        ->check(CLI::IsMember({"on", "off"}));
     add_choice(command, "--diffuse", options.diffuse_sampling,
                {DiffuseSampling::Cosine, DiffuseSampling::Report},
                "Lambertian sampling: 'cosine' (cosine-weighted, throughput roulette) or "

@@ -8,6 +8,7 @@
 
 #include "render/float_range.hpp"
 #include "render/planar_mirrors.hpp"
+#include "render/shadow_occluders.hpp"
 
 namespace wp {
 
@@ -246,6 +247,17 @@ std::string SceneFeatures::build_options() const {
                    " -D WP_SPHERE_COUNT=" + std::to_string(sphere_count) +
                    " -D WP_LIGHT_COUNT=" + std::to_string(light_count) +
                    " -D WP_MIRROR_GROUP_TRIANGLES=" + std::to_string(mirror_group_triangles);
+    if (fixed_counts && shadow_culling) {
+        options += " -D WP_SHADOW_OCCLUDER_COUNT=" + std::to_string(shadow_occluders.size());
+        std::string list;
+        for (std::uint32_t i : shadow_occluders) {
+            if (!list.empty())
+                list += ',';
+            list += std::to_string(i);
+        }
+        if (!list.empty())
+            options += " -D WP_SHADOW_OCCLUDERS=" + list;
+    }
     if (bvh)
         options += " -D WP_USE_BVH=1";
     return options;
@@ -260,6 +272,9 @@ std::string SceneFeatures::describe() const {
 #undef WP_FEATURE_NAME
     if (fixed_counts)
         out += "; counts " + std::to_string(triangle_count) + "+" + std::to_string(sphere_count);
+    if (fixed_counts && shadow_culling)
+        out += "; shadow tests " + std::to_string(shadow_occluders.size()) + " of " +
+               std::to_string(triangle_count) + " triangles";
     if (bvh)
         out += "; bvh";
     return out;
@@ -301,6 +316,8 @@ SceneFeatures analyse_features(const Scene& scene, std::uint32_t max_fixed_count
             for (const PlanarMirror& mirror : mirrors)
                 f.mirror_group_triangles = std::max(
                     f.mirror_group_triangles, static_cast<std::uint32_t>(mirror.triangles.size()));
+        f.shadow_occluders = shadow_occluders(scene);
+        f.shadow_culling = f.shadow_occluders.size() < scene.triangles.size();
     }
     return f;
 }

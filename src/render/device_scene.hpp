@@ -53,6 +53,12 @@ struct SceneFeatures {
     // (kernels/lights.h, kernels/mirror_light.h, docs/profiling.md).
     std::uint32_t light_count = 0;
     std::uint32_t mirror_group_triangles = 0;
+    // With fixed counts, shadow rays test only the triangles that can block
+    // them: not the scene's bounding faces (render/shadow_occluders.hpp),
+    // -D WP_SHADOW_OCCLUDER_COUNT=n -D WP_SHADOW_OCCLUDERS=i,j,... Off when
+    // every triangle can (nothing to gain) or IntegratorOptions says so.
+    bool shadow_culling = false;
+    std::vector<std::uint32_t> shadow_occluders; // triangle numbers, ascending
     // Large scenes: traversal through a bounding volume hierarchy
     // (-D WP_USE_BVH=1, kernels/bvh.h). Like fixed counts an acceleration,
     // not a feature: the images are the same either way, up to which of two
@@ -74,7 +80,8 @@ struct SceneFeatures {
     // "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=0 ... -D WP_TRIANGLE_COUNT=26 -D WP_SPHERE_COUNT=0".
     std::string build_options() const;
     // "triangles spheres diffuse mirror lights", then "; counts 26+2" with
-    // fixed counts or "; bvh" with a hierarchy.
+    // fixed counts (and "; shadow tests 5 of 26 triangles" with shadow
+    // culling) or "; bvh" with a hierarchy.
     std::string describe() const;
 };
 

@@ -71,6 +71,10 @@ struct IntegratorOptions {
     // weighed against BSDF sampling by multiple importance sampling; compiled
     // only for scenes with planar mirrors and lights (--mirror-nee on|off).
     bool mirror_next_event = true;
+    // Shadow rays skip the scene's bounding faces, which cannot block them
+    // (render/shadow_occluders.hpp); with fixed counts only. The images agree
+    // up to the rounding cases that file names (--shadow-culling on|off).
+    bool shadow_culling = true;
     // The defaults are the most efficient variant measured on the hexroom
     // (docs/convergence.md); solid-angle light sampling wins by an order of
     // magnitude where surfaces come close to a light.

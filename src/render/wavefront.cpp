@@ -97,6 +97,8 @@ WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const Scene& sce
         if (features_.bvh)
             features_.fixed_counts = false;
     }
+    if (!options_.shadow_culling)
+        features_.shadow_culling = false;
     const int width = scene.camera.width, height = scene.camera.height;
     pixel_count_ = static_cast<std::uint32_t>(width) * static_cast<std::uint32_t>(height);
     pool_size_ =

@@ -63,9 +63,9 @@ __kernel void compare(WpFrame frame WP_SCENE_BUFFERS(WP_SCENE_PARAMETER), wp_uin
     float segment = directions[i].w; /* any-hit queries up to here */
     float t_bvh, t_loop, t_any;
     hits_out[4 * i + 0] = wp_closest_hit(&scene, o, d, INFINITY, &t_bvh);
-    hits_out[4 * i + 1] = wp_loop_trace(&scene, o, d, INFINITY, 0, &t_loop);
+    hits_out[4 * i + 1] = wp_loop_trace(&scene, o, d, INFINITY, 0, 0, &t_loop);
     hits_out[4 * i + 2] = wp_occluded(&scene, o, d, segment);
-    hits_out[4 * i + 3] = wp_loop_trace(&scene, o, d, segment, 1, &t_any) != WP_NO_HIT;
+    hits_out[4 * i + 3] = wp_loop_trace(&scene, o, d, segment, 1, 0, &t_any) != WP_NO_HIT;
     t_out[2 * i + 0] = t_bvh;
     t_out[2 * i + 1] = t_loop;
 }

@@ -148,13 +148,15 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_TRIANGLE_COUNT=26 -D "
           "WP_SPHERE_COUNT=2 -D WP_LIGHT_COUNT=2 -D "
-          "WP_MIRROR_GROUP_TRIANGLES=2");
+          "WP_MIRROR_GROUP_TRIANGLES=2 -D WP_SHADOW_OCCLUDER_COUNT=5 -D "
+          "WP_SHADOW_OCCLUDERS=21,22,23,24,25");
     CHECK(analyse_features(triangles_only()).build_options() ==
           "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=0 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 -D "
           "WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_TRIANGLE_COUNT=26 -D "
           "WP_SPHERE_COUNT=0 -D WP_LIGHT_COUNT=2 -D "
-          "WP_MIRROR_GROUP_TRIANGLES=2");
+          "WP_MIRROR_GROUP_TRIANGLES=2 -D WP_SHADOW_OCCLUDER_COUNT=5 -D "
+          "WP_SHADOW_OCCLUDERS=21,22,23,24,25");
     CHECK(analyse_features(spheres_only()).build_options() ==
           "-D WP_HAS_TRIANGLES=0 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 -D "
           "WP_HAS_SHADING_NORMALS=0 "
@@ -166,13 +168,15 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=0 -D WP_TRIANGLE_COUNT=26 -D "
           "WP_SPHERE_COUNT=2 -D WP_LIGHT_COUNT=2 -D "
-          "WP_MIRROR_GROUP_TRIANGLES=0");
+          "WP_MIRROR_GROUP_TRIANGLES=0 -D WP_SHADOW_OCCLUDER_COUNT=5 -D "
+          "WP_SHADOW_OCCLUDERS=21,22,23,24,25");
     CHECK(analyse_features(no_light()).build_options() ==
           "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 -D "
           "WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=0 -D WP_HAS_PLANAR_MIRRORS=0 -D WP_TRIANGLE_COUNT=24 -D "
           "WP_SPHERE_COUNT=2 -D WP_LIGHT_COUNT=0 -D "
-          "WP_MIRROR_GROUP_TRIANGLES=0");
+          "WP_MIRROR_GROUP_TRIANGLES=0 -D WP_SHADOW_OCCLUDER_COUNT=3 -D "
+          "WP_SHADOW_OCCLUDERS=21,22,23");
     // Past the fixed-count limit: runtime counts and the hierarchy.
     CHECK(analyse_features(large()).build_options() ==
           "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 -D "
@@ -206,7 +210,8 @@ TEST_CASE("features: fixed counts stop at the limit, and 0 turns them off") {
 
 TEST_CASE("features: describe() names the features and the compiled-in counts") {
     CHECK(analyse_features(hexroom()).describe() ==
-          "triangles spheres diffuse mirror lights planar_mirrors; counts 26+2");
+          "triangles spheres diffuse mirror lights planar_mirrors; counts 26+2; shadow tests 5 "
+          "of 26 triangles");
     CHECK(analyse_features(spheres_only()).describe() == "spheres diffuse mirror; counts 0+4");
     CHECK(analyse_features(large()).describe() ==
           "triangles spheres diffuse mirror lights planar_mirrors; bvh");
