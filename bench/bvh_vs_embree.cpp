@@ -845,7 +845,7 @@ int main(int argc, char** argv) {
 
         json traced = json::array();
         auto trace = [&](const Rays& rays, bool shadow, const std::string& label,
-                         WavefrontIntegrator& integrator, Checker& checker) {
+                         WavefrontIntegrator& tracer, Checker& tracer_checker) {
             json t;
             t["rays"] = label;
             t["kind"] = shadow ? "shadow" : "intersect";
@@ -856,8 +856,8 @@ int main(int argc, char** argv) {
             std::map<std::string, Hits> hits;
             // Alternate wavepath and Embree's four runs, so drift cancels.
             for (int rep = 0; rep < repetitions; ++rep) {
-                double s = shadow ? integrator.time_shadow(rays.origins, rays.directions, 1)
-                                  : integrator.time_intersect(rays.origins, rays.directions, 1);
+                double s = shadow ? tracer.time_shadow(rays.origins, rays.directions, 1)
+                                  : tracer.time_intersect(rays.origins, rays.directions, 1);
                 wp_best = std::min(wp_best, s);
                 for (const char* quality : {"medium", "high"})
                     for (int width : {1, 16}) {
@@ -870,7 +870,7 @@ int main(int argc, char** argv) {
             t["wavepath_mrays"] = count / wp_best / 1e6;
             for (auto& [key, seconds] : best)
                 t["embree_" + key + "_mrays"] = count / seconds / 1e6;
-            Hits ours = checker.run(rays, shadow);
+            Hits ours = tracer_checker.run(rays, shadow);
             t["check_vs_embree_medium_1"] = compare(ours, hits["medium_1"], rays, shadow);
             t["check_embree_16_vs_1"] = compare(hits["medium_16"], hits["medium_1"], rays, shadow);
             json brief = t["check_vs_embree_medium_1"];
