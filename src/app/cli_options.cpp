@@ -78,7 +78,7 @@ void add_integrator_options(CLI::App& command, IntegratorOptions& options) {
             "--shadow-culling",
             [&options](const std::string& value) { options.shadow_culling = value == "on"; },
             "Shadow rays skip the scene's bounding faces (a closed convex room's walls), which "
-            "cannot block them: 'on' or 'off' (small scenes only; docs/performance.md)")
+            "cannot block them: 'on' or 'off' (small scenes only; docs/specialization.md)")
         ->default_str(options.shadow_culling ? "on" : "off")
         ->check(CLI::IsMember({"on", "off"}));
     add_choice(command, "--diffuse", options.diffuse_sampling,

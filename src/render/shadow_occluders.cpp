@@ -1,9 +1,10 @@
 #include "render/shadow_occluders.hpp"
 
 #include <algorithm>
-#include <cmath>
 
 #include <glm/geometric.hpp>
+
+#include "scene/scene_box.hpp"
 
 namespace wp {
 
@@ -48,15 +49,7 @@ std::vector<std::uint32_t> shadow_occluders(const Scene& scene) {
     std::vector<std::uint32_t> occluders;
     const bool smooth = std::any_of(scene.triangles.begin(), scene.triangles.end(),
                                     [](const Triangle& t) { return t.has_normals; });
-    double extent = std::max(
-        {std::abs(scene.camera.eye.x), std::abs(scene.camera.eye.y), std::abs(scene.camera.eye.z)});
-    for (const Triangle& t : scene.triangles)
-        for (const glm::dvec3& v : t.v)
-            extent = std::max({extent, std::abs(v.x), std::abs(v.y), std::abs(v.z)});
-    for (const Sphere& s : scene.spheres)
-        extent = std::max({extent, std::abs(s.center.x) + s.radius, std::abs(s.center.y) + s.radius,
-                           std::abs(s.center.z) + s.radius});
-    const double tolerance = 1e-6 * extent;
+    const double tolerance = 1e-6 * scene_box(scene).largest_coordinate();
     for (std::size_t i = 0; i < scene.triangles.size(); ++i)
         if (smooth || !is_bounding_face(scene, scene.triangles[i], tolerance))
             occluders.push_back(static_cast<std::uint32_t>(i));
