@@ -1,9 +1,11 @@
-/* Next-event estimation through planar mirrors (WP_MIRROR_NEE).
+/* Next-event estimation through mirrors (WP_MIRROR_NEE): planar mirrors and
+ * mirror spheres.
  *
  * No shadow ray finds a light by way of a mirror, so without this the light
  * a mirror throws onto diffuse surfaces (a caustic) is found only by paths
- * that bounce diffuse -> mirror -> light, a few bright samples. For a perfect
- * planar mirror the light's mirror image is exact: from a diffuse point x,
+ * that bounce diffuse -> mirror -> light, a few bright samples.
+ *
+ * Planar mirrors. The light's mirror image is exact: from a diffuse point x,
  * sample a point y on the lights (by area, as lights.h does), reflect it in
  * the mirror's plane (y'), and the segment x -> y' meets the plane at the
  * mirror point m, which must lie inside the mirror's outline (one of its
@@ -13,33 +15,48 @@
  * cos_y taken against the reflected direction (the image of the light is
  * seen at distance |x - y'| = |x - m| + |m - y|).
  *
+ * Mirror spheres (convex, curved). For x and y outside a sphere there is one
+ * point m on it where a ray from x reflects to y (the arc between the
+ * sphere's points towards x and towards y holds it; wp_sphere_mirror_point
+ * finds it by regula falsi). The light's image is no longer a flat copy: a
+ * convex mirror spreads the beam, differently in the plane of incidence
+ * (tangential) and across it (sagittal), by the mirror's focal powers
+ * 2 / (R cos_m) and 2 cos_m / R at incidence cosine cos_m (Coddington's
+ * equations). A pencil of solid angle dw from x lands on the light on
+ *     dA_y = dw (d1 + d2 + 2 d1 d2 / (R cos_m)) (d1 + d2 + 2 d1 d2 cos_m / R) / cos_y,
+ * d1 = |x - m|, d2 = |m - y|, which for R -> infinity is the planar mirror's
+ * (d1 + d2)^2 / cos_y (tests/kernels/test_sphere_mirror.cpp checks it
+ * against finite differences of traced rays in double precision).
+ *
  * The path diffuse x -> mirror -> light found by sampling the BSDF at x
  * finds the same light, so the two strategies are combined by multiple
  * importance sampling (the power heuristic): each weighs its sample by its
  * own solid-angle density at x against the other's,
  *     p_bsdf(x, wi)   the diffuse BSDF's density of the direction wi,
- *     p_mirror(wi) = |x - y'|^2 / (cos_y * light area * mirror count),
+ *     p_mirror(wi) = dA_y / dw / (cos_y * light area * mirror count),
  * and the weights of the two sum to 1 for every path, so nothing is counted
- * twice or lost. The mirrored strategy samples its mirror uniformly among the
+ * twice or lost. The mirrored strategy picks its mirror uniformly among the
  * scene's planar mirrors (WpMirrorGroup, src/render/planar_mirrors.hpp: the
- * host groups coplanar mirror triangles without vertex normals). Paths with
- * two or more mirror bounces, or by way of a curved mirror, keep weight 1.
+ * host groups coplanar mirror triangles without vertex normals) and its
+ * mirror spheres (mirror_spheres[], their numbers in spheres[]). Paths with
+ * two or more mirror bounces keep weight 1.
  *
  * The shading side (kernels/shade.cl) keeps the last diffuse vertex and its
- * BSDF density in mirror_vertex, and WP_PATH_PLANAR_MIRROR in path_flags
- * while the path's last two vertices were diffuse, then a planar mirror;
- * shade pushes the two-leg ray onto the mirror queue (shadow_queue from
- * pool_size on, its length in counters[WP_COUNTER_MIRROR_SHADOW_RAYS]),
- * which the kernel mirror_shadow (kernels/shadow.cl) tests after the shadow
- * stage.
+ * BSDF density in mirror_vertex, and WP_PATH_PLANAR_MIRROR (or
+ * WP_PATH_SPHERE_MIRROR with the sphere's number) in path_flags while the
+ * path's last two vertices were diffuse, then a mirror; shade pushes the
+ * two-leg ray onto the mirror queue (shadow_queue from pool_size on, its
+ * length in counters[WP_COUNTER_MIRROR_SHADOW_RAYS]), which the kernel
+ * mirror_shadow (kernels/shadow.cl) tests after the shadow stage.
  *
  * The light point reuses the numbers of the bounce's own next-event
  * estimation (the two estimates are each unbiased, so their sum is); the
  * mirror is picked by stretching the light-pick number.
  *
  * Compiled only with WP_MIRROR_NEE=1 (the host's --mirror-nee, default on),
- * in scenes with planar mirrors and lights (WP_HAS_PLANAR_MIRRORS) and
- * next-event estimation; left undefined it is off, the original estimator.
+ * in scenes with lights, next-event estimation and planar mirrors
+ * (WP_HAS_PLANAR_MIRRORS) or mirror spheres (WP_HAS_MIRROR_SPHERES);
+ * left undefined it is off, the original estimator.
  */
 #ifndef WP_MIRROR_LIGHT_H
 #define WP_MIRROR_LIGHT_H
@@ -53,7 +70,8 @@
 #ifndef WP_MIRROR_NEE
 #define WP_MIRROR_NEE 0
 #endif
-#if !(WP_HAS_PLANAR_MIRRORS && WP_HAS_LIGHTS && WP_USE_NEE && WP_HAS_TRIANGLES)
+#if !((WP_HAS_PLANAR_MIRRORS || WP_HAS_MIRROR_SPHERES) && WP_HAS_LIGHTS && WP_USE_NEE &&           \
+      WP_HAS_TRIANGLES)
 #undef WP_MIRROR_NEE
 #define WP_MIRROR_NEE 0
 #endif
@@ -115,67 +133,111 @@ static inline int wp_mirror_connect(const WpSceneView* scene, const WpMirrorGrou
 #endif
 }
 
+/* How many mirrors the mirrored strategy picks among. */
+static inline wp_uint wp_mirror_count(const WpSceneView* scene) {
+#if WP_HAS_MIRROR_SPHERES
+    return scene->mirror_group_count + scene->mirror_sphere_count;
+#else
+    return scene->mirror_group_count;
+#endif
+}
+
 /* The mirrored strategy's solid-angle density at x of the direction to a light
  * point seen at unfolded distance `distance` with cosine `cos_light`. */
 static inline float wp_mirror_light_pdf(const WpSceneView* scene, float distance, float cos_light) {
-    return distance * distance / (cos_light * scene->light_area * (float)scene->mirror_group_count);
+    return distance * distance / (cos_light * scene->light_area * (float)wp_mirror_count(scene));
 }
 
-/* The mirrored light sample at the diffuse surface point `surface` (ray
- * direction `wo`, shading normal on the lit side `shading`, shadow rays
- * from `origin`): 1 and *out when it carries light. */
-static inline int wp_mirror_next_event(const WpSceneView* scene, const WpMaterial* material,
-                                       const WpSurface* surface, float3 wo, float3 shading,
-                                       float3 origin, float3 beta, float u_pick, float u, float v,
-                                       WpMirrorShadow* out) {
-    wp_uint groups = scene->mirror_group_count;
-    if (groups == 0u || scene->light_count == 0u)
-        return 0;
-    float stretched = u_pick * (float)groups;
-    wp_uint g = min((wp_uint)stretched, groups - 1u);
-    u_pick = fmin(stretched - (float)g, 0x1.fffffep-1f);
-    WpMirrorGroup group = scene->mirror_groups[g];
-    WpTriangle light =
-        scene->triangles[scene->lights[wp_pick_light(scene->lights, scene->light_count, u_pick)]
-                             .triangle];
-    float3 y = wp_sample_triangle(light.v0.xyz, light.v1.xyz, light.v2.xyz, u, v);
-    float3 x = surface->position;
-    float3 m;
-    wp_uint k;
-    if (!wp_mirror_connect(scene, &group, x, y, &m, &k))
-        return 0;
-    float3 n = group.plane.xyz;
-    float3 mirrored = y - (2.0f * (dot(n, y) - group.plane.w)) * n;
-    float3 to_image = mirrored - x;
-    float distance = length(to_image);
-    float3 wi = to_image / distance;
-    float3 light_normal = normalize(wp_triangle_normal(&light));
-    float3 image_normal = light_normal - (2.0f * dot(light_normal, n)) * n;
-    float cos_surface = dot(shading, wi);
-    float cos_light = -dot(image_normal, wi);
-    if (!(cos_surface > 0.0f && cos_light > 0.0f))
-        return 0;
+/* The same through a mirror sphere of radius `radius`: x is d1 from the
+ * mirror point, which the light point is d2 from, the ray meets the sphere
+ * at incidence cosine `cos_mirror` (> 0) and the light at `cos_light`. */
+static inline float wp_sphere_mirror_light_pdf(const WpSceneView* scene, float d1, float d2,
+                                               float cos_mirror, float radius, float cos_light) {
+    float spread = 2.0f * d1 * d2 / radius;
+    float tangential = d1 + d2 + spread / cos_mirror;
+    float sagittal = d1 + d2 + spread * cos_mirror;
+    return tangential * sagittal / (cos_light * scene->light_area * (float)wp_mirror_count(scene));
+}
 
-    /* Leg 1 stops short of the mirror, leg 2 starts off it on x's side and
-     * stops short of the light. */
-    WpTriangle mirror = scene->mirror_triangles[k];
-    float mirror_scale = wp_triangle_scale(&mirror);
+/* Whether the mirrored strategy tries x and y around a sphere (centre c,
+ * radius r): both strictly outside, and less than about 154 degrees apart as
+ * seen from the centre (beyond, the reflection is so grazing that the arc
+ * search below would lose precision). The emission weight asks the same, so
+ * that the paths it leaves out keep weight 1 on the BSDF side. */
+static inline int wp_sphere_mirror_tries(float3 c, float r, float3 x, float3 y) {
+    float3 px = x - c, py = y - c;
+    float lx = length(px), ly = length(py);
+    return lx > r && ly > r && dot(px, py) > -0.9f * lx * ly;
+}
+
+/* The reflection point on the sphere (centre c, radius r) of the path
+ * x -> m -> y, for x and y that wp_sphere_mirror_tries accepts: on the arc
+ * d(s) = normalize((1 - s) a + s b), a and b the unit directions from c to x
+ * and to y, the tangential part of the two unit directions from m to x and
+ * to y cancels (the normal bisects them). At s = 0 it points towards b, at
+ * s = 1 away from it; regula falsi with the Illinois step, a fixed number of
+ * steps. 1 and *m if both x and y see m (the sphere's normal there faces
+ * both). */
+#define WP_SPHERE_MIRROR_STEPS 12
+static inline float wp_sphere_mirror_residual(float3 c, float r, float3 x, float3 y, float3 a,
+                                              float3 b, float s, float3* m) {
+    float3 d = normalize((1.0f - s) * a + s * b);
+    float3 chord = b - a;
+    float3 tangent = chord - dot(chord, d) * d;
+    *m = c + r * d;
+    return dot(tangent, normalize(x - *m) + normalize(y - *m));
+}
+
+static inline int wp_sphere_mirror_point(float3 c, float r, float3 x, float3 y, float3* m) {
+    float3 a = normalize(x - c), b = normalize(y - c);
+    float3 point;
+    float s0 = 0.0f, s1 = 1.0f;
+    float g0 = wp_sphere_mirror_residual(c, r, x, y, a, b, s0, &point);
+    float g1 = wp_sphere_mirror_residual(c, r, x, y, a, b, s1, &point);
+    int kept = 0; /* which end the last step kept: 1 the low one, -1 the high one */
+    for (int i = 0; i < WP_SPHERE_MIRROR_STEPS; ++i) {
+        float denominator = g0 - g1;
+        float s = denominator > 0.0f ? s0 + (s1 - s0) * (g0 / denominator) : 0.5f * (s0 + s1);
+        float g = wp_sphere_mirror_residual(c, r, x, y, a, b, s, &point);
+        if (g > 0.0f) {
+            s0 = s;
+            g0 = g;
+            g1 *= kept == -1 ? 0.5f : 1.0f; /* Illinois: the end kept twice, halved */
+            kept = -1;
+        } else {
+            s1 = s;
+            g1 = g;
+            g0 *= kept == 1 ? 0.5f : 1.0f;
+            kept = 1;
+        }
+    }
+    float3 n = (point - c) / r;
+    *m = point;
+    return dot(n, x - point) > 0.0f && dot(n, y - point) > 0.0f;
+}
+
+/* The mirrored light sample's contribution once the mirror point is known:
+ * x (ray direction `wo`, shading normal on the lit side `shading`) sees the
+ * light point y with emission `emission` by way of m, direction `wi`, at
+ * density `p_mirror`; leg 1 runs from `origin` to m (stopping short of it by
+ * the margin of a primitive of scale `mirror_scale`), leg 2 from `start2`
+ * (off the mirror on x's side) to y on `light`. 1 and *out when it carries
+ * light. */
+static inline int wp_mirror_shadow_ray(const WpMaterial* material, float3 wo, float3 shading,
+                                       float3 origin, float3 beta, float3 m, float mirror_scale,
+                                       float3 start2, float3 y, const WpTriangle* light, float3 wi,
+                                       float cos_surface, float p_mirror, float3 emission,
+                                       float3 reflectance, WpMirrorShadow* out) {
     float3 leg1 = m - origin;
     float length1 = length(leg1);
     float test1 = length1 - wp_shadow_end_margin(m, mirror_scale, length1);
-    float3 side = dot(n, x) > group.plane.w ? n : -n;
-    float3 start2 = wp_offset_ray_origin(m, side, mirror_scale);
     float3 leg2 = y - start2;
     float length2 = length(leg2);
-    float test2 = length2 - wp_shadow_end_margin(y, wp_triangle_scale(&light), length2);
+    float test2 = length2 - wp_shadow_end_margin(y, wp_triangle_scale(light), length2);
     if (!(test1 > 0.0f && test2 > 0.0f))
         return 0;
-
-    float p_mirror = wp_mirror_light_pdf(scene, distance, cos_light);
     float p_bsdf = wp_bsdf_pdf(material, wo, wi, shading);
     float weight = wp_mis_power(p_mirror, p_bsdf);
-    float3 emission = scene->materials[wp_triangle_material(&light)].emission.xyz;
-    float3 reflectance = scene->materials[wp_triangle_material(&mirror)].reflectance.xyz;
     float3 contribution = beta * wp_bsdf_eval_pi(material, wo, wi, shading) * (1.0f / WP_PI) *
                           emission * reflectance * (cos_surface * weight / p_mirror);
     if (wp_is_black(contribution))
@@ -186,6 +248,103 @@ static inline int wp_mirror_next_event(const WpSceneView* scene, const WpMateria
     out->direction2 = (float4)(leg2 / length2, test2);
     out->contribution = (float4)(contribution, 0.0f);
     return 1;
+}
+
+/* Through planar mirror `group` (the arguments as wp_mirror_next_event's). */
+static inline int wp_planar_mirror_next_event(const WpSceneView* scene, const WpMaterial* material,
+                                              const WpSurface* surface, float3 wo, float3 shading,
+                                              float3 origin, float3 beta,
+                                              const WpMirrorGroup* group, const WpTriangle* light,
+                                              float3 y, WpMirrorShadow* out) {
+    float3 x = surface->position;
+    float3 m;
+    wp_uint k;
+    if (!wp_mirror_connect(scene, group, x, y, &m, &k))
+        return 0;
+    float3 n = group->plane.xyz;
+    float3 mirrored = y - (2.0f * (dot(n, y) - group->plane.w)) * n;
+    float3 to_image = mirrored - x;
+    float distance = length(to_image);
+    float3 wi = to_image / distance;
+    float3 light_normal = normalize(wp_triangle_normal(light));
+    float3 image_normal = light_normal - (2.0f * dot(light_normal, n)) * n;
+    float cos_surface = dot(shading, wi);
+    float cos_light = -dot(image_normal, wi);
+    if (!(cos_surface > 0.0f && cos_light > 0.0f))
+        return 0;
+    /* Leg 2 starts off the mirror on x's side. */
+    WpTriangle mirror = scene->mirror_triangles[k];
+    float mirror_scale = wp_triangle_scale(&mirror);
+    float3 side = dot(n, x) > group->plane.w ? n : -n;
+    float3 start2 = wp_offset_ray_origin(m, side, mirror_scale);
+    return wp_mirror_shadow_ray(
+        material, wo, shading, origin, beta, m, mirror_scale, start2, y, light, wi, cos_surface,
+        wp_mirror_light_pdf(scene, distance, cos_light),
+        scene->materials[wp_triangle_material(light)].emission.xyz,
+        scene->materials[wp_triangle_material(&mirror)].reflectance.xyz, out);
+}
+
+#if WP_HAS_MIRROR_SPHERES
+/* Through mirror sphere `sphere` (the arguments as wp_mirror_next_event's). */
+static inline int wp_sphere_mirror_next_event(const WpSceneView* scene, const WpMaterial* material,
+                                              const WpSurface* surface, float3 wo, float3 shading,
+                                              float3 origin, float3 beta, WpSphere sphere,
+                                              const WpTriangle* light, float3 y,
+                                              WpMirrorShadow* out) {
+    float3 c = sphere.center_radius.xyz;
+    float r = sphere.center_radius.w;
+    float3 x = surface->position;
+    float3 m;
+    if (!wp_sphere_mirror_tries(c, r, x, y) || !wp_sphere_mirror_point(c, r, x, y, &m))
+        return 0;
+    float3 n = normalize(m - c);
+    float3 to_mirror = m - x;
+    float d1 = length(to_mirror);
+    float3 wi = to_mirror / d1;
+    float3 to_light = y - m;
+    float d2 = length(to_light);
+    float3 light_normal = normalize(wp_triangle_normal(light));
+    float cos_surface = dot(shading, wi);
+    float cos_mirror = -dot(n, wi);
+    float cos_light = -dot(light_normal, to_light / d2);
+    if (!(cos_surface > 0.0f && cos_mirror > 0.0f && cos_light > 0.0f))
+        return 0;
+    float mirror_scale = wp_sphere_scale(sphere.center_radius);
+    float3 start2 = wp_offset_ray_origin(m, n, mirror_scale);
+    return wp_mirror_shadow_ray(material, wo, shading, origin, beta, m, mirror_scale, start2, y,
+                                light, wi, cos_surface,
+                                wp_sphere_mirror_light_pdf(scene, d1, d2, cos_mirror, r, cos_light),
+                                scene->materials[wp_triangle_material(light)].emission.xyz,
+                                scene->materials[sphere.material].reflectance.xyz, out);
+}
+#endif
+
+/* The mirrored light sample at the diffuse surface point `surface` (ray
+ * direction `wo`, shading normal on the lit side `shading`, shadow rays
+ * from `origin`): 1 and *out when it carries light. */
+static inline int wp_mirror_next_event(const WpSceneView* scene, const WpMaterial* material,
+                                       const WpSurface* surface, float3 wo, float3 shading,
+                                       float3 origin, float3 beta, float u_pick, float u, float v,
+                                       WpMirrorShadow* out) {
+    wp_uint mirrors = wp_mirror_count(scene);
+    if (mirrors == 0u || scene->light_count == 0u)
+        return 0;
+    float stretched = u_pick * (float)mirrors;
+    wp_uint g = min((wp_uint)stretched, mirrors - 1u);
+    u_pick = fmin(stretched - (float)g, 0x1.fffffep-1f);
+    WpTriangle light =
+        scene->triangles[scene->lights[wp_pick_light(scene->lights, scene->light_count, u_pick)]
+                             .triangle];
+    float3 y = wp_sample_triangle(light.v0.xyz, light.v1.xyz, light.v2.xyz, u, v);
+#if WP_HAS_MIRROR_SPHERES
+    if (g >= scene->mirror_group_count)
+        return wp_sphere_mirror_next_event(
+            scene, material, surface, wo, shading, origin, beta,
+            scene->spheres[scene->mirror_spheres[g - scene->mirror_group_count]], &light, y, out);
+#endif
+    WpMirrorGroup group = scene->mirror_groups[g];
+    return wp_planar_mirror_next_event(scene, material, surface, wo, shading, origin, beta, &group,
+                                       &light, y, out);
 }
 
 /* Whether the mirrored estimate at a diffuse vertex with these flags is of a
@@ -199,21 +358,42 @@ static inline int wp_mirror_next_event(const WpSceneView* scene, const WpMateria
 #define WP_MIRROR_NEXT_EVENT_SELECTED(flags) 1
 #endif
 
-/* The weight of emission found by BSDF sampling after diffuse x -> planar
- * mirror -> this light point: `vertex` is x and its BSDF density, the ray
- * came from `mirror_origin` (just off the mirror point) `t` along `direction`
- * and met the light's front face at `surface`, of `primitive`. */
+/* The weight of emission found by BSDF sampling after diffuse x -> mirror ->
+ * this light point: `vertex` is x and its BSDF density, `flags` the path's
+ * (WP_PATH_PLANAR_MIRROR or WP_PATH_SPHERE_MIRROR with the sphere's number),
+ * the ray came from `mirror_origin` (just off the mirror point) `t` along
+ * `direction` and met the light's front face at `surface`, of `primitive`. */
 static inline float wp_mirror_emission_weight(const WpSceneView* scene, wp_uint primitive,
-                                              float4 vertex, float3 mirror_origin, float t,
-                                              const WpSurface* surface, float3 direction) {
+                                              wp_uint flags, float4 vertex, float3 mirror_origin,
+                                              float t, const WpSurface* surface, float3 direction) {
     /* Only emissive triangles are lights the mirrored strategy samples. */
-    if (scene->light_count == 0u || scene->mirror_group_count == 0u ||
+    if (scene->light_count == 0u || wp_mirror_count(scene) == 0u ||
         wp_primitive_kind(scene, primitive) != WP_PRIMITIVE_TRIANGLE)
         return 1.0f;
-    float distance = length(mirror_origin - vertex.xyz) + t;
     float cos_light = -dot(surface->normal, direction);
     if (!(cos_light > 0.0f))
         return 1.0f;
+#if WP_HAS_MIRROR_SPHERES
+    if (flags & WP_PATH_SPHERE_MIRROR) {
+        float4 sphere = scene->spheres[flags >> WP_PATH_SPHERE_SHIFT].center_radius;
+        float3 c = sphere.xyz;
+        float r = sphere.w;
+        float3 x = vertex.xyz;
+        if (!wp_sphere_mirror_tries(c, r, x, surface->position))
+            return 1.0f;
+        float3 n = normalize(mirror_origin - c);
+        float3 m = c + r * n;
+        float cos_mirror = dot(n, direction);
+        if (!(cos_mirror > 0.0f))
+            return 1.0f;
+        float d1 = length(m - x);
+        float d2 = length(surface->position - m);
+        return wp_mis_power(vertex.w,
+                            wp_sphere_mirror_light_pdf(scene, d1, d2, cos_mirror, r, cos_light));
+    }
+#endif
+    (void)flags;
+    float distance = length(mirror_origin - vertex.xyz) + t;
     return wp_mis_power(vertex.w, wp_mirror_light_pdf(scene, distance, cos_light));
 }
 
@@ -222,6 +402,25 @@ static inline float wp_mirror_emission_weight(const WpSceneView* scene, wp_uint 
 static inline int wp_is_planar_mirror(const WpSceneView* scene, wp_uint primitive,
                                       const WpSurface* surface) {
     return wp_primitive_kind(scene, primitive) == WP_PRIMITIVE_TRIANGLE && !surface->smooth;
+}
+
+/* The path flags after a bounce at this surface (`primitive`): the mirror
+ * flags say whether it was the first mirror after a diffuse vertex (and
+ * which sphere), for the emission weight at the next vertex. */
+static inline wp_uint wp_mirror_flags_after(const WpSceneView* scene, wp_uint flags,
+                                            wp_uint primitive, const WpSurface* surface,
+                                            int specular) {
+    wp_uint kept = flags & ~(WP_PATH_PLANAR_MIRROR | WP_PATH_SPHERE_MIRROR | WP_PATH_SPHERE_BITS);
+    if (!specular || (flags & WP_PATH_SPECULAR)) /* not a mirror right after a diffuse vertex */
+        return kept;
+    if (wp_is_planar_mirror(scene, primitive, surface))
+        return kept | WP_PATH_PLANAR_MIRROR;
+#if WP_HAS_MIRROR_SPHERES
+    if (wp_primitive_kind(scene, primitive) == WP_PRIMITIVE_SPHERE)
+        return kept | WP_PATH_SPHERE_MIRROR |
+               ((primitive - scene->triangle_count) << WP_PATH_SPHERE_SHIFT);
+#endif
+    return kept;
 }
 
 #endif /* WP_MIRROR_LIGHT_H */

@@ -28,6 +28,9 @@
 #ifndef WP_HAS_PLANAR_MIRRORS /* flat mirror triangles and lights (kernels/mirror_light.h) */
 #define WP_HAS_PLANAR_MIRRORS 1
 #endif
+#ifndef WP_HAS_MIRROR_SPHERES /* mirror spheres and lights (kernels/mirror_light.h) */
+#define WP_HAS_MIRROR_SPHERES 1
+#endif
 
 /* Acceleration switch, not a scene feature: traverse a bounding volume
  * hierarchy (bvh.h) instead of testing every primitive. The host turns it on

@@ -151,8 +151,8 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
 
     float3 beta_emission = beta;
 #if WP_MIRROR_NEE /* weighed against the mirrored light sample (mirror_light.h) */
-    if (flags & WP_PATH_PLANAR_MIRROR)
-        beta_emission *= wp_mirror_emission_weight(&scene, primitive, mirror_vertex[slot],
+    if (flags & (WP_PATH_PLANAR_MIRROR | WP_PATH_SPHERE_MIRROR))
+        beta_emission *= wp_mirror_emission_weight(&scene, primitive, flags, mirror_vertex[slot],
                                                    ray_origin[slot].xyz, t, &surface, direction);
 #endif
     radiance[slot] =
@@ -192,10 +192,7 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
 #if WP_MIRROR_NEE /* what the emission weight at the next vertex needs */
     if (!scattered.specular)
         mirror_vertex[slot] = (float4)(surface.position, scattered.pdf);
-    flags = (scattered.specular && !(flags & WP_PATH_SPECULAR) &&
-             wp_is_planar_mirror(&scene, primitive, &surface))
-                ? flags | WP_PATH_PLANAR_MIRROR
-                : flags & ~WP_PATH_PLANAR_MIRROR;
+    flags = wp_mirror_flags_after(&scene, flags, primitive, &surface, scattered.specular);
 #endif
     if (scattered.specular)
         flags |= WP_PATH_SPECULAR;

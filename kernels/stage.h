@@ -32,6 +32,7 @@ typedef struct {
     wp_uint light_count;
     float light_area; /* total emissive area: 1 / pdf of uniform area sampling */
     wp_uint mirror_group_count;
+    wp_uint mirror_sphere_count;
 } WpSceneView;
 
 #define WP_SCENE_ASSIGN(name, type) view.name = name;
@@ -43,6 +44,7 @@ static inline WpSceneView wp_scene_view(WpFrame frame WP_SCENE_BUFFERS(WP_SCENE_
     view.light_count = frame.light_count;
     view.light_area = frame.light_area;
     view.mirror_group_count = frame.mirror_group_count;
+    view.mirror_sphere_count = frame.mirror_sphere_count;
     return view;
 }
 

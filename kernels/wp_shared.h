@@ -51,6 +51,12 @@ typedef cl_float4 wp_float4;
  * now gets the multiple importance sampling weight against mirrored-light
  * sampling (kernels/mirror_light.h). Set only with WP_MIRROR_NEE. */
 #define WP_PATH_PLANAR_MIRROR 16u
+/* The same after a mirror sphere, whose number (into spheres[]) the bits from
+ * WP_PATH_SPHERE_SHIFT on hold. Set only with WP_MIRROR_NEE and
+ * WP_HAS_MIRROR_SPHERES. */
+#define WP_PATH_SPHERE_MIRROR 32u
+#define WP_PATH_SPHERE_SHIFT 8u
+#define WP_PATH_SPHERE_BITS 0xffffff00u
 
 /* Path types: every contribution to a pixel falls in exactly one, by the
  * bounces before the light reached the path (docs/convergence.md, "Where the
@@ -220,9 +226,11 @@ typedef struct {
     wp_uint triangle_count;
     wp_uint sphere_count;
     wp_uint light_count;
-    wp_float light_area;        /* total emissive area: 1 / pdf of uniform area sampling */
-    wp_uint max_depth;          /* safety cap on bounces; paths cut are counted */
-    wp_uint mirror_group_count; /* planar mirrors (WpMirrorGroup) */
+    wp_float light_area;         /* total emissive area: 1 / pdf of uniform area sampling */
+    wp_uint max_depth;           /* safety cap on bounces; paths cut are counted */
+    wp_uint mirror_group_count;  /* planar mirrors (WpMirrorGroup) */
+    wp_uint mirror_sphere_count; /* mirror spheres (mirror_spheres) */
+    wp_uint pad0, pad1, pad2;
 } WpFrame;
 
 /* What changes from one launch of a stage to the next, passed by value after
@@ -264,7 +272,8 @@ typedef struct {
     X(triangle_normals, WpShadingNormals) /* shading normals of the triangles that have them */    \
     X(bvh_nodes, WpBvhNode)               /* with WP_USE_BVH; a dummy without */                   \
     X(mirror_groups, WpMirrorGroup)       /* planar mirrors (kernels/mirror_light.h) */            \
-    X(mirror_triangles, WpTriangle)       /* their triangles */
+    X(mirror_triangles, WpTriangle)       /* their triangles */                                    \
+    X(mirror_spheres, wp_uint)            /* the mirror spheres' numbers in spheres[] */
 
 #define WP_PATH_BUFFERS(X)                                                                         \
     /* path state, one entry per slot (structure of arrays) */                                     \

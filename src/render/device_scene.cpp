@@ -235,6 +235,17 @@ void build_hierarchy(DeviceScene& scene) {
     scene.bvh_stats = bvh.stats;
 }
 
+// "3,7,12".
+std::string comma_list(const std::vector<std::uint32_t>& numbers) {
+    std::string list;
+    for (std::uint32_t i : numbers) {
+        if (!list.empty())
+            list += ',';
+        list += std::to_string(i);
+    }
+    return list;
+}
+
 } // namespace
 
 std::string SceneFeatures::build_options() const {
@@ -249,14 +260,8 @@ std::string SceneFeatures::build_options() const {
                    " -D WP_MIRROR_GROUP_TRIANGLES=" + std::to_string(mirror_group_triangles);
     if (fixed_counts && shadow_culling) {
         options += " -D WP_SHADOW_OCCLUDER_COUNT=" + std::to_string(shadow_occluders.size());
-        std::string list;
-        for (std::uint32_t i : shadow_occluders) {
-            if (!list.empty())
-                list += ',';
-            list += std::to_string(i);
-        }
-        if (!list.empty())
-            options += " -D WP_SHADOW_OCCLUDERS=" + list;
+        if (!shadow_occluders.empty())
+            options += " -D WP_SHADOW_OCCLUDERS=" + comma_list(shadow_occluders);
     }
     if (bvh)
         options += " -D WP_USE_BVH=1";
@@ -305,6 +310,10 @@ SceneFeatures analyse_features(const Scene& scene, std::uint32_t max_fixed_count
     // Next-event estimation through planar mirrors needs both (kernels/mirror_light.h).
     const std::vector<PlanarMirror> mirrors = find_planar_mirrors(scene);
     f.planar_mirrors = f.lights && !mirrors.empty();
+    f.mirror_spheres =
+        f.lights && std::any_of(scene.spheres.begin(), scene.spheres.end(), [&](const Sphere& s) {
+            return scene.materials[s.material].kind == MaterialKind::Mirror;
+        });
     const std::size_t primitives = scene.triangles.size() + scene.spheres.size();
     f.bvh = primitives >= kMinBvhPrimitives;
     f.fixed_counts = !f.bvh && primitives <= max_fixed_count_primitives;
@@ -421,6 +430,11 @@ DeviceScene flatten_scene(const Scene& scene, bool hierarchy) {
 
     if (hierarchy)
         build_hierarchy(out);
+    // After the hierarchy, which may reorder the spheres.
+    if (!out.lights.empty())
+        for (std::size_t i = 0; i < out.spheres.size(); ++i)
+            if (scene.materials[out.spheres[i].material].kind == MaterialKind::Mirror)
+                out.mirror_spheres.push_back(static_cast<wp_uint>(i));
     return out;
 }
 

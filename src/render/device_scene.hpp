@@ -32,7 +32,8 @@ inline constexpr std::uint32_t kMinBvhPrimitives = kMaxFixedCountPrimitives + 1;
     X(mirror, WP_HAS_MIRROR)                                                                       \
     X(shading_normals, WP_HAS_SHADING_NORMALS) /* triangles with vertex normals */                 \
     X(lights, WP_HAS_LIGHTS)                   /* emissive triangles for next-event estimation */  \
-    X(planar_mirrors, WP_HAS_PLANAR_MIRRORS)   /* flat mirror triangles, and lights */
+    X(planar_mirrors, WP_HAS_PLANAR_MIRRORS)   /* flat mirror triangles, and lights */             \
+    X(mirror_spheres, WP_HAS_MIRROR_SPHERES)   /* spheres of a mirror material, and lights */
 
 // Which kinds of primitive, material and light the scene uses.
 struct SceneFeatures {
@@ -101,6 +102,7 @@ struct DeviceScene {
     std::vector<WpBvhNode> bvh_nodes;               // empty without a hierarchy
     std::vector<WpMirrorGroup> mirror_groups;       // planar mirrors (render/planar_mirrors.hpp)
     std::vector<WpTriangle> mirror_triangles;       // copies of their triangles
+    std::vector<wp_uint> mirror_spheres;            // with lights: the spheres of a mirror material
     BvhStats bvh_stats;
     float light_area = 0.0f; // total emissive area
     WpCamera camera{};

@@ -130,6 +130,7 @@ WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const Scene& sce
     frame_.light_count = static_cast<wp_uint>(scene_.lights.size());
     frame_.light_area = scene_.light_area;
     frame_.mirror_group_count = static_cast<wp_uint>(scene_.mirror_groups.size());
+    frame_.mirror_sphere_count = static_cast<wp_uint>(scene_.mirror_spheres.size());
     frame_.max_depth = options_.max_depth;
 
     buffers_ = allocate_device_buffers(device_.context, scene_, pool_size_, pixel_count_);
@@ -462,7 +463,8 @@ std::string kernel_build_options(const SceneFeatures& features, const Integrator
     if (options.path_types != kAllPathTypes) // only then is anything tracked (path_type.h)
         text += " -D WP_PATH_TYPE_MASK=" + std::to_string(options.path_types);
     text += options.sampler == Sampler::Sobol ? " -D WP_SAMPLER=1" : " -D WP_SAMPLER=0";
-    if (features.planar_mirrors && options.next_event_estimation && options.mirror_next_event)
+    if ((features.planar_mirrors || features.mirror_spheres) && options.next_event_estimation &&
+        options.mirror_next_event)
         text += " -D WP_MIRROR_NEE=1";
     if (features.shading_normals && !options.shadow_terminator_fix)
         text += " -D WP_SHADOW_TERMINATOR_FIX=0";

@@ -121,7 +121,8 @@ TEST_CASE("mirror light: the hexroom with and without it agrees within noise, bl
     // mirror's caustic comes out too bright or too dark here. Independent
     // samples, so that the film's sample variance is an honest error bar.
     Scene scene = test::hexroom(32, 32);
-    REQUIRE(find_planar_mirrors(scene).size() == 1); // the mirror wall; the sphere is curved
+    REQUIRE(find_planar_mirrors(scene).size() == 1); // the mirror wall
+    REQUIRE(analyse_features(scene).mirror_spheres); // and the mirror sphere
     IntegratorOptions options;
     options.sampler = Sampler::Independent;
     options.mirror_next_event = true;
