@@ -68,9 +68,9 @@ void add_integrator_options(CLI::App& command, IntegratorOptions& options) {
         .add_option_function<std::string>(
             "--mirror-nee",
             [&options](const std::string& value) { options.mirror_next_event = value == "on"; },
-            "Next-event estimation through planar mirrors, weighed against BSDF sampling by "
-            "multiple importance sampling: 'on' or 'off' (scenes without planar mirrors and "
-            "lights compile none of it; docs/convergence.md)")
+            "Next-event estimation through planar mirrors and mirror spheres, weighed against "
+            "BSDF sampling by multiple importance sampling: 'on' or 'off' (scenes without "
+            "mirrors and lights compile none of it; docs/convergence.md)")
         ->default_str(options.mirror_next_event ? "on" : "off")
         ->check(CLI::IsMember({"on", "off"}));
     command
