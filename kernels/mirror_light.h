@@ -171,47 +171,67 @@ static inline int wp_sphere_mirror_tries(float3 c, float r, float3 x, float3 y) 
 }
 
 /* The reflection point on the sphere (centre c, radius r) of the path
- * x -> m -> y, for x and y that wp_sphere_mirror_tries accepts: on the arc
- * d(s) = normalize((1 - s) a + s b), a and b the unit directions from c to x
- * and to y, the tangential part of the two unit directions from m to x and
- * to y cancels (the normal bisects them). At s = 0 it points towards b, at
- * s = 1 away from it; regula falsi with the Illinois step, a fixed number of
- * steps. 1 and *m if both x and y see m (the sphere's normal there faces
- * both). */
+ * x -> m -> y, for x and y that wp_sphere_mirror_tries accepts. In the plane
+ * of c, x and y, with a and b the unit directions from c to x and to y an
+ * angle alpha apart, m = c + r (cos p a + sin p v) (v the unit direction
+ * across a towards b) for the angle p in [0, alpha] at which the normal
+ * bisects the directions to x and to y, where
+ *     g(p) = ly sin(alpha - p) / |y - m| - lx sin p / |x - m|
+ * (the difference of their tangential parts) vanishes: at p = 0 it is
+ * positive, at p = alpha negative, and where x and y both see m it is the
+ * only root (docs/convergence.md). In the half-angle tangent t = tan(p / 2)
+ * (and w = tan((alpha - p) / 2)) every term is rational, no sine or cosine
+ * to evaluate, and |x - m|^2 = (lx - r)^2 + 2 lx r (1 - cos p) keeps its
+ * precision next to the sphere. Regula falsi with the Illinois step, a fixed
+ * number of steps. 1 and *m if both x and y see m. */
 #define WP_SPHERE_MIRROR_STEPS 12
-static inline float wp_sphere_mirror_residual(float3 c, float r, float3 x, float3 y, float3 a,
-                                              float3 b, float s, float3* m) {
-    float3 d = normalize((1.0f - s) * a + s * b);
-    float3 chord = b - a;
-    float3 tangent = chord - dot(chord, d) * d;
-    *m = c + r * d;
-    return dot(tangent, normalize(x - *m) + normalize(y - *m));
+static inline float wp_sphere_mirror_residual(float t, float tan_half_alpha, float lx, float ly,
+                                              float near_x, float near_y, float r) {
+    float w = (tan_half_alpha - t) / (1.0f + tan_half_alpha * t);
+    float it = 1.0f / (1.0f + t * t);
+    float iw = 1.0f / (1.0f + w * w);
+    float sin_p = 2.0f * t * it, versin_p = 2.0f * t * t * it;
+    float sin_q = 2.0f * w * iw, versin_q = 2.0f * w * w * iw; /* q = alpha - p */
+    float to_x = near_x + 2.0f * lx * r * versin_p;              /* |x - m|^2 */
+    float to_y = near_y + 2.0f * ly * r * versin_q;
+    return ly * sin_q * rsqrt(to_y) - lx * sin_p * rsqrt(to_x);
 }
 
 static inline int wp_sphere_mirror_point(float3 c, float r, float3 x, float3 y, float3* m) {
-    float3 a = normalize(x - c), b = normalize(y - c);
-    float3 point;
-    float s0 = 0.0f, s1 = 1.0f;
-    float g0 = wp_sphere_mirror_residual(c, r, x, y, a, b, s0, &point);
-    float g1 = wp_sphere_mirror_residual(c, r, x, y, a, b, s1, &point);
+    float3 px = x - c, py = y - c;
+    float lx = length(px), ly = length(py);
+    float3 a = px / lx, b = py / ly;
+    float cos_alpha = dot(a, b);
+    float3 across = b - cos_alpha * a;
+    float sin_alpha = length(cross(a, b));
+    float tan_half_alpha = sin_alpha / (1.0f + cos_alpha);
+    float near_x = (lx - r) * (lx - r), near_y = (ly - r) * (ly - r);
+    float t0 = 0.0f, t1 = tan_half_alpha;
+    float g0 = wp_sphere_mirror_residual(t0, tan_half_alpha, lx, ly, near_x, near_y, r);
+    float g1 = wp_sphere_mirror_residual(t1, tan_half_alpha, lx, ly, near_x, near_y, r);
+    float t = 0.0f;
     int kept = 0; /* which end the last step kept: 1 the low one, -1 the high one */
     for (int i = 0; i < WP_SPHERE_MIRROR_STEPS; ++i) {
         float denominator = g0 - g1;
-        float s = denominator > 0.0f ? s0 + (s1 - s0) * (g0 / denominator) : 0.5f * (s0 + s1);
-        float g = wp_sphere_mirror_residual(c, r, x, y, a, b, s, &point);
+        t = denominator > 0.0f ? t0 + (t1 - t0) * (g0 / denominator) : 0.5f * (t0 + t1);
+        float g = wp_sphere_mirror_residual(t, tan_half_alpha, lx, ly, near_x, near_y, r);
         if (g > 0.0f) {
-            s0 = s;
+            t0 = t;
             g0 = g;
             g1 *= kept == -1 ? 0.5f : 1.0f; /* Illinois: the end kept twice, halved */
             kept = -1;
         } else {
-            s1 = s;
+            t1 = t;
             g1 = g;
             g0 *= kept == 1 ? 0.5f : 1.0f;
             kept = 1;
         }
     }
-    float3 n = (point - c) / r;
+    float it = 1.0f / (1.0f + t * t);
+    float across_length = length(across);
+    float3 v = across_length > 0.0f ? across / across_length : (float3)(0.0f);
+    float3 n = ((1.0f - t * t) * it) * a + (2.0f * t * it) * v;
+    float3 point = c + r * n;
     *m = point;
     return dot(n, x - point) > 0.0f && dot(n, y - point) > 0.0f;
 }
