@@ -192,7 +192,7 @@ static inline float wp_sphere_mirror_residual(float t, float tan_half_alpha, flo
     float iw = 1.0f / (1.0f + w * w);
     float sin_p = 2.0f * t * it, versin_p = 2.0f * t * t * it;
     float sin_q = 2.0f * w * iw, versin_q = 2.0f * w * w * iw; /* q = alpha - p */
-    float to_x = near_x + 2.0f * lx * r * versin_p;              /* |x - m|^2 */
+    float to_x = near_x + 2.0f * lx * r * versin_p;            /* |x - m|^2 */
     float to_y = near_y + 2.0f * ly * r * versin_q;
     return ly * sin_q * rsqrt(to_y) - lx * sin_p * rsqrt(to_x);
 }
