@@ -89,8 +89,7 @@ TEST_CASE("mirror light: the light seen only in a planar mirror gives R rho Le F
         const test::MeanWithError &on = means[1][ch], &off = means[0][ch];
         INFO("channel " << ch << ": on " << on.mean << " +- " << on.standard_error << ", off "
                         << off.mean << " +- " << off.standard_error);
-        CHECK(std::abs(on.mean - off.mean) <
-              kSigmas * std::hypot(on.standard_error, off.standard_error));
+        CHECK(test::sigmas_apart(on, off) < kSigmas);
         CHECK(on.standard_error * 5.0 < off.standard_error); // at an eighth of the samples
     }
 }
@@ -137,15 +136,14 @@ TEST_CASE("mirror light: the hexroom with and without it agrees within noise, bl
             for (int bx = 0; bx < 32 / w; ++bx) {
                 test::MeanWithError a = block_mean(on.film, bx, by, w, ch);
                 test::MeanWithError b = block_mean(off.film, bx, by, w, ch);
-                double z =
-                    std::abs(a.mean - b.mean) / std::hypot(a.standard_error, b.standard_error);
+                double z = test::sigmas_apart(a, b);
                 worst = std::max(worst, z);
                 outside += z > kSigmas;
             }
         test::MeanWithError a = test::image_mean(on.film, ch), b = test::image_mean(off.film, ch);
         INFO("channel " << ch << ": on " << a.mean << " +- " << a.standard_error << ", off "
                         << b.mean << " +- " << b.standard_error);
-        CHECK(std::abs(a.mean - b.mean) < kSigmas * std::hypot(a.standard_error, b.standard_error));
+        CHECK(test::sigmas_apart(a, b) < kSigmas);
         CHECK(a.standard_error < 0.01 * a.mean); // the test has power
     }
     INFO("largest block deviation " << worst << " combined sigma");

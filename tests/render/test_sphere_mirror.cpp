@@ -244,8 +244,7 @@ TEST_CASE("sphere mirror: a light seen only in a mirror sphere agrees with brute
         const test::MeanWithError &on = means[1][ch], &off = means[0][ch];
         INFO("channel " << ch << ": on " << on.mean << " +- " << on.standard_error << ", off "
                         << off.mean << " +- " << off.standard_error);
-        CHECK(std::abs(on.mean - off.mean) <
-              kSigmas * std::hypot(on.standard_error, off.standard_error));
+        CHECK(test::sigmas_apart(on, off) < kSigmas);
         CHECK(off.standard_error < 0.05 * off.mean);         // the test has power
         CHECK(on.standard_error * 5.0 < off.standard_error); // at a sixteenth of the samples
     }

@@ -82,4 +82,9 @@ inline MeanWithError image_mean(const Film& film, int channel) {
     return {sum / n, std::sqrt(var) / n};
 }
 
+// How many combined standard errors two independent estimates lie apart.
+inline double sigmas_apart(const MeanWithError& a, const MeanWithError& b) {
+    return std::abs(a.mean - b.mean) / std::hypot(a.standard_error, b.standard_error);
+}
+
 } // namespace wp::test
