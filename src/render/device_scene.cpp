@@ -235,17 +235,6 @@ void build_hierarchy(DeviceScene& scene) {
     scene.bvh_stats = bvh.stats;
 }
 
-// "3,7,12".
-std::string comma_list(const std::vector<std::uint32_t>& numbers) {
-    std::string list;
-    for (std::uint32_t i : numbers) {
-        if (!list.empty())
-            list += ',';
-        list += std::to_string(i);
-    }
-    return list;
-}
-
 } // namespace
 
 std::string SceneFeatures::build_options() const {
@@ -260,8 +249,14 @@ std::string SceneFeatures::build_options() const {
                    " -D WP_MIRROR_GROUP_TRIANGLES=" + std::to_string(mirror_group_triangles);
     if (fixed_counts && shadow_culling) {
         options += " -D WP_SHADOW_OCCLUDER_COUNT=" + std::to_string(shadow_occluders.size());
-        if (!shadow_occluders.empty())
-            options += " -D WP_SHADOW_OCCLUDERS=" + comma_list(shadow_occluders);
+        std::string list;
+        for (std::uint32_t i : shadow_occluders) {
+            if (!list.empty())
+                list += ',';
+            list += std::to_string(i);
+        }
+        if (!list.empty())
+            options += " -D WP_SHADOW_OCCLUDERS=" + list;
     }
     if (bvh)
         options += " -D WP_USE_BVH=1";
