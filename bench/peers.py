@@ -3,11 +3,13 @@
 
     python3 bench/peers.py throughput [--sizes 256,800] [--spp 64] [--rounds 3]
                                       [--baseline COMMIT | --baseline-binary PATH]
+                                      [--wp-variant="--mirror-nee off"]
     python3 bench/peers.py error --reference REF.exr [--spp 16,64,256,1024] [--rounds 2]
                                  [--modes two-threads,one-core] [--wp-variant "--sampler sobol"]
 
-throughput: whole-render time and samples/s of wavepath, Mitsuba 3 llvm_ad_rgb
-and (with --baseline) an earlier wavepath build, at each size, 2 threads each;
+throughput: whole-render time and samples/s of wavepath (its default and each
+--wp-variant), Mitsuba 3 llvm_ad_rgb and (with --baseline) an earlier wavepath
+build, at each size, 2 threads each;
 then wavepath's intersect and shadow stages against Embree 1-ray and 16-ray
 on the same 4x10^6 incoherent rays of the scene's free space (and its camera,
 bounce and light rays), hits checked ray by ray, by build/bench/
@@ -143,6 +145,9 @@ def run_throughput(args, workdir):
     sizes = parse_list(args.sizes, int, "--sizes")
     spp = args.spp_single
     renderers = [peers_renderers.Wavepath(args.wavepath, [], "wavepath", args.scene)]
+    for variant in args.wp_variant:
+        renderers.append(peers_renderers.Wavepath(args.wavepath, shlex.split(variant),
+                                                  f"wavepath {variant}", args.scene))
     baseline = peers_renderers.baseline_binary(args, workdir)
     if baseline:
         renderers.append(peers_renderers.Wavepath(baseline[0], [], f"wavepath {baseline[1]}", args.scene))
@@ -399,6 +404,9 @@ def main():
                         help="libLLVM for Mitsuba's llvm variant (default: $DRJIT_LIBLLVM_PATH, "
                         "else Debian's libLLVM 19 or 16)")
     parser.add_argument("--mitsuba-variant", default="llvm_ad_rgb")
+    parser.add_argument("--wp-variant", action="append", default=[],
+                        help="wavepath options of a further wavepath run (both modes), written with '=' "
+                        "since they begin with '-': --wp-variant='--sampler sobol' (repeatable)")
     group = parser.add_argument_group("throughput")
     group.add_argument("--sizes", default="256,800", help="square image sizes (default: 256,800)")
     group.add_argument("--spp-single", "--throughput-spp", type=int, default=64, dest="spp_single",
@@ -414,9 +422,6 @@ def main():
     group.add_argument("--modes", default="two-threads,one-core",
                        help="two-threads (no pinning) and/or one-core (1 thread, taskset to --core)")
     group.add_argument("--core", type=int, default=0, help="the core of one-core mode (default: 0)")
-    group.add_argument("--wp-variant", action="append", default=[],
-                       help="wavepath options of a further wavepath run, written with '=' since they begin "
-                       "with '-': --wp-variant='--sampler sobol' (repeatable)")
     args = parser.parse_args()
     if args.rounds is None:
         args.rounds = 3 if args.mode == "throughput" else 2
