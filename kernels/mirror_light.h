@@ -187,8 +187,10 @@ static inline int wp_sphere_mirror_tries(float3 c, float r, float3 x, float3 y) 
  * than WP_SPHERE_MIRROR_TOLERANCE apart (then m is within twice that, in
  * radii, of the true point), after at most WP_SPHERE_MIRROR_STEPS steps.
  * Half the pairs take 6 steps, 1 in 100 more than 11 (near-grazing
- * reflections; docs/performance.md, "Eighth session"). 1 and *m if both x
- * and y see m. */
+ * reflections; docs/performance.md, "Eighth session"). Shade runs scalar on
+ * PoCL, where the early stop saves 15 % of it; a shade made vectorisable
+ * (docs/profiling.md) needs the fixed count back (tolerance 0). 1 and *m if
+ * both x and y see m. */
 #define WP_SPHERE_MIRROR_STEPS 12
 #define WP_SPHERE_MIRROR_TOLERANCE 1e-5f
 static inline float wp_sphere_mirror_residual(float t, float tan_half_alpha, float lx, float ly,
