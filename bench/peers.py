@@ -5,7 +5,7 @@
                                       [--baseline COMMIT | --baseline-binary PATH]
                                       [--wp-variant="--mirror-nee off"]
     python3 bench/peers.py error --reference REF.exr [--spp 16,64,256,1024] [--rounds 2]
-                                 [--modes two-threads,one-core] [--wp-variant "--sampler sobol"]
+                                 [--modes two-threads,one-core] [--wp-variant="--sampler sobol"]
 
 throughput: whole-render time and samples/s of wavepath (its default and each
 --wp-variant), Mitsuba 3 llvm_ad_rgb and (with --baseline) an earlier wavepath

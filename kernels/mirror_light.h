@@ -18,11 +18,11 @@
  * Mirror spheres (convex, curved). For x and y outside a sphere there is at
  * most one point m on it that both see and where a ray from x reflects to y
  * (the arc between the sphere's points towards x and towards y holds it;
- * wp_sphere_mirror_point finds it by regula falsi). The light's image is no longer a flat copy: a
- * convex mirror spreads the beam, differently in the plane of incidence
- * (tangential) and across it (sagittal), by the mirror's focal powers
- * 2 / (R cos_m) and 2 cos_m / R at incidence cosine cos_m (Coddington's
- * equations). A pencil of solid angle dw from x lands on the light on
+ * wp_sphere_mirror_point finds it by regula falsi). The light's image is no
+ * longer a flat copy: a convex mirror spreads the beam, differently in the
+ * plane of incidence (tangential) and across it (sagittal), by the mirror's
+ * focal powers 2 / (R cos_m) and 2 cos_m / R at incidence cosine cos_m
+ * (Coddington's equations). A pencil of solid angle dw from x lands on the light on
  *     dA_y = dw (d1 + d2 + 2 d1 d2 / (R cos_m)) (d1 + d2 + 2 d1 d2 cos_m / R) / cos_y,
  * d1 = |x - m|, d2 = |m - y|, which for R -> infinity is the planar mirror's
  * (d1 + d2)^2 / cos_y (tests/render/test_sphere_mirror.cpp checks it
