@@ -313,8 +313,11 @@ int run_info(const InfoCommand& command) {
     bool have_cached = false;
     if (cache.enabled) {
         cached = build_wavefront_program(device.context, device.info.device, built.options, cache);
-        have_cached = cached.cache_hit;
-        if (have_cached)
+        have_cached = cached.cache_hit || cached.cache == CacheOutcome::Driver;
+        if (cached.cache == CacheOutcome::Driver)
+            std::printf("  cached (from the driver's own kernel cache): %s\n",
+                        format_seconds(cached.build_seconds).c_str());
+        else if (have_cached)
             std::printf("  cached (loaded from the wavepath cache): %s\n",
                         format_seconds(cached.build_seconds).c_str());
         else

@@ -1,6 +1,7 @@
 #include "cl/program.hpp"
 
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <optional>
 #include <set>
@@ -99,6 +100,8 @@ const char* cache_outcome_name(CacheOutcome outcome) {
         return "hit";
     case CacheOutcome::Rejected:
         return "rejected";
+    case CacheOutcome::Driver:
+        return "driver";
     }
     return "?";
 }
@@ -199,8 +202,25 @@ BuiltProgram build_wavefront_program(const cl::Context& context, const cl::Devic
     return build_wavefront_program(context, device, options, CachePolicy::from_environment());
 }
 
+bool driver_keeps_kernel_cache(const cl::Device& device) {
+    const cl::Platform platform(device.getInfo<CL_DEVICE_PLATFORM>());
+    if (platform.getInfo<CL_PLATFORM_NAME>().find("Portable Computing Language") ==
+        std::string::npos)
+        return false;
+    const char* pocl_cache = std::getenv("POCL_KERNEL_CACHE");
+    return pocl_cache == nullptr || std::string_view(pocl_cache) != "0";
+}
+
 BuiltProgram build_wavefront_program(const cl::Context& context, const cl::Device& device,
                                      const std::string& options, const CachePolicy& cache) {
+    if (cache.enabled && driver_keeps_kernel_cache(device)) {
+        BuiltProgram built = build_program(context, device, wavefront_program_source(),
+                                           "wavefront.cl", options, CachePolicy::off());
+        built.cache = CacheOutcome::Driver;
+        built.cache_note = "PoCL's own kernel cache serves it (a binary would compile every "
+                           "kernel first)";
+        return built;
+    }
     return build_program(context, device, wavefront_program_source(), "wavefront.cl", options,
                          cache);
 }

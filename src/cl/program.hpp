@@ -37,9 +37,11 @@ enum class CacheOutcome {
     Miss,     // no entry: built from source and stored (cache_note says if it could not be)
     Hit,      // loaded from a cached binary
     Rejected, // an entry was damaged, stale or refused by the driver: removed, rebuilt, stored
+    Driver,   // left to the driver's own kernel cache (driver_keeps_kernel_cache)
 };
 
-const char* cache_outcome_name(CacheOutcome outcome); // "off", "miss", "hit", "rejected"
+// "off", "miss", "hit", "rejected", "driver"
+const char* cache_outcome_name(CacheOutcome outcome);
 
 struct BuiltProgram {
     cl::Program program;
@@ -63,8 +65,21 @@ BuiltProgram build_program(const cl::Context& context, const cl::Device& device,
 // The text build_wavefront_program compiles (before include expansion).
 std::string_view wavefront_program_source();
 
-// The five wavefront stages in one program, through the program cache unless
-// WAVEPATH_NO_CACHE is set (CachePolicy::from_environment()).
+// Whether the device's driver keeps a kernel cache of its own that serves a
+// second build of the same source and options, and that a binary from ours
+// would only slow down: PoCL, unless POCL_KERNEL_CACHE=0 turns its cache off.
+// Asked for a program's binary, PoCL first compiles every kernel in it for
+// any work-group size, the fused kernels that a launch plan never launches
+// among them (the hexroom's program: 22 s of processor time instead of 5.7 s);
+// a second build from source then finds its own cache (0.2 s, faster than
+// loading our binary). wavepath points PoCL's cache into its own directory
+// and bounds it (app/caches.cpp).
+bool driver_keeps_kernel_cache(const cl::Device& device);
+
+// Every wavefront kernel (the stages, the fused kernels, mirror_shadow) in one
+// program, through the program cache unless WAVEPATH_NO_CACHE is set
+// (CachePolicy::from_environment()) or the driver keeps its own
+// (CacheOutcome::Driver).
 BuiltProgram build_wavefront_program(const cl::Context& context, const cl::Device& device,
                                      const std::string& options);
 BuiltProgram build_wavefront_program(const cl::Context& context, const cl::Device& device,

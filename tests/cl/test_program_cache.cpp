@@ -3,8 +3,6 @@
 // directory, never the user's.
 #include <catch2/catch.hpp>
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cstdlib>
 #include <optional>
@@ -19,18 +17,6 @@
 using namespace wp;
 
 namespace {
-
-// Programs built by the other tests of this executable through the default
-// cache (every WavefrontIntegrator) go to a shared cache under the system
-// temp directory, not to ~/.cache: WAVEPATH_CACHE_DIR outranks XDG_CACHE_HOME.
-// (Each ctest test is a process of its own; they share the entries.)
-const bool kTestCacheDirectory = [] {
-    std::string dir = (std::filesystem::temp_directory_path() /
-                       ("wavepath-test-cache-" + std::to_string(getuid())))
-                          .string();
-    setenv("WAVEPATH_CACHE_DIR", dir.c_str(), 0);
-    return true;
-}();
 
 // Sets (or unsets, with nullptr) an environment variable for one scope.
 class EnvGuard {
@@ -351,6 +337,9 @@ TEST_CASE("program cache: the wavefront program goes through the cache by defaul
     EnvGuard own("WAVEPATH_CACHE_DIR", nullptr);
     EnvGuard xdg("XDG_CACHE_HOME", dir.path().c_str());
     EnvGuard on("WAVEPATH_NO_CACHE", nullptr);
+    // On PoCL the driver's own kernel cache stands in for ours, unless it is off.
+    EnvGuard pocl_cache("POCL_KERNEL_CACHE", "0");
+    REQUIRE_FALSE(driver_keeps_kernel_cache(device.info.device));
     BuiltProgram first = build_wavefront_program(device.context, device.info.device, "");
     CHECK(first.cache == CacheOutcome::Miss);
     CHECK(first.cache_file.rfind((dir.path() / "wavepath").string(), 0) == 0);
@@ -362,4 +351,23 @@ TEST_CASE("program cache: the wavefront program goes through the cache by defaul
     EnvGuard off("WAVEPATH_NO_CACHE", "1");
     CHECK(build_wavefront_program(device.context, device.info.device, "").cache ==
           CacheOutcome::Off);
+}
+
+TEST_CASE("program cache: on PoCL the wavefront program is left to PoCL's own kernel cache") {
+    DeviceContext& device = test::device();
+    if (device.info.platform_name.find("Portable Computing Language") == std::string::npos) {
+        WARN("skipped: the test device is not PoCL");
+        return;
+    }
+    test::TempDir dir;
+    EnvGuard pocl_cache("POCL_KERNEL_CACHE", nullptr);
+    CHECK(driver_keeps_kernel_cache(device.info.device));
+    BuiltProgram built = build_wavefront_program(device.context, device.info.device, "",
+                                                 CachePolicy::in(dir.path()));
+    CHECK(built.cache == CacheOutcome::Driver);
+    CHECK(built.cache_file.empty());
+    CHECK_FALSE(built.cache_note.empty());
+    CHECK(std::filesystem::is_empty(dir.path())); // no binary asked for, none stored
+    for (const char* name : {"generate", "intersect", "shade", "shadow", "accumulate", "wave"})
+        CHECK_NOTHROW(cl::Kernel(built.program, name));
 }
