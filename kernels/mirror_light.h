@@ -187,10 +187,10 @@ static inline int wp_sphere_mirror_tries(float3 c, float r, float3 x, float3 y) 
  * than WP_SPHERE_MIRROR_TOLERANCE apart (then m is within twice that, in
  * radii, of the true point), after at most WP_SPHERE_MIRROR_STEPS steps.
  * Half the pairs take 6 steps, 1 in 100 more than 11 (near-grazing
- * reflections; docs/performance.md, "Eighth session"). Shade runs scalar on
- * PoCL, where the early stop saves 15 % of it; a shade made vectorisable
- * (docs/profiling.md) needs the fixed count back (tolerance 0). 1 and *m if
- * both x and y see m. */
+ * reflections; docs/performance.md, "Kept: the search stops when its bracket
+ * is narrow"). Shade runs scalar on PoCL, where the early stop saves 15 % of
+ * it; a shade made vectorisable (docs/profiling.md) needs the fixed count
+ * back (tolerance 0). 1 and *m if both x and y see m. */
 #define WP_SPHERE_MIRROR_STEPS 12
 #define WP_SPHERE_MIRROR_TOLERANCE 1e-5f
 static inline float wp_sphere_mirror_residual(float t, float tan_half_alpha, float lx, float ly,
@@ -378,12 +378,12 @@ static inline int wp_mirror_next_event(const WpSceneView* scene, const WpMateria
 /* Whether the mirrored estimate at a diffuse vertex with these flags is of a
  * path type the render adds (path_type.h): its history is the vertex's, then
  * a mirror. */
-#ifdef WP_PATH_TYPE_MASK
-#define WP_MIRROR_NEXT_EVENT_SELECTED(flags)                                                       \
+#if WP_PATH_TYPES
+#define WP_MIRROR_NEXT_EVENT_SELECTED(types, flags)                                                \
     wp_path_type_selected(                                                                         \
-        wp_path_history_after(wp_path_history_after(wp_path_history(flags), 0), 1))
+        types, wp_path_history_after(wp_path_history_after(wp_path_history(flags), 0), 1))
 #else
-#define WP_MIRROR_NEXT_EVENT_SELECTED(flags) 1
+#define WP_MIRROR_NEXT_EVENT_SELECTED(types, flags) 1
 #endif
 
 /* The weight of emission found by BSDF sampling after diffuse x -> mirror ->

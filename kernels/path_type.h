@@ -16,20 +16,27 @@
  *             bounce
  * Every history is one of these five, so the parts sum to the full estimate.
  *
- * Compiled in only with WP_PATH_TYPE_MASK: the history class is then kept in
+ * Compiled in only with WP_PATH_TYPES: the history class is then kept in
  * bits of path_flags (WP_PATH_HISTORY_BITS, which hold the type the history
- * so far gives), and contributions of types outside the mask are not added.
- * Random numbers depend on (seed, pixel, sample, depth, dimension) alone, so
- * leaving a contribution out changes nothing else: with the same seed the
- * parts' images sum to the full image. Without WP_PATH_TYPE_MASK the tests
- * below are the constant 1 and nothing is tracked.
+ * so far gives), and contributions of types outside the render's set
+ * (WpFrame.path_types, a sum of 1u << type) are not added. The set is the
+ * frame's, not a build option, so that one program serves every set (a
+ * breakdown renders each type in turn). Random numbers depend on (seed,
+ * pixel, sample, depth, dimension) alone, so leaving a contribution out
+ * changes nothing else: with the same seed the parts' images sum to the full
+ * image. Without WP_PATH_TYPES the tests below are the constant 1 and nothing
+ * is tracked.
  */
 #ifndef WP_PATH_TYPE_H
 #define WP_PATH_TYPE_H
 
 #include "wp_shared.h"
 
-#ifdef WP_PATH_TYPE_MASK
+#ifndef WP_PATH_TYPES
+#define WP_PATH_TYPES 0
+#endif
+
+#if WP_PATH_TYPES
 
 static inline wp_uint wp_path_history(wp_uint flags) {
     return (flags & WP_PATH_HISTORY_BITS) >> WP_PATH_HISTORY_SHIFT;
@@ -44,15 +51,16 @@ static inline wp_uint wp_path_history_after(wp_uint history, int specular) {
     return history; /* mirror and caustic stay what they are */
 }
 
-static inline int wp_path_type_selected(wp_uint type) {
-    return ((WP_PATH_TYPE_MASK) >> type) & 1u;
+static inline int wp_path_type_selected(wp_uint types, wp_uint type) {
+    return (types >> type) & 1u;
 }
 
 /* Whether emission found at this vertex counts, and whether next-event
- * estimation at this (diffuse) vertex does. */
-#define WP_PATH_EMISSION_SELECTED(flags) wp_path_type_selected(wp_path_history(flags))
-#define WP_PATH_NEXT_EVENT_SELECTED(flags)                                                         \
-    wp_path_type_selected(wp_path_history_after(wp_path_history(flags), 0))
+ * estimation at this (diffuse) vertex does, for a render that adds the path
+ * types `types` (WpFrame.path_types). */
+#define WP_PATH_EMISSION_SELECTED(types, flags) wp_path_type_selected(types, wp_path_history(flags))
+#define WP_PATH_NEXT_EVENT_SELECTED(types, flags)                                                  \
+    wp_path_type_selected(types, wp_path_history_after(wp_path_history(flags), 0))
 
 /* `flags` with the history extended by the bounce just sampled. */
 static inline wp_uint wp_path_flags_after(wp_uint flags, int specular) {
@@ -62,9 +70,9 @@ static inline wp_uint wp_path_flags_after(wp_uint flags, int specular) {
 
 #else
 
-#define WP_PATH_EMISSION_SELECTED(flags) 1
-#define WP_PATH_NEXT_EVENT_SELECTED(flags) 1
+#define WP_PATH_EMISSION_SELECTED(types, flags) 1
+#define WP_PATH_NEXT_EVENT_SELECTED(types, flags) 1
 
-#endif /* WP_PATH_TYPE_MASK */
+#endif /* WP_PATH_TYPES */
 
 #endif /* WP_PATH_TYPE_H */

@@ -22,8 +22,8 @@
  *     With WP_DIFFUSE_SAMPLING == WP_DIFFUSE_REPORT it is the report's albedo
  *     roulette instead (estimator.h, bsdf/diffuse.h).
  *
- * With WP_PATH_TYPE_MASK (path_type.h) emission and next-event estimation
- * add only the light of the selected path types.
+ * With WP_PATH_TYPES (path_type.h) emission and next-event estimation add
+ * only the light of the path types in frame.path_types.
  *
  * Survivors go to the other ray queue, finished paths (missed, absorbed,
  * cut) to the finished queue.
@@ -48,9 +48,9 @@ static inline WP_ALWAYS_INLINE float wp_path_random(const WpPathRandom* r, wp_ui
 
 /* Step 1: the emitted radiance the path sees at this surface, if it counts. */
 static inline float3 wp_shade_emission(const WpMaterial* material, const WpSurface* surface,
-                                       wp_uint flags, float3 beta, float3 sum) {
+                                       wp_uint path_types, wp_uint flags, float3 beta, float3 sum) {
     if ((!WP_USE_NEE || (flags & WP_PATH_SPECULAR)) && surface->front_face &&
-        WP_PATH_EMISSION_SELECTED(flags))
+        WP_PATH_EMISSION_SELECTED(path_types, flags))
         sum += beta * material->emission.xyz;
     return sum;
 }
@@ -155,9 +155,9 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
         beta_emission *= wp_mirror_emission_weight(&scene, primitive, flags, mirror_vertex[slot],
                                                    ray_origin[slot].xyz, t, &surface, direction);
 #endif
-    radiance[slot] =
-        (float4)(wp_shade_emission(&material, &surface, flags, beta_emission, radiance[slot].xyz),
-                 0.0f);
+    radiance[slot] = (float4)(wp_shade_emission(&material, &surface, frame.path_types, flags,
+                                                beta_emission, radiance[slot].xyz),
+                              0.0f);
     if (wp_bsdf_is_black(&material))
         return WP_SHADED_ENDS;
 
@@ -169,12 +169,12 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
         float u_pick = wp_path_random(&random, WP_DIM_LIGHT_PICK);
         float u_light = wp_path_random(&random, WP_DIM_LIGHT_U);
         float v_light = wp_path_random(&random, WP_DIM_LIGHT_V);
-        if (WP_PATH_NEXT_EVENT_SELECTED(flags))
+        if (WP_PATH_NEXT_EVENT_SELECTED(frame.path_types, flags))
             wp_shade_next_event(&scene, &material, &surface, direction, normal, shading, origin,
                                 beta, u_pick, u_light, v_light, shadow);
 #if WP_MIRROR_NEE
         shadow->mirror_made =
-            WP_MIRROR_NEXT_EVENT_SELECTED(flags) &&
+            WP_MIRROR_NEXT_EVENT_SELECTED(frame.path_types, flags) &&
             wp_mirror_next_event(&scene, &material, &surface, direction, shading, origin, beta,
                                  u_pick, u_light, v_light, &shadow->mirror);
 #endif
@@ -198,7 +198,7 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
         flags |= WP_PATH_SPECULAR;
     else
         flags &= ~WP_PATH_SPECULAR;
-#ifdef WP_PATH_TYPE_MASK
+#if WP_PATH_TYPES
     flags = wp_path_flags_after(flags, scattered.specular);
 #endif
 

@@ -44,7 +44,7 @@ typedef cl_float4 wp_float4;
 /* Path flags (path_flags[]). */
 #define WP_PATH_SPECULAR 1u /* the last bounce was specular (or none yet): emitters count */
 /* Bits 1-3 hold the path's history class (WP_PATH_TYPE_*, kernels/path_type.h),
- * kept only when the kernels are built with WP_PATH_TYPE_MASK. */
+ * kept only when the kernels are built with WP_PATH_TYPES. */
 #define WP_PATH_HISTORY_SHIFT 1u
 #define WP_PATH_HISTORY_BITS (7u << WP_PATH_HISTORY_SHIFT)
 /* The path went diffuse vertex -> one planar mirror -> here: emission found
@@ -60,8 +60,9 @@ typedef cl_float4 wp_float4;
 
 /* Path types: every contribution to a pixel falls in exactly one, by the
  * bounces before the light reached the path (docs/convergence.md, "Where the
- * error is"). WP_PATH_TYPE_MASK, a sum of (1u << type), selects the ones a
- * render adds; the host sets it only for `--path-types`. */
+ * error is"). WpFrame.path_types, a sum of (1u << type), selects the ones a
+ * render adds, in kernels built with WP_PATH_TYPES; the host builds them so
+ * only for `--path-types`. */
 #define WP_PATH_TYPE_CAMERA 0u   /* an emitter seen from the camera */
 #define WP_PATH_TYPE_DIRECT 1u   /* light at the first vertex, a diffuse one */
 #define WP_PATH_TYPE_INDIRECT 2u /* after two or more diffuse bounces, no mirror */
@@ -98,7 +99,7 @@ typedef cl_float4 wp_float4;
  * vector code that loads a vertex as a float4 carries its w lane through
  * the arithmetic on xyz, where every denormal operand costs the CPU extra
  * cycles. Storing the bits cost shade a third of its time on PoCL (measured,
- * docs/performance.md, "Shade, measured (2026-12-02, second session)"). */
+ * docs/performance.md, "Shade, measured"). */
 #define WP_TRIANGLE_INDEX_LIMIT 16777216u
 typedef struct {
     wp_float4 v0;
@@ -230,7 +231,8 @@ typedef struct {
     wp_uint max_depth;           /* safety cap on bounces; paths cut are counted */
     wp_uint mirror_group_count;  /* planar mirrors (WpMirrorGroup) */
     wp_uint mirror_sphere_count; /* mirror spheres (mirror_spheres) */
-    wp_uint pad0, pad1, pad2;
+    wp_uint path_types;          /* the path types a render adds, with WP_PATH_TYPES */
+    wp_uint pad1, pad2;
 } WpFrame;
 
 /* What changes from one launch of a stage to the next, passed by value after

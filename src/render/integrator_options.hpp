@@ -85,7 +85,8 @@ struct IntegratorOptions {
     std::uint32_t roulette_depth = 1;
     // The path types whose light the render adds, a set of 1 << WP_PATH_TYPE_*
     // (kernels/path_type.h). Anything but all of them compiles the kernels
-    // with WP_PATH_TYPE_MASK: a part of the image, for measuring where the
+    // with WP_PATH_TYPES, one program for every such set (the set itself is
+    // WpFrame.path_types): a part of the image, for measuring where the
     // error is (docs/convergence.md).
     std::uint32_t path_types = kAllPathTypes;
     // Stratified samples by default: on the hexroom at 64 spp they cut the
@@ -98,8 +99,9 @@ struct IntegratorOptions {
     // rays of scattered pixels lose the coherence SIMD lanes rely on; see
     // docs/profiling.md). It keeps launches full, which is what a GPU needs.
     bool regeneration = false;
-    // Path slots; 0 means one per pixel. Fewer save device memory (about 180
-    // bytes each) at some cost in parallelism.
+    // Path slots; 0 means one per pixel. Fewer save device memory (the
+    // per-slot rows of WP_PATH_BUFFERS, path_buffer_bytes() in
+    // render/device_buffers.hpp) at some cost in parallelism.
     std::uint32_t pool_size = 0;
     LaunchPlan launch_plan = LaunchPlan::Auto;
     // Whether the kernel build reads and writes the on-disk program cache,

@@ -132,6 +132,7 @@ WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const Scene& sce
     frame_.mirror_group_count = static_cast<wp_uint>(scene_.mirror_groups.size());
     frame_.mirror_sphere_count = static_cast<wp_uint>(scene_.mirror_spheres.size());
     frame_.max_depth = options_.max_depth;
+    frame_.path_types = options_.path_types;
 
     buffers_ = allocate_device_buffers(device_.context, scene_, pool_size_, pixel_count_);
     clear_film();
@@ -461,7 +462,7 @@ std::string kernel_build_options(const SceneFeatures& features, const Integrator
                                                                 : " -D WP_LIGHT_SAMPLING=0";
     text += " -D WP_ROULETTE_DEPTH=" + std::to_string(options.roulette_depth);
     if (options.path_types != kAllPathTypes) // only then is anything tracked (path_type.h)
-        text += " -D WP_PATH_TYPE_MASK=" + std::to_string(options.path_types);
+        text += " -D WP_PATH_TYPES=1";
     text += options.sampler == Sampler::Sobol ? " -D WP_SAMPLER=1" : " -D WP_SAMPLER=0";
     if ((features.planar_mirrors || features.mirror_spheres) && options.next_event_estimation &&
         options.mirror_next_event)

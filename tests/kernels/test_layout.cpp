@@ -78,7 +78,7 @@ namespace {
     X(WpFrame, max_depth)                                                                          \
     X(WpFrame, mirror_group_count)                                                                 \
     X(WpFrame, mirror_sphere_count)                                                                \
-    X(WpFrame, pad0)                                                                               \
+    X(WpFrame, path_types)                                                                         \
     X(WpFrame, pad1)                                                                               \
     X(WpFrame, pad2)                                                                               \
     X(WpLaunch, count)                                                                             \
@@ -156,6 +156,7 @@ __kernel void echo_frame(WpFrame frame, __global uint* out) {
     out[i++] = frame.max_depth;
     out[i++] = frame.mirror_group_count;
     out[i++] = frame.mirror_sphere_count;
+    out[i++] = frame.path_types;
 }
 )CL";
 
@@ -219,6 +220,7 @@ TEST_CASE("A WpFrame passed by value reaches the kernel field for field", "[cl][
     frame.max_depth = 1024;
     frame.mirror_group_count = 0x11111111u;
     frame.mirror_sphere_count = 0x22222222u;
+    frame.path_types = 0x13u;
 
     std::vector<cl_uint> expected;
     for (const cl_float4* v :
@@ -229,7 +231,8 @@ TEST_CASE("A WpFrame passed by value reaches the kernel field for field", "[cl][
                       frame.pool_size, frame.triangle_count, frame.sphere_count, frame.light_count})
         expected.push_back(u);
     expected.push_back(float_bits(frame.light_area));
-    for (cl_uint u : {frame.max_depth, frame.mirror_group_count, frame.mirror_sphere_count})
+    for (cl_uint u :
+         {frame.max_depth, frame.mirror_group_count, frame.mirror_sphere_count, frame.path_types})
         expected.push_back(u);
 
     cl::Kernel kernel(program(kFrameEchoSource, "frame_echo_test.cl"), "echo_frame");
