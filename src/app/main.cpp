@@ -5,6 +5,7 @@
 // bench.cpp, converge.cpp, compare.cpp, info.cpp and export_mitsuba.cpp.
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <new>
 #include <string>
@@ -62,6 +63,13 @@ int finish_stdout(int status) {
 } // namespace
 
 int main(int argc, char** argv) {
+    // PoCL aborts on a POCL_CACHE_DIR that is set but empty (an assertion in
+    // its cache set-up), which an environment such as `POCL_CACHE_DIR= ...`
+    // makes; empty means "not chosen", as for wavepath's own variables.
+    if (const char* pocl_cache = std::getenv("POCL_CACHE_DIR");
+        pocl_cache != nullptr && *pocl_cache == '\0')
+        ::unsetenv("POCL_CACHE_DIR");
+
     CLI::App app{"wavepath: a wavefront Monte Carlo path tracer on OpenCL"};
     app.require_subcommand(1);
 
