@@ -2,6 +2,7 @@
 # Installs the Debian packages wavepath needs, when any is missing. Idempotent:
 # on a machine that has them all it does nothing and needs no network.
 # --ci adds what CI checks with beyond the build (.ci/run): clang-format 14,
+# ccache for the sanitizer build (.ci/sanitizer-check),
 # chromium for the live preview's browser test (tests/app/test_cli_preview.cpp,
 # skipped without it; docs/preview.md gives its download and unpack times),
 # and zlib's headers for the sanitizer build's own tinyexr (docs/fuzzing.md).
@@ -20,7 +21,7 @@ packages=(
   libopenmpi-dev openmpi-bin # MPI renders (docs/multi-device.md); optional to the build
 )
 if [[ "${1:-}" == "--ci" ]]; then
-  packages+=(clang-format-14 chromium zlib1g-dev)
+  packages+=(clang-format-14 chromium zlib1g-dev ccache)
 fi
 if [[ "${1:-}" == "--bench" ]]; then
   packages+=(libembree-dev blender libllvm19)

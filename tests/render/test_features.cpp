@@ -3,11 +3,8 @@
 // counts compiled in) render exactly what the general ones render.
 #include <catch2/catch.hpp>
 
-#include <unistd.h>
-
 #include <cstdlib>
 #include <cstring>
-#include <filesystem>
 #include <string>
 
 #include "render/device_scene.hpp"
@@ -18,18 +15,6 @@
 using namespace wp;
 
 namespace {
-
-// Programs built by this executable's tests through the default cache go to
-// a shared cache under the system temp directory, not to ~/.cache:
-// WAVEPATH_CACHE_DIR outranks XDG_CACHE_HOME. (Each ctest test is a process
-// of its own; they share the entries.)
-const bool kTestCacheDirectory = [] {
-    std::string dir = (std::filesystem::temp_directory_path() /
-                       ("wavepath-test-cache-" + std::to_string(getuid())))
-                          .string();
-    setenv("WAVEPATH_CACHE_DIR", dir.c_str(), 0);
-    return true;
-}();
 
 Scene hexroom(int size = 24) {
     Scene scene = load_scene(std::string(WAVEPATH_SOURCE_DIR) + "/scenes/hexroom.json");
@@ -271,7 +256,8 @@ TEST_CASE("features: specialised and general kernels render bit-identical images
     }
 }
 
-TEST_CASE("features: the hierarchy and the loop over every primitive render the same image") {
+TEST_CASE("features: the hierarchy and the loop over every primitive render the same image",
+          "[statistical]") {
     for (const auto& [name, scene] :
          {std::pair<std::string, Scene>{"hexroom", hexroom()}, {"large", large()}}) {
         INFO(name);
