@@ -108,7 +108,7 @@ std::vector<cl_float4> run_samples(cl::Kernel& kernel) {
 } // namespace
 
 TEST_CASE("wp_sample_cosine_hemisphere has the moments of the cosine distribution",
-          "[cl][sampling]") {
+          "[cl][sampling][statistical]") {
     const D3 normals[] = {
         {0, 0, 1},
         {0, 0, -1},
@@ -204,7 +204,8 @@ TEST_CASE("wp_sincos_2pi is within 1.2e-7 of double sin and cos of 2 pi u", "[cl
     CHECK(got[2].s[1] == 0.0f);
 }
 
-TEST_CASE("wp_sample_triangle gives uniform points inside the triangle", "[cl][sampling]") {
+TEST_CASE("wp_sample_triangle gives uniform points inside the triangle",
+          "[cl][sampling][statistical]") {
     const std::array<D3, 3> triangles[] = {
         {D3(0, 0, 0), D3(1, 0, 0), D3(0, 1, 0)},
         {D3(1, 2, 3), D3(-1, 0.5, 2), D3(0.3, -1, -0.5)},
@@ -279,7 +280,8 @@ TEST_CASE("wp_sample_triangle gives uniform points inside the triangle", "[cl][s
 // diffuse bounce direction had a systematically non-uniform joint histogram:
 // over 16 seeds x 2^20 pixels the chi-square on 16 x 16 bins was about 900
 // against 255 +- 23 for independent uniforms. rng.h now mixes twice.
-TEST_CASE("wp_random: the two BSDF dimensions of a bounce are independent", "[cl][rng]") {
+TEST_CASE("wp_random: the two BSDF dimensions of a bounce are independent",
+          "[cl][rng][statistical]") {
     const std::size_t bins = 16;
     std::vector<std::size_t> histogram(bins * bins);
     const cl_uint seeds = 16;

@@ -223,7 +223,8 @@ TEST_CASE("sobol: every power-of-two block of a pixel's samples is a (0, m, 2)-n
 // (D + 1)^2 / 4. D is binomial (m, 1/2) for uniform t1: E[(D+1)^2] = m/4 +
 // (m/2 + 1)^2. Hence E[T^2] <= (m/4 + (m/2 + 1)^2) / (4 N^2): at N = 64 about
 // half, at N = 256 a fifth of the independent expectation.
-TEST_CASE("sobol: a pixel's jitter points have a small L2-star discrepancy", "[cl][rng][sobol]") {
+TEST_CASE("sobol: a pixel's jitter points have a small L2-star discrepancy",
+          "[cl][rng][sobol][statistical]") {
     const cl_uint pixels = 512;
     for (int m : {6, 8}) {
         const cl_uint n = 1u << m;
@@ -276,7 +277,8 @@ TEST_CASE("sobol: a pixel's jitter points have a small L2-star discrepancy", "[c
 // pixel; below 255, as a count with stratified margins should be. The lower
 // limit catches the other failure, two pairs stratified against each other
 // (a net puts one point in each cell: a chi-square of 0).
-TEST_CASE("sobol: pairs, bounces and pixels are independent of each other", "[rng][sobol]") {
+TEST_CASE("sobol: pairs, bounces and pixels are independent of each other",
+          "[rng][sobol][statistical]") {
     struct Coordinate {
         cl_uint pixel_offset, bounce, dimension;
     };

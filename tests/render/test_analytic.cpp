@@ -26,7 +26,8 @@ Scene furnace_box(glm::dvec3 emission, double albedo) {
 
 } // namespace
 
-TEST_CASE("furnace: a closed emitting box of albedo 0.5 converges to Le / (1 - 0.5)") {
+TEST_CASE("furnace: a closed emitting box of albedo 0.5 converges to Le / (1 - 0.5)",
+          "[statistical]") {
     const glm::dvec3 emission(1.0, 0.5, 0.25);
     const double albedo = 0.5;
     Scene scene = furnace_box(emission, albedo);
@@ -79,7 +80,8 @@ TEST_CASE("furnace: a closed emitting box of albedo 0.5 converges to Le / (1 - 0
     }
 }
 
-TEST_CASE("direct light: radiance below a square light is rho * Le * form factor") {
+TEST_CASE("direct light: radiance below a square light is rho * Le * form factor",
+          "[statistical]") {
     const glm::dvec3 rho(0.8, 0.6, 0.4), emission(10.0, 20.0, 30.0);
     const double x0 = 0.5, x1 = 2.5, y0 = -1.0, y1 = 1.5, height = 2.0;
     Scene scene;
@@ -111,7 +113,7 @@ TEST_CASE("direct light: radiance below a square light is rho * Le * form factor
     }
 }
 
-TEST_CASE("mirror: a camera looking into a mirror at an emitter reads rho * Le") {
+TEST_CASE("mirror: a camera looking into a mirror at an emitter reads rho * Le", "[statistical]") {
     const glm::dvec3 rho(0.9, 0.5, 0.25), emission(2.0, 4.0, 8.0);
     Scene scene;
     auto mirror = test::add_material(scene, MaterialKind::Mirror, rho);

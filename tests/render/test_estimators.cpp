@@ -127,7 +127,7 @@ BlockMeans block_means(const Image& mean, const Image* variance, int block) {
 } // namespace
 
 TEST_CASE("estimators: spherical triangle sampling is uniform in solid angle and exact in area",
-          "[estimators]") {
+          "[estimators][statistical]") {
     const cl::Program& program = [&]() -> const cl::Program& {
         static cl::Program& built = *new cl::Program( // never released (test_device.hpp)
             build_program(test::device().context, test::device().info.device, kSamplerSource,
@@ -212,7 +212,7 @@ TEST_CASE("estimators: spherical triangle sampling is uniform in solid angle and
 }
 
 TEST_CASE("estimators: the furnace box converges to Le / (1 - albedo) with every estimator",
-          "[estimators]") {
+          "[estimators][statistical]") {
     const glm::dvec3 emission(1.0, 0.5, 0.25);
     const double albedo = 0.5;
     Scene scene;
@@ -267,7 +267,7 @@ TEST_CASE("estimators: the furnace box converges to Le / (1 - albedo) with every
 }
 
 TEST_CASE("estimators: every variant renders the hexroom's reference within noise",
-          "[estimators]") {
+          "[estimators][statistical]") {
     const Image reference =
         read_image(std::string(WAVEPATH_SOURCE_DIR) + "/tests/data/hexroom-32-ref.exr");
     const Scene scene = hexroom32();

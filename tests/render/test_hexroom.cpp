@@ -35,7 +35,7 @@ TEST_CASE("hexroom: the same seed renders bit-identically twice") {
     CHECK(a.rgb == b.rgb);
 }
 
-TEST_CASE("hexroom: renders with different seeds agree within noise") {
+TEST_CASE("hexroom: renders with different seeds agree within noise", "[statistical]") {
     Scene scene = small_hexroom(24);
     test::Rendered a = test::render(scene, 64, 1);
     test::Rendered b = test::render(scene, 64, 2);

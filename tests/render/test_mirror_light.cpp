@@ -65,7 +65,7 @@ IntegratorOptions with_mirror_nee(bool on) {
 } // namespace
 
 TEST_CASE("mirror light: the light seen only in a planar mirror gives R rho Le F of its image",
-          "[mirror-nee]") {
+          "[mirror-nee][statistical]") {
     MirrorScene s = light_in_mirror();
     REQUIRE(find_planar_mirrors(s.scene).size() == 1);
     REQUIRE(find_planar_mirrors(s.scene)[0].triangles.size() == 2);
@@ -114,7 +114,7 @@ test::MeanWithError block_mean(const Film& film, int bx, int by, int w, int chan
 } // namespace
 
 TEST_CASE("mirror light: the hexroom with and without it agrees within noise, block by block",
-          "[mirror-nee]") {
+          "[mirror-nee][statistical]") {
     // Unbiasedness and the weights: the multiple importance sampling weights
     // of the two ways to find light through the mirror wall sum to 1, or the
     // mirror's caustic comes out too bright or too dark here. Independent

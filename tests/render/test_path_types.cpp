@@ -90,7 +90,8 @@ TEST_CASE("path types: the hexroom has light of every type") {
     }
 }
 
-TEST_CASE("path types: in the furnace box each part has its closed form, the mirror ones are 0") {
+TEST_CASE("path types: in the furnace box each part has its closed form, the mirror ones are 0",
+          "[statistical]") {
     // Walls of albedo rho emitting Le, no mirror: Le = Le + rho Le + rho^2 Le
     // + ..., the camera part Le (every ray hits a wall), the direct part rho Le
     // (next-event estimation sees emitting walls all around: irradiance pi Le)

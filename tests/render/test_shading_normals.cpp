@@ -90,7 +90,7 @@ test::MeanWithError brightness(Scene scene, bool fix, const char* png) {
 
 TEST_CASE("shading normals: a coarse mesh shades like the sphere it approximates, once the shadow "
           "terminator is fixed",
-          "[render][shading-normals]") {
+          "[render][shading-normals][statistical]") {
     const test::MeanWithError sphere = brightness(analytic(), true, "terminator-sphere.png");
     const test::MeanWithError flat = brightness(coarse_mesh(false), true, "terminator-flat.png");
     const test::MeanWithError artefact =

@@ -154,7 +154,8 @@ TEST_CASE("shadow culling: the option turns it off in the kernels' build options
 // asin(s) from the axis reads rho / pi * L A / d^2 * sqrt(1 - s^2); a pixel,
 // that averaged over its area (the light's size changes it by under 1e-5).
 TEST_CASE("shadow rays 1e3 long reach a light of size 2: the far small sphere is lit as "
-          "computed, with and without culling") {
+          "computed, with and without culling",
+          "[statistical]") {
     Scene scene =
         load_scene(std::string(WAVEPATH_SOURCE_DIR) + "/scenes/stress/sphere-far-small.json");
     const int size = 16;

@@ -223,7 +223,7 @@ Scene light_in_sphere() {
 } // namespace
 
 TEST_CASE("sphere mirror: a light seen only in a mirror sphere agrees with brute force",
-          "[mirror-nee]") {
+          "[mirror-nee][statistical]") {
     Scene scene = light_in_sphere();
     REQUIRE(find_planar_mirrors(scene).empty());
     REQUIRE(analyse_features(scene).mirror_spheres);

@@ -8,19 +8,14 @@
 
 #include "scene/load.hpp"
 #include "scene/validate.hpp"
+#include "support/scene_json.hpp"
 
 namespace {
 
-const std::string kCamera =
-    R"({"eye": [-1, 0, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 90, "resolution": [8, 8]})";
-const std::string kMaterials = R"({
-    "white": {"type": "diffuse", "reflectance": [0.7, 0.7, 0.7]},
-    "mirror": {"type": "mirror", "reflectance": [1, 1, 1]},
-    "light": {"type": "emitter", "radiance": [100, 100, 100]}})";
+using wp::test::kSceneCamera;
 
-wp::Scene with_shapes(const std::string& shapes, const std::string& camera = kCamera) {
-    return wp::parse_scene(R"({"camera": )" + camera + R"(, "materials": )" + kMaterials +
-                               R"(, "shapes": )" + shapes + "}",
+wp::Scene with_shapes(const std::string& shapes, const std::string& camera = kSceneCamera) {
+    return wp::parse_scene(wp::test::scene_json(camera, wp::test::kSceneMaterials, shapes),
                            "test.json");
 }
 

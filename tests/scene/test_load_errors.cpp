@@ -10,22 +10,17 @@
 
 #include "scene/load.hpp"
 #include "scene/validate.hpp"
+#include "support/scene_json.hpp"
 
 namespace {
 
-const std::string kCamera =
-    R"({"eye": [-1, 0, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 90, "resolution": [8, 8]})";
-const std::string kMaterials = R"({
-    "white": {"type": "diffuse", "reflectance": [0.7, 0.7, 0.7]},
-    "mirror": {"type": "mirror", "reflectance": [1, 1, 1]},
-    "light": {"type": "emitter", "radiance": [100, 100, 100]}})";
-const std::string kShapes =
-    R"([{"type": "triangle", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "material": "white"}])";
+const std::string kCamera = wp::test::kSceneCamera;
+const std::string kMaterials = wp::test::kSceneMaterials;
+const std::string kShapes = wp::test::kSceneShapes;
 
 std::string scene(const std::string& camera = kCamera, const std::string& materials = kMaterials,
                   const std::string& shapes = kShapes) {
-    return R"({"camera": )" + camera + R"(, "materials": )" + materials + R"(, "shapes": )" +
-           shapes + "}";
+    return wp::test::scene_json(camera, materials, shapes);
 }
 std::string with_camera(const std::string& c) {
     return scene(c);

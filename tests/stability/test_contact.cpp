@@ -46,7 +46,7 @@ void check_scales(const char* what, const Scene& scene) {
 } // namespace
 
 TEST_CASE("contact: the floor at a sphere's contact point is dark, at every scale",
-          "[stability][contact]") {
+          "[stability][contact][statistical]") {
     Scene view = contact_view();
     test::Rendered r = test::render(view, kSpp, 51);
     // The lit floor, for scale: the scene's own view, bottom rows.

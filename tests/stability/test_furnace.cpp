@@ -18,7 +18,7 @@ constexpr double kExpected = 1.0 / (1.0 - 0.99);
 } // namespace
 
 TEST_CASE("furnace 0.99: every pixel converges to 100 Le (next-event estimation off)",
-          "[stability][furnace]") {
+          "[stability][furnace][statistical]") {
     // Without next-event estimation a sample is Le times the number of
     // surfaces the path met (roulette keeps the throughput at 1): bounded
     // variance, so each pixel can be held to 5 of its own standard errors.
@@ -58,7 +58,7 @@ TEST_CASE("furnace 0.99: every pixel converges to 100 Le (next-event estimation 
 }
 
 TEST_CASE("furnace 0.99: the image mean converges to 100 Le with next-event estimation",
-          "[stability][furnace]") {
+          "[stability][furnace][statistical]") {
     Scene scene = stress_scene("furnace-099", 32);
     auto start = std::chrono::steady_clock::now();
     test::Rendered r = test::render(scene, 32, 6);
@@ -76,7 +76,7 @@ TEST_CASE("furnace 0.99: the image mean converges to 100 Le with next-event esti
 }
 
 TEST_CASE("furnace 0.99: a naive fixed depth limit is far off (what the cap must not be)",
-          "[stability][furnace]") {
+          "[stability][furnace][statistical]") {
     Scene scene = stress_scene("furnace-099", 8);
     IntegratorOptions options;
     options.next_event_estimation = false;

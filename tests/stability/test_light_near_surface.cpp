@@ -200,7 +200,7 @@ struct NearLightScene {
 } // namespace
 
 TEST_CASE("light 1e-3 above a floor: finite everywhere, and the error keeps falling with samples",
-          "[stability][near-light]") {
+          "[stability][near-light][statistical]") {
     NearLightScene s;
     REQUIRE(s.h == 1e-3);
     // The noise alone: the image is compared after fitting one factor to it
@@ -223,7 +223,7 @@ TEST_CASE("light 1e-3 above a floor: finite everywhere, and the error keeps fall
 
 TEST_CASE("light 1e-3 above a floor: the direct light matches the exact image (geometry term "
           "from the surface point, docs/stability.md case 6)",
-          "[stability][near-light]") {
+          "[stability][near-light][statistical]") {
     NearLightScene s;
     Ladder l = converge(s.scene, exact_image(s.scene, s.rho, s.le, s.h, 0.5), 1024, false);
     WARN("light 1e-3 above the floor, against the true image: " << l.describe());

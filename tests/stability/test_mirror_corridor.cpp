@@ -51,7 +51,7 @@ CorridorExpectation expected_corridor(const Scene& scene, std::uint32_t max_dept
 } // namespace
 
 TEST_CASE("mirror corridor: every pixel matches the exact answer and cut paths are counted",
-          "[stability][corridor]") {
+          "[stability][corridor][statistical]") {
     Scene scene = stress_scene("mirror-corridor", 32);
     const std::uint32_t spp = 16, max_depth = 64;
     const double radiance = 10.0;
@@ -92,7 +92,7 @@ TEST_CASE("mirror corridor: every pixel matches the exact answer and cut paths a
 
 TEST_CASE("mirror corridor: with the default cap of 1024 bounces the render ends and counts "
           "its cut paths",
-          "[stability][corridor]") {
+          "[stability][corridor][statistical]") {
     // A 2 degree view, so that a few dozen of the 16384 paths need more than
     // 1024 bounces and the rest up to a few hundred.
     Scene scene = stress_scene("mirror-corridor", 32);

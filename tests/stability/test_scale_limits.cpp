@@ -104,7 +104,7 @@ TEST_CASE("scale limits: a power-of-two scale renders the hexroom's film bit for
 }
 
 TEST_CASE("scale limits: scales 1e-30 .. 1e30 render like the original",
-          "[stability][scale-limits]") {
+          "[stability][scale-limits][statistical]") {
     // Powers of ten: not exact, so compared within noise.
     const int exponent = GENERATE(-30, -20, -13, 12, 20, 28);
     check_renders_like_hexroom(transformed(hexroom(kSize), std::pow(10.0, exponent)),

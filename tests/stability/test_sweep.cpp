@@ -47,7 +47,7 @@ TEST_CASE("every stress scene renders finite, with no non-finite sample", "[stab
 }
 
 TEST_CASE("far from the origin: the hexroom translated by 1e5 degrades, never to NaN",
-          "[stability][translate]") {
+          "[stability][translate][statistical]") {
     // Few samples: every path trapped under the mirror sphere (see the file
     // comment) keeps its wave going for 1024 bounces.
     const int size = 24;

@@ -77,7 +77,7 @@ Comparison compare_below_light(const Film& a, const Film& b) {
 } // namespace
 
 TEST_CASE("tiny light: side 1e-3 and radiance 4e8 light the room like the hexroom's light",
-          "[stability][tiny-light]") {
+          "[stability][tiny-light][statistical]") {
     Scene original = hexroom(kSize), tiny = stress_scene("tiny-light", kSize);
     make_mirrors_diffuse(original);
     make_mirrors_diffuse(tiny);
@@ -113,7 +113,7 @@ TEST_CASE("tiny light: side 1e-3 and radiance 4e8 light the room like the hexroo
 }
 
 TEST_CASE("tiny light: side 1e-3 matches a 2 cm light of the same power at twice the samples",
-          "[stability][tiny-light]") {
+          "[stability][tiny-light][statistical]") {
     // No near field to speak of between these two ((0.02 / 6)^2 ~ 1e-5): only
     // numerics could tell them apart.
     Scene small = stress_scene("tiny-light", kSize), tiny = stress_scene("tiny-light", kSize);
@@ -145,7 +145,7 @@ TEST_CASE("tiny light: side 1e-3 matches a 2 cm light of the same power at twice
 
 TEST_CASE("tiny light: in the real hexroom it stays finite, and light by way of the mirrors is "
           "missing at practical sample counts (documented)",
-          "[stability][tiny-light]") {
+          "[stability][tiny-light][statistical]") {
     test::Rendered a = test::render(hexroom(kSize), kSpp, 22);
     test::Rendered b = test::render(stress_scene("tiny-light", kSize), kSpp, 22);
     Comparison cmp = compare_below_light(a.film, b.film);

@@ -3,9 +3,11 @@
 // accepts them or not, so that the table shows what the limits guard
 // against. Each row: the green image mean over the unscaled one's, the worst
 // of the three channel means and the 48 blocks (4 x 4 pixels x 3 channels)
-// in combined standard errors, and the validation's verdict. Hidden (a
-// table, not a test): run it by its tags, e.g.
-//   build/wavepath_stability_tests "[.scale-sweep]"
+// in combined standard errors, and the validation's verdict. A tool, not a
+// test (it prints tables and asserts nothing; tests/stability/test_scale_limits.cpp
+// holds the accepted range to its images), built beside the tests and run by
+// its tags:
+//   build/wavepath_scale_sweep "[scale-sweep]"
 #include <cstdio>
 
 #include "scene/validate.hpp"
@@ -62,20 +64,20 @@ void row(double s, double t, bool far_look_at = false) {
 
 } // namespace
 
-TEST_CASE("scale sweep: the hexroom scaled by 1e-30 .. 1e30", "[.scale-sweep]") {
+TEST_CASE("scale sweep: the hexroom scaled by 1e-30 .. 1e30", "[scale-sweep]") {
     std::printf("| scale | translation | mean / unscaled (G) | mean sigma | blocks over 5 | worst "
                 "block sigma | non-finite | capped | validation |\n");
     for (int k = -30; k <= 30; ++k)
         row(std::pow(10.0, k), 0.0);
 }
 
-TEST_CASE("scale sweep: the hexroom translated by 1 .. 1e30", "[.translate-sweep]") {
+TEST_CASE("scale sweep: the hexroom translated by 1 .. 1e30", "[translate-sweep]") {
     for (int k = 0; k <= 30; ++k)
         row(1.0, std::pow(10.0, k));
 }
 
 TEST_CASE("scale sweep: the hexroom, look_at far along the view, translated by 1 .. 1e30",
-          "[.translate-far-sweep]") {
+          "[translate-far-sweep]") {
     for (int k = 0; k <= 30; ++k)
         row(1.0, std::pow(10.0, k), true);
     // Either side of the limit 2^29 x the size (16): 8.59e9.

@@ -26,14 +26,24 @@ std::string verdicts(const VectorizerRemarks& remarks, const char* stage) {
 
 } // namespace
 
-TEST_CASE("The hexroom's specialised intersect and shadow stages are vectorised",
-          "[cli][vectorise]") {
+// One capture (a cold build of the hexroom's kernels) serves both checks.
+TEST_CASE("The hexroom's specialised stages: each work-group loop has a verdict of its own, and "
+          "intersect's and shadow's are vectorised",
+          "[kernels][vectorise]") {
     if (!test_device_is_pocl()) {
         WARN("skipped: the tests do not run on PoCL, whose vectoriser this reads");
         return;
     }
     const VectorizerRemarks remarks = capture_vectorizer_remarks(kHexroomPath);
     REQUIRE(remarks.captured);
+    for (const char* kernel : {"generate", "intersect", "shade", "shadow", "accumulate"}) {
+        INFO(kernel);
+        CHECK_FALSE(remarks.of_kernel(kernel).empty());
+        // Vectorised, or a stated reason why not: the verdict a guard tests.
+        CHECK((remarks.vectorized(kernel) ||
+               !remarks.matching(kernel, "loop not vectorized").empty()));
+    }
+    CHECK(remarks.of_kernel("no_such_kernel").empty());
     for (const char* stage : {"intersect", "shadow"}) {
         INFO(stage << "'s loop vectoriser remarks:\n" << verdicts(remarks, stage));
         CHECK(remarks.vectorized(stage));
@@ -42,7 +52,7 @@ TEST_CASE("The hexroom's specialised intersect and shadow stages are vectorised"
 
 TEST_CASE("The check reads each stage's own remarks: the general intersect stage, whose loop "
           "count is not a constant, is not vectorised",
-          "[cli][vectorise]") {
+          "[kernels][vectorise]") {
     if (!test_device_is_pocl()) {
         WARN("skipped: the tests do not run on PoCL, whose vectoriser this reads");
         return;
@@ -53,25 +63,6 @@ TEST_CASE("The check reads each stage's own remarks: the general intersect stage
     INFO("intersect's loop vectoriser remarks:\n" << verdicts(remarks, "intersect"));
     CHECK_FALSE(remarks.matching("intersect", "loop not vectorized").empty());
     CHECK_FALSE(remarks.vectorized("intersect"));
-}
-
-TEST_CASE("Vectoriser remarks: each stage kernel's work-group loop has a verdict of its own",
-          "[cli][vectorise]") {
-    if (!test_device_is_pocl()) {
-        WARN("skipped: the vectoriser remarks are PoCL's, and the test device is not PoCL");
-        return;
-    }
-    const VectorizerRemarks remarks =
-        capture_vectorizer_remarks(WAVEPATH_SOURCE_DIR "/scenes/hexroom.json");
-    REQUIRE(remarks.captured);
-    for (const char* kernel : {"generate", "intersect", "shade", "shadow", "accumulate"}) {
-        INFO(kernel);
-        CHECK_FALSE(remarks.of_kernel(kernel).empty());
-        // Vectorised, or a stated reason why not: the verdict a guard tests.
-        CHECK((remarks.vectorized(kernel) ||
-               !remarks.matching(kernel, "loop not vectorized").empty()));
-    }
-    CHECK(remarks.of_kernel("no_such_kernel").empty());
 }
 
 } // namespace wp::test
