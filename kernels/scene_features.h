@@ -1,8 +1,8 @@
 /* The scene features a program is compiled for.
  *
  * The host derives them from the scene and passes -D options (see
- * src/render/features.cpp); code for an absent feature compiles to nothing.
- * Left undefined, a feature is on, which gives the general kernels.
+ * src/render/device_scene.cpp (SceneFeatures::build_options)); code for an absent feature compiles
+ * to nothing. Left undefined, a feature is on, which gives the general kernels.
  */
 #ifndef WP_SCENE_FEATURES_H
 #define WP_SCENE_FEATURES_H

@@ -5,7 +5,7 @@
 # and caches its kernels for that size), then every round renders it at
 # SPP samples with --profile, A B A B ..., and prints the intersect, shade
 # and shadow device milliseconds and the samples/s line of each run
-# (docs/performance.md, "Fourth session").
+# (docs/performance.md, where it is used from the fourth session on).
 set -euo pipefail
 rounds=$1
 spp=$2

@@ -14,7 +14,7 @@
     X(Shade, shade)                                                                                \
     X(Shadow, shadow)                                                                              \
     X(Accumulate, accumulate)                                                                      \
-    /* the fused kernels of the launch plans (render/launch_plan.hpp) */                           \
+    /* the fused kernels of the launch plans (LaunchPlan, render/integrator_options.hpp) */        \
     X(Bounce, bounce)                                                                              \
     X(Wave, wave)
 

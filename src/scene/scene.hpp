@@ -1,6 +1,6 @@
 // The scene as the user described it: camera, materials and shapes, in double
 // precision on the host. The loader (scene/load.hpp) fills it from a JSON file
-// and validates every value; scene/flatten.hpp turns it into device buffers.
+// and validates every value; render/device_scene.hpp (flatten_scene) turns it into device buffers.
 #pragma once
 
 #include <array>
