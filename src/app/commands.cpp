@@ -105,6 +105,9 @@ CLI::App* add_render_subcommand(CLI::App& app, RenderCommand& command) {
     r->add_option(
         "--profile-json", command.profile_json,
         "Write the profile as JSON, with device, scene, resolution, spp and build options");
+    r->add_option("--variance", command.variance,
+                  "Also write each pixel's variance of the mean (sample variance / samples; "
+                  ".exr or .pfm), for `wavepath compare --variance`");
     r->add_option("--trace", command.trace,
                   "Write every kernel launch and transfer as a Chrome trace (Perfetto, "
                   "chrome://tracing)");
@@ -182,6 +185,7 @@ int run_render(const RenderCommand& command) {
     check_output(command.png, kImageExtensions);
     check_output(command.profile_json);
     check_output(command.trace);
+    check_output(command.variance, {".exr", ".pfm"});
     check_output(command.checkpoints.file);
     // --checkpoint may be the --resume file (go on saving where it started).
     check_distinct_outputs({{"the scene", command.scene}},
@@ -189,6 +193,7 @@ int run_render(const RenderCommand& command) {
                             {"--png", command.png},
                             {"--profile-json", command.profile_json},
                             {"--trace", command.trace},
+                            {"--variance", command.variance},
                             {"--checkpoint", command.checkpoints.file}});
     check_distinct_outputs({{"--resume", command.checkpoints.resume}},
                            {{"--out", command.out},
@@ -253,6 +258,11 @@ int run_render(const RenderCommand& command) {
     write_result_image(command.out, image, view);
     if (!command.png.empty())
         write_result_image(command.png, image, view);
+    if (!command.variance.empty()) {
+        Image variance = film.variance_of_mean();
+        variance.metadata = image.metadata;
+        write_result_image(command.variance, variance, view);
+    }
     checkpoints.save(spp, film);
 
     const RenderStats stats = integrator.stats();

@@ -30,6 +30,7 @@ struct RenderCommand {
     bool profile = false; // print the per-stage table
     std::string profile_json;
     std::string trace;
+    std::string variance; // optional: each pixel's variance of the mean (.exr or .pfm)
     ViewOptions view;
     RenderLoopOptions loop;        // --time, --target-error, --quiet, --preview (render_loop.hpp)
     CheckpointOptions checkpoints; // --checkpoint, --checkpoint-every, --resume
@@ -68,6 +69,11 @@ struct CompareCommand {
     std::string image;
     std::string reference;
     std::string diff; // optional: .png false colour, .exr/.pfm the raw map
+    // Optional: the two images' variances of the mean (render --variance), for
+    // a test that their difference is noise: |z| at most `sigma` for the
+    // whole image and every block of 16x16 pixels, per channel.
+    std::vector<std::string> variances;
+    double sigma = 5.0;
 };
 
 // Register the subcommands' options (each in its command's file; the options
