@@ -95,6 +95,18 @@ struct InfoCommand {
 CLI::App* add_info_subcommand(CLI::App& app, InfoCommand& command);
 int run_info(const InfoCommand& command);
 
+// `wavepath kernel-source` (info.cpp; hidden, for .ci/gpu-targets-check): the
+// build options a render of a scene passes the OpenCL compiler, on stdout,
+// and the program text it compiles, includes expanded as the host does, to a
+// file; no OpenCL device is needed.
+struct KernelSourceCommand {
+    std::string scene;
+    std::string source; // where to write the expanded program text
+    IntegratorOptions integrator;
+};
+CLI::App* add_kernel_source_subcommand(CLI::App& app, KernelSourceCommand& command);
+int run_kernel_source(const KernelSourceCommand& command);
+
 // `wavepath export-mitsuba` (export_mitsuba.cpp): the scene as a Mitsuba 3
 // scene (docs/mitsuba-export.md).
 struct ExportMitsubaCommand {

@@ -34,14 +34,15 @@ std::string unknown_subcommand(const CLI::App& app, int argc, char** argv) {
         return {};
     const std::string typed = argv[1];
     std::vector<std::string> names;
-    for (const CLI::App* sub : app.get_subcommands({}))
-        names.push_back(sub->get_name());
-    std::string list;
-    for (const std::string& name : names) {
-        if (name == typed)
+    for (const CLI::App* sub : app.get_subcommands({})) {
+        if (sub->get_name() == typed)
             return {};
-        list += (list.empty() ? "" : ", ") + name;
+        if (!sub->get_group().empty()) // hidden ones are for scripts, not to be suggested
+            names.push_back(sub->get_name());
     }
+    std::string list;
+    for (const std::string& name : names)
+        list += (list.empty() ? "" : ", ") + name;
     const auto nearest = wp::nearest_name(typed, names);
     return "unknown subcommand '" + typed + "'; " +
            (nearest ? "did you mean '" + *nearest + "'?" : "expected one of " + list);
@@ -78,6 +79,8 @@ int main(int argc, char** argv) {
     CLI::App* compare_app = wp::add_compare_subcommand(app, compare);
     wp::InfoCommand info;
     CLI::App* info_app = wp::add_info_subcommand(app, info);
+    wp::KernelSourceCommand kernel_source; // hidden: for .ci/gpu-targets-check
+    CLI::App* kernel_source_app = wp::add_kernel_source_subcommand(app, kernel_source);
     wp::ExportMitsubaCommand export_mitsuba;
     CLI::App* export_app = wp::add_export_mitsuba_subcommand(app, export_mitsuba);
     wp::BreakdownCommand breakdown; // where the error is (breakdown.cpp)
@@ -120,6 +123,8 @@ int main(int argc, char** argv) {
             status = wp::run_compare(compare);
         else if (info_app->parsed())
             status = wp::run_info(info);
+        else if (kernel_source_app->parsed())
+            status = wp::run_kernel_source(kernel_source);
         else if (export_app->parsed())
             status = wp::run_export_mitsuba(export_mitsuba);
         else if (breakdown_app->parsed())

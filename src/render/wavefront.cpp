@@ -90,23 +90,15 @@ ChosenLaunchPlan choose_launch_plan(LaunchPlan requested, const DeviceInfo& devi
 
 WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const Scene& scene,
                                          IntegratorOptions options)
-    : device_(device), features_(analyse_features(scene)), options_(options),
+    : device_(device), features_(integrator_features(scene, options)), options_(options),
       group_size_(work_group_size(device.info)) {
-    if (options_.traversal != Traversal::Auto) {
-        features_.bvh = options_.traversal == Traversal::Hierarchy;
-        if (features_.bvh)
-            features_.fixed_counts = false;
-    }
-    if (!options_.shadow_culling)
-        features_.shadow_culling = false;
     const int width = scene.camera.width, height = scene.camera.height;
     pixel_count_ = static_cast<std::uint32_t>(width) * static_cast<std::uint32_t>(height);
     pool_size_ =
         options_.pool_size == 0 ? pixel_count_ : std::min(options_.pool_size, pixel_count_);
     check_device_memory(device_.info, width, height, pool_size_);
 
-    const SceneFeatures compiled =
-        options_.general_kernels ? SceneFeatures::general_for(features_) : features_;
+    const SceneFeatures compiled = compiled_features(features_, options_);
     plan_ = choose_launch_plan(options_.launch_plan, device_.info,
                                compiled.fixed_counts && !compiled.bvh);
     scene_ = flatten_scene(scene, compiled.bvh);
@@ -449,6 +441,22 @@ double WavefrontIntegrator::time_launches(Stage stage, const WpLaunch& arguments
     local.resolve_completed();
     profiler_ = saved;
     return local.device_busy_seconds();
+}
+
+SceneFeatures integrator_features(const Scene& scene, const IntegratorOptions& options) {
+    SceneFeatures features = analyse_features(scene);
+    if (options.traversal != Traversal::Auto) {
+        features.bvh = options.traversal == Traversal::Hierarchy;
+        if (features.bvh)
+            features.fixed_counts = false;
+    }
+    if (!options.shadow_culling)
+        features.shadow_culling = false;
+    return features;
+}
+
+SceneFeatures compiled_features(const SceneFeatures& features, const IntegratorOptions& options) {
+    return options.general_kernels ? SceneFeatures::general_for(features) : features;
 }
 
 std::string kernel_build_options(const SceneFeatures& features, const IntegratorOptions& options) {

@@ -55,6 +55,12 @@ struct ChosenLaunchPlan {
 ChosenLaunchPlan choose_launch_plan(LaunchPlan requested, const DeviceInfo& device,
                                     bool vectorised_tracing);
 
+// The features the integrator gives `scene` under `options` (analyse_features,
+// then the traversal and shadow culling asked for), and those its kernels are
+// compiled for: these, or every feature with --general.
+SceneFeatures integrator_features(const Scene& scene, const IntegratorOptions& options);
+SceneFeatures compiled_features(const SceneFeatures& features, const IntegratorOptions& options);
+
 // The -D options that compile the kernels for `features` and the estimator
 // of `options` (the one place that makes them).
 std::string kernel_build_options(const SceneFeatures& features, const IntegratorOptions& options);
