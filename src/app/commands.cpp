@@ -22,6 +22,7 @@
 #include "image/image_io.hpp"
 #include "image/metrics.hpp"
 #include "render/multi_device.hpp"
+#include "render/self_check.hpp"
 #include "render/wavefront.hpp"
 #include "report/device_profile.hpp"
 #include "report/profile_report.hpp"
@@ -145,7 +146,7 @@ Image read_reference_for(const std::string& path, const Scene& scene) {
     return reference;
 }
 
-int run_devices() {
+int run_devices(bool check) {
     std::vector<DeviceInfo> devices = list_devices();
     if (devices.empty()) {
         std::cerr << "wavepath: no OpenCL device found (is an ICD such as pocl-opencl-icd "
@@ -153,7 +154,31 @@ int run_devices() {
         return 1;
     }
     std::cout << describe_devices(devices);
-    return 0;
+    if (!check)
+        return 0;
+    std::cout << "self-check (specialised against general kernels, a built-in scene with every "
+                 "feature):\n";
+    std::cout.flush();
+    int status = 0;
+    const Scene scene = self_check_scene();
+    IntegratorOptions options;
+    options.self_check = true;
+    for (const DeviceInfo& info : devices) {
+        std::string verdict;
+        try {
+            DeviceContext device(info);
+            const SelfCheckVerdict v = check_kernels(device, scene, options);
+            verdict = std::string(v.passed ? "pass" : "FAIL") + " (" + v.detail +
+                      (v.from_cache ? ", remembered" : "") + ")";
+            status |= v.passed ? 0 : 1;
+        } catch (const std::exception& e) {
+            verdict = std::string("FAIL (") + e.what() + ")";
+            status = 1;
+        }
+        std::cout << "  " << info.index_string() << "  " << info.name << ", driver "
+                  << info.driver_version << ": " << verdict << "\n";
+    }
+    return status;
 }
 
 Film allocate_film(int width, int height) {

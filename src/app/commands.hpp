@@ -163,7 +163,9 @@ Film allocate_film(int width, int height);
 // granularity at which an interrupted render stops.
 std::uint32_t samples_per_call(const IntegratorOptions& options);
 
-int run_devices();
+// With `check`, each device's self-check too (render/self_check.hpp) on a
+// built-in scene with every feature; exit status 1 if one fails.
+int run_devices(bool check = false);
 int run_bench(const BenchCommand& command);
 int run_render(const RenderCommand& command);
 

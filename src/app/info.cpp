@@ -307,6 +307,10 @@ int run_info(const InfoCommand& command) {
     const BuiltProgram& built = integrator.program();
     std::printf("kernels: %s\n",
                 command.integrator.general_kernels ? "general (--general)" : "specialised");
+    if (const auto& check = integrator.self_check())
+        std::printf("self-check: %s (%s%s)\n",
+                    check->passed ? "passed" : "FAILED, the general kernels are built instead",
+                    check->detail.c_str(), check->from_cache ? ", remembered" : "");
     std::printf("build options: %s\n", built.options.c_str());
     std::printf("sampler: %s\n", to_string(command.integrator.sampler).c_str());
     std::printf("launch plan: %s (%s)\n", to_string(integrator.launch_plan().plan).c_str(),

@@ -66,7 +66,11 @@ int main(int argc, char** argv) {
     CLI::App app{"wavepath: a wavefront Monte Carlo path tracer on OpenCL"};
     app.require_subcommand(1);
 
-    app.add_subcommand("devices", "List every OpenCL platform and device");
+    bool check_devices = false;
+    app.add_subcommand("devices", "List every OpenCL platform and device")
+        ->add_flag("--check", check_devices,
+                   "Also check each device's specialised kernels against its general ones "
+                   "(docs/gpu.md); exit status 1 if one disagrees");
 
     wp::RenderCommand render;
     wp::add_render_subcommand(app, render);
@@ -114,7 +118,7 @@ int main(int argc, char** argv) {
         else if (app.got_subcommand("render"))
             wp::prepare_caches(render.integrator);
         if (app.got_subcommand("devices"))
-            status = wp::run_devices();
+            status = wp::run_devices(check_devices);
         else if (app.got_subcommand("bench"))
             status = wp::run_bench(bench);
         else if (converge_app->parsed())

@@ -13,6 +13,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,7 @@
 #include "render/film.hpp"
 #include "render/integrator_options.hpp"
 #include "render/profiler.hpp"
+#include "render/self_check.hpp"
 #include "scene/scene.hpp"
 
 namespace wp {
@@ -89,6 +91,9 @@ class WavefrontIntegrator {
     const IntegratorOptions& options() const { return options_; }
     // The plan the render runs (never Auto) and why it was chosen.
     const ChosenLaunchPlan& launch_plan() const { return plan_; }
+    // The self-check's verdict, if one was asked for and applied: the
+    // specialised and general options differ (render/self_check.hpp).
+    const std::optional<SelfCheckVerdict>& self_check() const { return self_check_; }
     std::uint32_t pool_size() const { return pool_size_; }
     DeviceContext& device() const { return device_; }
     int width() const { return scene_.width; }
@@ -134,6 +139,7 @@ class WavefrontIntegrator {
     SceneFeatures features_;
     IntegratorOptions options_;
     ChosenLaunchPlan plan_;
+    std::optional<SelfCheckVerdict> self_check_;
     std::size_t group_size_ = 0; // work-group size of every launch
     BuiltProgram program_;
     WpFrame frame_{};
