@@ -4,7 +4,8 @@
 # the kit, glibc and an OpenCL driver. Steps, in order of what matters most,
 # each under its own timeout and all under one deadline (WP_KIT_DEADLINE
 # seconds, default 420), so that a slow driver costs steps, not the run:
-#   1. `wavepath devices` and where the driver's OpenCL library was found;
+#   1. `wavepath devices --check` and where the driver's OpenCL library was
+#      found;
 #   2. the hexroom, specialised and general kernels, compared with PoCL's
 #      images of the same seed (`wavepath compare`: bit-identical values,
 #      and a 5-sigma z-test on the variances), with --profile per stage;
@@ -85,8 +86,9 @@ say "kit: $kit; device selector: $device; $(uname -m); $(ldd --version 2>&1 | he
 command -v nvidia-smi >/dev/null &&
   nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.max.sm --format=csv >>"$log" 2>&1
 
-# 1. The devices.
-run 60 "$out/devices.txt" "$wp" devices
+# 1. The devices, and each one's self-check (specialised against general
+# kernels, docs/gpu.md); a failed check warns and renders fall back.
+run 120 "$out/devices.txt" "$wp" devices --check || say "FAIL devices --check"
 cat "$out/devices.txt" >>"$log"
 
 # compare NAME SCENE ARGS...: renders SCENE as the reference ref/NAME.exr was
