@@ -1,5 +1,5 @@
-// The one translation unit that holds Catch2's main(), and the caches every
-// test process of a build shares.
+// The one translation unit that holds Catch2's main(), and the environment
+// every test process of a build shares.
 //
 // Each ctest test is a process of its own, and most of a cold run's time is
 // spent compiling kernels; so every test executable keeps wavepath's program
@@ -21,5 +21,10 @@ int main(int argc, char* argv[]) {
     ::setenv("WAVEPATH_CACHE_DIR", cache.c_str(), 0);
     // PoCL reads it when the platform is first queried, after this.
     ::setenv("POCL_CACHE_DIR", (cache / "pocl").c_str(), 0);
+    // The wavepath commands the tests run (and their own integrators, were
+    // they to ask) skip the kernels' self-check: a general build and two
+    // renders per new scene and options. tests/render/test_self_check.cpp
+    // tests it; WAVEPATH_SELF_CHECK=1 in the environment keeps it on.
+    ::setenv("WAVEPATH_SELF_CHECK", "0", 0);
     return Catch::Session().run(argc, argv);
 }

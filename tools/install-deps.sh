@@ -5,7 +5,9 @@
 # ccache for the sanitizer build (.ci/sanitizer-check),
 # chromium for the live preview's browser test (tests/app/test_cli_preview.cpp,
 # skipped without it; docs/preview.md gives its download and unpack times),
-# and zlib's headers for the sanitizer build's own tinyexr (docs/fuzzing.md).
+# zlib's headers for the sanitizer build's own tinyexr (docs/fuzzing.md), and
+# clang 15 with libclc for the kernels' GPU-target builds (.ci/gpu-targets-check,
+# docs/gpu.md).
 # --bench adds what the benchmarks need (bench/, docs/performance.md): libembree-dev
 # (against Embree), blender and libllvm19 (bench/peers.py: Cycles, and Mitsuba 3's
 # LLVM backend; Dr.Jit 1.5 fails on LLVM 16), and from PyPI mitsuba and numpy;
@@ -21,7 +23,7 @@ packages=(
   libopenmpi-dev openmpi-bin # MPI renders (docs/multi-device.md); optional to the build
 )
 if [[ "${1:-}" == "--ci" ]]; then
-  packages+=(clang-format-14 chromium zlib1g-dev ccache)
+  packages+=(clang-format-14 chromium zlib1g-dev ccache clang-15 libclc-15)
 fi
 if [[ "${1:-}" == "--bench" ]]; then
   packages+=(libembree-dev blender libllvm19)

@@ -125,6 +125,11 @@ void add_integrator_options(CLI::App& command, IntegratorOptions& options) {
                "says which). The images agree (docs/architecture.md)");
     command.add_option("--pool", options.pool_size,
                        "Path slots on the device (default: one per pixel); fewer use less memory");
+    options.self_check = true;
+    command.add_flag_callback(
+        "--no-self-check", [&options] { options.self_check = false; },
+        "Skip the check of the specialised kernels against the general ones on a device, driver "
+        "and build options not met before (docs/gpu.md; same as WAVEPATH_SELF_CHECK=0)");
     command.add_flag_callback(
         "--no-cache", [&options] { options.program_cache = CachePolicy::off(); },
         "Build the kernels from source; neither read nor write the program cache "

@@ -22,6 +22,7 @@
 #include "image/image_io.hpp"
 #include "image/metrics.hpp"
 #include "render/multi_device.hpp"
+#include "render/self_check.hpp"
 #include "render/wavefront.hpp"
 #include "report/device_profile.hpp"
 #include "report/profile_report.hpp"
@@ -105,6 +106,9 @@ CLI::App* add_render_subcommand(CLI::App& app, RenderCommand& command) {
     r->add_option(
         "--profile-json", command.profile_json,
         "Write the profile as JSON, with device, scene, resolution, spp and build options");
+    r->add_option("--variance", command.variance,
+                  "Also write each pixel's variance of the mean (sample variance / samples; "
+                  ".exr or .pfm), for `wavepath compare --variance`");
     r->add_option("--trace", command.trace,
                   "Write every kernel launch and transfer as a Chrome trace (Perfetto, "
                   "chrome://tracing)");
@@ -142,7 +146,7 @@ Image read_reference_for(const std::string& path, const Scene& scene) {
     return reference;
 }
 
-int run_devices() {
+int run_devices(bool check) {
     std::vector<DeviceInfo> devices = list_devices();
     if (devices.empty()) {
         std::cerr << "wavepath: no OpenCL device found (is an ICD such as pocl-opencl-icd "
@@ -150,7 +154,31 @@ int run_devices() {
         return 1;
     }
     std::cout << describe_devices(devices);
-    return 0;
+    if (!check)
+        return 0;
+    std::cout << "self-check (specialised against general kernels, a built-in scene with every "
+                 "feature):\n";
+    std::cout.flush();
+    int status = 0;
+    const Scene scene = self_check_scene();
+    IntegratorOptions options;
+    options.self_check = true;
+    for (const DeviceInfo& info : devices) {
+        std::string verdict;
+        try {
+            DeviceContext device(info);
+            const SelfCheckVerdict v = check_kernels(device, scene, options);
+            verdict = std::string(v.passed ? "pass" : "FAIL") + " (" + v.detail +
+                      (v.from_cache ? ", remembered" : "") + ")";
+            status |= v.passed ? 0 : 1;
+        } catch (const std::exception& e) {
+            verdict = std::string("FAIL (") + e.what() + ")";
+            status = 1;
+        }
+        std::cout << "  " << info.index_string() << "  " << info.name << ", driver "
+                  << info.driver_version << ": " << verdict << "\n";
+    }
+    return status;
 }
 
 Film allocate_film(int width, int height) {
@@ -182,6 +210,7 @@ int run_render(const RenderCommand& command) {
     check_output(command.png, kImageExtensions);
     check_output(command.profile_json);
     check_output(command.trace);
+    check_output(command.variance, {".exr", ".pfm"});
     check_output(command.checkpoints.file);
     // --checkpoint may be the --resume file (go on saving where it started).
     check_distinct_outputs({{"the scene", command.scene}},
@@ -189,6 +218,7 @@ int run_render(const RenderCommand& command) {
                             {"--png", command.png},
                             {"--profile-json", command.profile_json},
                             {"--trace", command.trace},
+                            {"--variance", command.variance},
                             {"--checkpoint", command.checkpoints.file}});
     check_distinct_outputs({{"--resume", command.checkpoints.resume}},
                            {{"--out", command.out},
@@ -253,6 +283,11 @@ int run_render(const RenderCommand& command) {
     write_result_image(command.out, image, view);
     if (!command.png.empty())
         write_result_image(command.png, image, view);
+    if (!command.variance.empty()) {
+        Image variance = film.variance_of_mean();
+        variance.metadata = image.metadata;
+        write_result_image(command.variance, variance, view);
+    }
     checkpoints.save(spp, film);
 
     const RenderStats stats = integrator.stats();

@@ -30,6 +30,7 @@ struct RenderCommand {
     bool profile = false; // print the per-stage table
     std::string profile_json;
     std::string trace;
+    std::string variance; // optional: each pixel's variance of the mean (.exr or .pfm)
     ViewOptions view;
     RenderLoopOptions loop;        // --time, --target-error, --quiet, --preview (render_loop.hpp)
     CheckpointOptions checkpoints; // --checkpoint, --checkpoint-every, --resume
@@ -68,6 +69,11 @@ struct CompareCommand {
     std::string image;
     std::string reference;
     std::string diff; // optional: .png false colour, .exr/.pfm the raw map
+    // Optional: the two images' variances of the mean (render --variance), for
+    // a test that their difference is noise: |z| at most `sigma` for the
+    // whole image and every block of 16x16 pixels, per channel.
+    std::vector<std::string> variances;
+    double sigma = 5.0;
 };
 
 // Register the subcommands' options (each in its command's file; the options
@@ -88,6 +94,18 @@ struct InfoCommand {
 };
 CLI::App* add_info_subcommand(CLI::App& app, InfoCommand& command);
 int run_info(const InfoCommand& command);
+
+// `wavepath kernel-source` (info.cpp; hidden, for .ci/gpu-targets-check): the
+// build options a render of a scene passes the OpenCL compiler, on stdout,
+// and the program text it compiles, includes expanded as the host does, to a
+// file; no OpenCL device is needed.
+struct KernelSourceCommand {
+    std::string scene;
+    std::string source; // where to write the expanded program text
+    IntegratorOptions integrator;
+};
+CLI::App* add_kernel_source_subcommand(CLI::App& app, KernelSourceCommand& command);
+int run_kernel_source(const KernelSourceCommand& command);
 
 // `wavepath export-mitsuba` (export_mitsuba.cpp): the scene as a Mitsuba 3
 // scene (docs/mitsuba-export.md).
@@ -145,7 +163,9 @@ Film allocate_film(int width, int height);
 // granularity at which an interrupted render stops.
 std::uint32_t samples_per_call(const IntegratorOptions& options);
 
-int run_devices();
+// With `check`, each device's self-check too (render/self_check.hpp) on a
+// built-in scene with every feature; exit status 1 if one fails.
+int run_devices(bool check = false);
 int run_bench(const BenchCommand& command);
 int run_render(const RenderCommand& command);
 

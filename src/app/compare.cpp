@@ -4,6 +4,9 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <limits>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -47,6 +50,57 @@ Image false_colour(const Image& map) {
     return out;
 }
 
+// The block size of the z-test: small enough to see a wrong region, large
+// enough that a block's mean is near normal at a few samples per pixel.
+constexpr int kBlock = 16;
+
+struct ZTest {
+    std::array<double, 3> whole{}; // z of the whole image's mean difference, per channel
+    double largest_block = 0.0;    // the largest |z| of any block and channel
+    int blocks = 0;
+    int blocks_beyond = 0; // blocks with some channel's |z| above the limit
+};
+
+// z = (sum of x - r) / sqrt(sum of both variances of the mean) over a region;
+// 0 where the region has no difference and no variance, infinite where it has
+// a difference but no variance.
+double z_score(double difference, double variance) {
+    if (variance > 0.0)
+        return difference / std::sqrt(variance);
+    return difference == 0.0 ? 0.0 : difference * std::numeric_limits<double>::infinity();
+}
+
+ZTest z_test(const Image& image, const Image& reference, const Image& image_variance,
+             const Image& reference_variance, double sigma) {
+    ZTest test;
+    std::array<double, 3> difference{}, variance{};
+    for (int by = 0; by < image.height; by += kBlock)
+        for (int bx = 0; bx < image.width; bx += kBlock) {
+            std::array<double, 3> d{}, v{};
+            for (int y = by; y < std::min(by + kBlock, image.height); ++y)
+                for (int x = bx; x < std::min(bx + kBlock, image.width); ++x)
+                    for (std::size_t c = 0; c < 3; ++c) {
+                        const std::size_t i =
+                            (static_cast<std::size_t>(y) * image.width + x) * 3 + c;
+                        d[c] += double(image.rgb[i]) - double(reference.rgb[i]);
+                        v[c] += double(image_variance.rgb[i]) + double(reference_variance.rgb[i]);
+                    }
+            bool beyond = false;
+            for (std::size_t c = 0; c < 3; ++c) {
+                const double z = std::abs(z_score(d[c], v[c]));
+                test.largest_block = std::max(test.largest_block, z);
+                beyond = beyond || !(z <= sigma);
+                difference[c] += d[c];
+                variance[c] += v[c];
+            }
+            ++test.blocks;
+            test.blocks_beyond += beyond;
+        }
+    for (std::size_t c = 0; c < 3; ++c)
+        test.whole[c] = z_score(difference[c], variance[c]);
+    return test;
+}
+
 } // namespace
 
 CLI::App* add_compare_subcommand(CLI::App& app, CompareCommand& command) {
@@ -59,6 +113,14 @@ CLI::App* add_compare_subcommand(CLI::App& app, CompareCommand& command) {
                   "Write the per-pixel relative squared error, (x - r)^2 / (r^2 + 0.01) "
                   "averaged over channels: .png as false colour (log scale, 1e-4 black to 1 "
                   "yellow, NaN/Inf magenta), .exr/.pfm as raw values");
+    c->add_option("--variance", command.variances,
+                  "The image's and the reference's variances of the mean (render --variance): "
+                  "test that they differ by noise alone, the whole image and each 16x16 block "
+                  "within --sigma standard errors per channel; exit status 1 if not")
+        ->expected(2);
+    c->add_option("--sigma", command.sigma, "The z-test's limit, in standard errors")
+        ->capture_default_str()
+        ->check(CLI::PositiveNumber);
     return c;
 }
 
@@ -73,6 +135,16 @@ int run_compare(const CompareCommand& command) {
                          std::to_string(image.height) + " but '" + command.reference + "' is " +
                          std::to_string(reference.width) + "x" + std::to_string(reference.height));
 
+    std::vector<Image> variances;
+    for (const std::string& path : command.variances) {
+        variances.push_back(read_image(path));
+        if (variances.back().width != image.width || variances.back().height != image.height)
+            throw ImageError("'" + path + "' is " + std::to_string(variances.back().width) + "x" +
+                             std::to_string(variances.back().height) + " but '" + command.image +
+                             "' is " + std::to_string(image.width) + "x" +
+                             std::to_string(image.height));
+    }
+
     const std::array<double, 3> bias = mean_relative_bias(image, reference);
     std::printf("image      %s (%dx%d)\nreference  %s\n", command.image.c_str(), image.width,
                 image.height, command.reference.c_str());
@@ -82,6 +154,22 @@ int run_compare(const CompareCommand& command) {
                 100.0 * bias[1], 100.0 * bias[2]);
     std::printf("NaN/Inf    image %zu, reference %zu\n", count_nonfinite(image),
                 count_nonfinite(reference));
+    std::size_t identical = 0;
+    for (std::size_t i = 0; i < image.rgb.size(); ++i)
+        identical += std::memcmp(&image.rgb[i], &reference.rgb[i], sizeof(float)) == 0;
+    std::printf("identical  %zu of %zu values, bit for bit\n", identical, image.rgb.size());
+    int status = 0;
+    if (variances.size() == 2) {
+        const ZTest z = z_test(image, reference, variances[0], variances[1], command.sigma);
+        const bool pass = z.blocks_beyond == 0 && std::abs(z.whole[0]) <= command.sigma &&
+                          std::abs(z.whole[1]) <= command.sigma &&
+                          std::abs(z.whole[2]) <= command.sigma;
+        std::printf("z-test     whole image R %+.2f G %+.2f B %+.2f; %d of %d blocks of %dx%d "
+                    "beyond %g sigma (largest |z| %.2f): %s\n",
+                    z.whole[0], z.whole[1], z.whole[2], z.blocks_beyond, z.blocks, kBlock, kBlock,
+                    command.sigma, z.largest_block, pass ? "pass" : "FAIL");
+        status = pass ? 0 : 1;
+    }
 
     if (!command.diff.empty()) {
         const Image map = rel_error_map(image, reference);
@@ -96,7 +184,7 @@ int run_compare(const CompareCommand& command) {
             std::printf("wrote %s: relative squared error per pixel\n", command.diff.c_str());
         }
     }
-    return 0;
+    return status;
 }
 
 } // namespace wp

@@ -253,6 +253,30 @@ CLI::App* add_info_subcommand(CLI::App& app, InfoCommand& command) {
     return i;
 }
 
+CLI::App* add_kernel_source_subcommand(CLI::App& app, KernelSourceCommand& command) {
+    CLI::App* k = app.add_subcommand(
+        "kernel-source", "Print the kernel build options of a scene; write the expanded source");
+    k->group(""); // hidden: a tool for scripts (.ci/gpu-targets-check), not for users
+    k->add_option("scene", command.scene, "Scene file (JSON)")->required();
+    k->add_option("--source", command.source,
+                  "Write the program text, every #include expanded as the host does");
+    add_integrator_options(*k, command.integrator);
+    return k;
+}
+
+int run_kernel_source(const KernelSourceCommand& command) {
+    check_output(command.source);
+    const Scene scene = load_scene(command.scene);
+    const IntegratorOptions& options = command.integrator;
+    const SceneFeatures compiled = compiled_features(integrator_features(scene, options), options);
+    if (!command.source.empty()) {
+        const std::string text = expand_includes(wavefront_program_source(), "wavefront.cl");
+        write_bytes_atomically(command.source, text.data(), text.size());
+    }
+    std::printf("%s\n", kernel_build_options(compiled, options).c_str());
+    return 0;
+}
+
 int run_info(const InfoCommand& command) {
     if (is_image_path(command.scene))
         return print_image_info(command.scene);
@@ -283,6 +307,10 @@ int run_info(const InfoCommand& command) {
     const BuiltProgram& built = integrator.program();
     std::printf("kernels: %s\n",
                 command.integrator.general_kernels ? "general (--general)" : "specialised");
+    if (const auto& check = integrator.self_check())
+        std::printf("self-check: %s (%s%s)\n",
+                    check->passed ? "passed" : "FAILED, the general kernels are built instead",
+                    check->detail.c_str(), check->from_cache ? ", remembered" : "");
     std::printf("build options: %s\n", built.options.c_str());
     std::printf("sampler: %s\n", to_string(command.integrator.sampler).c_str());
     std::printf("launch plan: %s (%s)\n", to_string(integrator.launch_plan().plan).c_str(),

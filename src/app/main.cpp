@@ -35,14 +35,15 @@ std::string unknown_subcommand(const CLI::App& app, int argc, char** argv) {
         return {};
     const std::string typed = argv[1];
     std::vector<std::string> names;
-    for (const CLI::App* sub : app.get_subcommands({}))
-        names.push_back(sub->get_name());
-    std::string list;
-    for (const std::string& name : names) {
-        if (name == typed)
+    for (const CLI::App* sub : app.get_subcommands({})) {
+        if (sub->get_name() == typed)
             return {};
-        list += (list.empty() ? "" : ", ") + name;
+        if (!sub->get_group().empty()) // hidden ones are for scripts, not to be suggested
+            names.push_back(sub->get_name());
     }
+    std::string list;
+    for (const std::string& name : names)
+        list += (list.empty() ? "" : ", ") + name;
     const auto nearest = wp::nearest_name(typed, names);
     return "unknown subcommand '" + typed + "'; " +
            (nearest ? "did you mean '" + *nearest + "'?" : "expected one of " + list);
@@ -73,7 +74,11 @@ int main(int argc, char** argv) {
     CLI::App app{"wavepath: a wavefront Monte Carlo path tracer on OpenCL"};
     app.require_subcommand(1);
 
-    app.add_subcommand("devices", "List every OpenCL platform and device");
+    bool check_devices = false;
+    app.add_subcommand("devices", "List every OpenCL platform and device")
+        ->add_flag("--check", check_devices,
+                   "Also check each device's specialised kernels against its general ones "
+                   "(docs/gpu.md); exit status 1 if one disagrees");
 
     wp::RenderCommand render;
     wp::add_render_subcommand(app, render);
@@ -86,6 +91,8 @@ int main(int argc, char** argv) {
     CLI::App* compare_app = wp::add_compare_subcommand(app, compare);
     wp::InfoCommand info;
     CLI::App* info_app = wp::add_info_subcommand(app, info);
+    wp::KernelSourceCommand kernel_source; // hidden: for .ci/gpu-targets-check
+    CLI::App* kernel_source_app = wp::add_kernel_source_subcommand(app, kernel_source);
     wp::ExportMitsubaCommand export_mitsuba;
     CLI::App* export_app = wp::add_export_mitsuba_subcommand(app, export_mitsuba);
     wp::BreakdownCommand breakdown; // where the error is (breakdown.cpp)
@@ -119,7 +126,7 @@ int main(int argc, char** argv) {
         else if (app.got_subcommand("render"))
             wp::prepare_caches(render.integrator);
         if (app.got_subcommand("devices"))
-            status = wp::run_devices();
+            status = wp::run_devices(check_devices);
         else if (app.got_subcommand("bench"))
             status = wp::run_bench(bench);
         else if (converge_app->parsed())
@@ -128,6 +135,8 @@ int main(int argc, char** argv) {
             status = wp::run_compare(compare);
         else if (info_app->parsed())
             status = wp::run_info(info);
+        else if (kernel_source_app->parsed())
+            status = wp::run_kernel_source(kernel_source);
         else if (export_app->parsed())
             status = wp::run_export_mitsuba(export_mitsuba);
         else if (breakdown_app->parsed())

@@ -104,6 +104,12 @@ struct IntegratorOptions {
     // render/device_buffers.hpp) at some cost in parallelism.
     std::uint32_t pool_size = 0;
     LaunchPlan launch_plan = LaunchPlan::Auto;
+    // Check the specialised kernels against the general ones the first time
+    // a device, driver and build options meet, and build the general ones if
+    // they disagree (render/self_check.hpp). Off here, so that tests and
+    // library users opt in; every command that renders turns it on
+    // (--no-self-check turns it off; WAVEPATH_SELF_CHECK=0 too).
+    bool self_check = false;
     // Whether the kernel build reads and writes the on-disk program cache,
     // and where. The default follows the environment (WAVEPATH_NO_CACHE,
     // WAVEPATH_CACHE_DIR) as it is when the options are made; `--no-cache`

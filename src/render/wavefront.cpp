@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <iostream>
 #include <numeric>
 #include <optional>
 #include <stdexcept>
@@ -90,31 +91,41 @@ ChosenLaunchPlan choose_launch_plan(LaunchPlan requested, const DeviceInfo& devi
 
 WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const Scene& scene,
                                          IntegratorOptions options)
-    : device_(device), features_(analyse_features(scene)), options_(options),
+    : device_(device), features_(integrator_features(scene, options)), options_(options),
       group_size_(work_group_size(device.info)) {
-    if (options_.traversal != Traversal::Auto) {
-        features_.bvh = options_.traversal == Traversal::Hierarchy;
-        if (features_.bvh)
-            features_.fixed_counts = false;
-    }
-    if (!options_.shadow_culling)
-        features_.shadow_culling = false;
     const int width = scene.camera.width, height = scene.camera.height;
     pixel_count_ = static_cast<std::uint32_t>(width) * static_cast<std::uint32_t>(height);
     pool_size_ =
         options_.pool_size == 0 ? pixel_count_ : std::min(options_.pool_size, pixel_count_);
     check_device_memory(device_.info, width, height, pool_size_);
 
-    const SceneFeatures compiled =
-        options_.general_kernels ? SceneFeatures::general_for(features_) : features_;
+    SceneFeatures compiled = compiled_features(features_, options_);
+    std::string build_options = kernel_build_options(compiled, options_);
+    if (!options_.general_kernels) {
+        build_options = with_injected_fault(build_options); // test only: as is unless asked for
+        const SceneFeatures general = SceneFeatures::general_for(features_);
+        const std::string general_options = kernel_build_options(general, options_);
+        if (self_check_enabled(options_) && build_options != general_options) {
+            self_check_ = check_kernels(device_, scene, options_);
+            if (!self_check_->passed) {
+                std::cerr << "wavepath: warning: on " << device_.info.name << " (driver "
+                          << device_.info.driver_version
+                          << ") the specialised kernels render differently from the general "
+                             "ones ("
+                          << self_check_->detail << (self_check_->from_cache ? ", remembered" : "")
+                          << "); using the general kernels. The specialised build had: "
+                          << features_.describe() << "\n";
+                compiled = general;
+                build_options = general_options;
+            }
+        }
+    }
     plan_ = choose_launch_plan(options_.launch_plan, device_.info,
                                compiled.fixed_counts && !compiled.bvh);
     scene_ = flatten_scene(scene, compiled.bvh);
-    program_ =
-        build_wavefront_program(device_.context, device_.info.device,
-                                kernel_build_options(compiled, options_), options_.program_cache);
-    mirror_shadows_ =
-        kernel_build_options(compiled, options_).find("WP_MIRROR_NEE=1") != std::string::npos;
+    program_ = build_wavefront_program(device_.context, device_.info.device, build_options,
+                                       options_.program_cache);
+    mirror_shadows_ = build_options.find("WP_MIRROR_NEE=1") != std::string::npos;
     if (mirror_shadows_)
         mirror_shadow_kernel_ = cl::Kernel(program_.program, "mirror_shadow");
     for (std::size_t i = 0; i < kStageKernelNames.size(); ++i)
@@ -450,6 +461,22 @@ double WavefrontIntegrator::time_launches(Stage stage, const WpLaunch& arguments
     local.resolve_completed();
     profiler_ = saved;
     return local.device_busy_seconds();
+}
+
+SceneFeatures integrator_features(const Scene& scene, const IntegratorOptions& options) {
+    SceneFeatures features = analyse_features(scene);
+    if (options.traversal != Traversal::Auto) {
+        features.bvh = options.traversal == Traversal::Hierarchy;
+        if (features.bvh)
+            features.fixed_counts = false;
+    }
+    if (!options.shadow_culling)
+        features.shadow_culling = false;
+    return features;
+}
+
+SceneFeatures compiled_features(const SceneFeatures& features, const IntegratorOptions& options) {
+    return options.general_kernels ? SceneFeatures::general_for(features) : features;
 }
 
 std::string kernel_build_options(const SceneFeatures& features, const IntegratorOptions& options) {

@@ -13,6 +13,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,7 @@
 #include "render/film.hpp"
 #include "render/integrator_options.hpp"
 #include "render/profiler.hpp"
+#include "render/self_check.hpp"
 #include "scene/scene.hpp"
 
 namespace wp {
@@ -55,6 +57,12 @@ struct ChosenLaunchPlan {
 ChosenLaunchPlan choose_launch_plan(LaunchPlan requested, const DeviceInfo& device,
                                     bool vectorised_tracing);
 
+// The features the integrator gives `scene` under `options` (analyse_features,
+// then the traversal and shadow culling asked for), and those its kernels are
+// compiled for: these, or every feature with --general.
+SceneFeatures integrator_features(const Scene& scene, const IntegratorOptions& options);
+SceneFeatures compiled_features(const SceneFeatures& features, const IntegratorOptions& options);
+
 // The -D options that compile the kernels for `features` and the estimator
 // of `options` (the one place that makes them).
 std::string kernel_build_options(const SceneFeatures& features, const IntegratorOptions& options);
@@ -83,6 +91,9 @@ class WavefrontIntegrator {
     const IntegratorOptions& options() const { return options_; }
     // The plan the render runs (never Auto) and why it was chosen.
     const ChosenLaunchPlan& launch_plan() const { return plan_; }
+    // The self-check's verdict, if one was asked for and applied: the
+    // specialised and general options differ (render/self_check.hpp).
+    const std::optional<SelfCheckVerdict>& self_check() const { return self_check_; }
     std::uint32_t pool_size() const { return pool_size_; }
     DeviceContext& device() const { return device_; }
     int width() const { return scene_.width; }
@@ -128,6 +139,7 @@ class WavefrontIntegrator {
     SceneFeatures features_;
     IntegratorOptions options_;
     ChosenLaunchPlan plan_;
+    std::optional<SelfCheckVerdict> self_check_;
     std::size_t group_size_ = 0; // work-group size of every launch
     BuiltProgram program_;
     WpFrame frame_{};
