@@ -224,7 +224,8 @@ TEST_CASE("features: describe() names the features and the compiled-in counts") 
     CHECK(analyse_features(large()).describe() ==
           "triangles spheres diffuse mirror lights planar_mirrors mirror_spheres; bvh");
     CHECK(SceneFeatures::all().describe() ==
-          "triangles spheres diffuse mirror shading_normals lights planar_mirrors mirror_spheres");
+          "triangles spheres diffuse mirror conductor roughconductor shading_normals lights "
+          "planar_mirrors mirror_spheres");
 }
 
 // The program's options begin with the features' (estimator options may follow).
