@@ -2,9 +2,11 @@
 
 #include <chrono>
 #include <filesystem>
+#include <iostream>
 #include <optional>
 #include <set>
 #include <sstream>
+#include <system_error>
 
 #include "cl/embedded_kernels.hpp"
 #include "cl/error.hpp"
@@ -201,8 +203,38 @@ BuiltProgram build_wavefront_program(const cl::Context& context, const cl::Devic
 
 BuiltProgram build_wavefront_program(const cl::Context& context, const cl::Device& device,
                                      const std::string& options, const CachePolicy& cache) {
-    return build_program(context, device, wavefront_program_source(), "wavefront.cl", options,
-                         cache);
+    BuiltProgram built =
+        build_program(context, device, wavefront_program_source(), "wavefront.cl", options, cache);
+    if (!built.cache_hit)
+        return built;
+    // A cached entry is named and checked by its key and checksum, but its
+    // payload could still be another program's (a copied or crafted file):
+    // one without every stage would fail each render with
+    // CL_INVALID_KERNEL_NAME. Dropped and rebuilt, with a word of why.
+    // ";a;b;" and ";name;", appended piecewise: `";" + std::string` trips a
+    // GCC 12 -Wrestrict false positive.
+    std::string listed = ";";
+    try {
+        listed.append(built.program.getInfo<CL_PROGRAM_KERNEL_NAMES>().c_str());
+    } catch (const cl::Error&) {
+    }
+    listed.append(";");
+    for (std::string_view stage : kStageKernelNames) {
+        std::string wanted = ";";
+        wanted.append(stage).append(";");
+        if (listed.find(wanted) != std::string::npos)
+            continue;
+        std::cerr << "wavepath: warning: the cached kernels '" << built.cache_file
+                  << "' lack the kernel '" << stage << "': removed and rebuilt\n";
+        std::error_code ec;
+        std::filesystem::remove(built.cache_file, ec);
+        BuiltProgram rebuilt = build_program(context, device, wavefront_program_source(),
+                                             "wavefront.cl", options, cache);
+        rebuilt.cache = CacheOutcome::Rejected;
+        rebuilt.cache_note = "the cached binary lacked the kernel '" + std::string(stage) + "'";
+        return rebuilt;
+    }
+    return built;
 }
 
 } // namespace wp

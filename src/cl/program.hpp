@@ -64,7 +64,9 @@ BuiltProgram build_program(const cl::Context& context, const cl::Device& device,
 std::string_view wavefront_program_source();
 
 // The five wavefront stages in one program, through the program cache unless
-// WAVEPATH_NO_CACHE is set (CachePolicy::from_environment()).
+// WAVEPATH_NO_CACHE is set (CachePolicy::from_environment()). A cached binary
+// that lacks one of the stages' kernels is removed and rebuilt, with a
+// warning on stderr (cache: Rejected, cache_note says which kernel).
 BuiltProgram build_wavefront_program(const cl::Context& context, const cl::Device& device,
                                      const std::string& options);
 BuiltProgram build_wavefront_program(const cl::Context& context, const cl::Device& device,

@@ -359,6 +359,25 @@ TEST_CASE("program cache: the wavefront program goes through the cache by defaul
     for (const char* name : {"generate", "intersect", "shade", "shadow", "accumulate"})
         CHECK_NOTHROW(cl::Kernel(second.program, name));
 
+    // Another program's binary under the wavefront's key, with a valid
+    // checksum (a copied or crafted entry): dropped and rebuilt, not used.
+    test::TempDir donor_dir;
+    std::vector<unsigned char> foreign = test::read_bytes(build_add(donor_dir.path()).cache_file);
+    foreign.erase(foreign.begin(), foreign.begin() + kProgramCacheHeaderSize);
+    ProgramCache cache(dir.path() / "wavepath");
+    const std::uint64_t key =
+        program_cache_key(expand_includes(wavefront_program_source(), "wavefront.cl"), "",
+                          device_cache_identity(device.info.device));
+    REQUIRE(cache.entry_path(key).string() == second.cache_file);
+    REQUIRE(cache.store(key, foreign).empty());
+    BuiltProgram third = build_wavefront_program(device.context, device.info.device, "");
+    CHECK(third.cache == CacheOutcome::Rejected);
+    CHECK(third.cache_note.find("lacked the kernel") != std::string::npos);
+    for (const char* name : {"generate", "intersect", "shade", "shadow", "accumulate"})
+        CHECK_NOTHROW(cl::Kernel(third.program, name));
+    CHECK(build_wavefront_program(device.context, device.info.device, "").cache ==
+          CacheOutcome::Hit); // the rebuilt program was stored again
+
     EnvGuard off("WAVEPATH_NO_CACHE", "1");
     CHECK(build_wavefront_program(device.context, device.info.device, "").cache ==
           CacheOutcome::Off);
