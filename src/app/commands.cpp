@@ -54,7 +54,10 @@ void check_distinct_outputs(const std::vector<NamedPath>& inputs,
         if (!input.path.empty())
             seen.emplace_back(resolved_path(input.path), &input);
     for (const NamedPath& output : outputs) {
-        if (output.path.empty())
+        std::error_code ec;
+        // A device (/dev/null) is written through, not replaced: several
+        // outputs may share it.
+        if (output.path.empty() || std::filesystem::is_character_file(output.path, ec))
             continue;
         const std::filesystem::path resolved = resolved_path(output.path);
         for (const auto& [other, named] : seen)

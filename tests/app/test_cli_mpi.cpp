@@ -111,10 +111,16 @@ TEST_CASE("cli mpi: a rank that renders something else ends the job naming it an
     for (const Case& c : {Case{" --path-types camera", "its options differ from rank 0's"},
                           Case{" --width 16", "its film is 16x8, rank 0's 8x8"}}) {
         INFO(c.rank1_flags);
+        // Rank 1's arguments: rank 0's with its --width replaced, or more flags.
+        std::string rank1 = rank0;
+        if (c.rank1_flags.rfind(" --width", 0) == 0)
+            rank1.replace(rank1.find(" --width 8"), 10, c.rank1_flags);
+        else
+            rank1 += c.rank1_flags;
         const std::string command = "WAVEPATH_DEVICE='" + test_device_index() + "' " + launcher +
                                     " -np 1 '" + WAVEPATH_EXE + "'" + rank0 + " : -np 1 '" +
-                                    WAVEPATH_EXE + "'" + rank0 + c.rank1_flags + " >/dev/null 2>'" +
-                                    err.string() + "'";
+                                    WAVEPATH_EXE + "'" + rank1 + " >/dev/null 2>'" + err.string() +
+                                    "'";
         const int status = std::system(command.c_str());
         const std::string stderr_text = slurp(err);
         INFO(stderr_text);
