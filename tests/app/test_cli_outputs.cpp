@@ -3,6 +3,7 @@
 // and a value that would make the result meaningless is refused with them.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <limits>
 #include <string>
@@ -315,4 +316,34 @@ TEST_CASE("cli: NaN durations and options that would be ignored are refused befo
         CHECK(run.exit_code == 2); // refused by the option parser: nothing was built
     }
     CHECK_FALSE(fs::exists(s.dir / "x.exr"));
+}
+
+TEST_CASE("cli: a range error states its bounds in a few digits") {
+    // CLI::PositiveNumber, the validator these options had, reports
+    // "not in range 0.000000 to 1797...", the largest double in 309 digits.
+    Scratch s;
+    const std::string out = " --out " + quoted(s.dir / "x.exr");
+    const std::string scene = " " + kHexroom;
+    for (const std::string& arguments : {
+             "render" + scene + " --checkpoint " + quoted(s.dir / "c.ckpt") +
+                 " --checkpoint-every 0" + out,
+             "render" + scene + " --time -1" + out,
+             "render" + scene + " --target-error 0" + out,
+             "converge" + scene + " --max-time 0" + out,
+             "breakdown" + scene + " --spp 2,4 --light-threshold -1",
+             "render" + scene + " --spp 0" + out,
+             "render" + scene + " --width 99999" + out,
+         }) {
+        INFO(arguments);
+        Run run = wavepath(arguments, s);
+        check_one_line_error(run, "--");
+        CHECK(run.exit_code == 2);
+        std::size_t digits = 0, longest = 0;
+        for (const char c : run.err) {
+            digits = c >= '0' && c <= '9' ? digits + 1 : 0;
+            longest = std::max(longest, digits);
+        }
+        CHECK(longest <= 12);
+        CHECK(run.err.size() < 200 + s.dir.string().size());
+    }
 }
