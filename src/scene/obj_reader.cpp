@@ -26,6 +26,7 @@
 #include "scene/mesh.hpp"
 #include "scene/parse_number.hpp"
 #include "scene/polygon_mesh.hpp"
+#include "util/one_line.hpp"
 
 namespace wp {
 
@@ -167,11 +168,10 @@ class ObjCheck {
                 fail(n, std::string(what) + " needs three coordinates, got " + std::to_string(i));
             double x = 0.0;
             if (!parse_double(token, x))
-                fail(n, "cannot read " + std::string(what) + " coordinate '" + std::string(token) +
-                            "'");
+                fail(n,
+                     "cannot read " + std::string(what) + " coordinate '" + excerpt(token) + "'");
             if (!std::isfinite(x))
-                fail(n, std::string(what) + " coordinate is not finite ('" + std::string(token) +
-                            "')");
+                fail(n, std::string(what) + " coordinate is not finite ('" + excerpt(token) + "')");
             length2 += x * x;
         }
         return length2;
@@ -191,10 +191,10 @@ class ObjCheck {
                     break;
                 t.remove_prefix(slash + 1);
                 if (parts == 3)
-                    fail(n, "cannot read face corner '" + std::string(token) + "'");
+                    fail(n, "cannot read face corner '" + excerpt(token) + "'");
             }
             if (part[Position].empty())
-                fail(n, "cannot read face corner '" + std::string(token) + "'");
+                fail(n, "cannot read face corner '" + excerpt(token) + "'");
             for (std::size_t k = 0; k < parts; ++k)
                 if (!part[k].empty())
                     check_index(part[k], static_cast<Kind>(k), token, n);
@@ -211,7 +211,7 @@ class ObjCheck {
     void check_index(std::string_view part, Kind kind, std::string_view token, std::size_t n) {
         std::int64_t index = 0;
         if (!parse_integer(part, index))
-            fail(n, "cannot read face corner '" + std::string(token) + "'");
+            fail(n, "cannot read face corner '" + excerpt(token) + "'");
         const std::string what = std::string("face ") + kind_name[kind] + " index ";
         if (index == 0)
             fail(n, what + "0 is invalid (OBJ indices start at 1)");

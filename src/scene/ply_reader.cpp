@@ -25,6 +25,7 @@
 #include "scene/mesh.hpp"
 #include "scene/parse_number.hpp"
 #include "scene/polygon_mesh.hpp"
+#include "util/one_line.hpp"
 
 namespace wp {
 
@@ -144,7 +145,7 @@ class HeaderParser {
                 else if (f == "binary_big_endian")
                     header.format = Format::BinaryBigEndian;
                 else
-                    fail(n, "unknown PLY format '" + std::string(f) + "'");
+                    fail(n, "unknown PLY format '" + excerpt(f) + "'");
                 have_format = true;
             } else if (keyword == "element") {
                 header.elements.push_back(element(rest, n, header.elements));
@@ -153,7 +154,7 @@ class HeaderParser {
                     fail(n, "property before any element");
                 header.elements.back().properties.push_back(property(rest, n));
             } else {
-                fail(n, "unknown PLY header line '" + std::string(line) + "'");
+                fail(n, "unknown PLY header line '" + excerpt(line) + "'");
             }
         }
         for (Element& e : header.elements)
@@ -177,7 +178,7 @@ class HeaderParser {
         e.line = n;
         for (const Element& p : previous)
             if (p.name == e.name)
-                fail(n, "element '" + e.name + "' appears twice");
+                fail(n, "element '" + excerpt(e.name) + "' appears twice");
         return e;
     }
 
@@ -185,7 +186,7 @@ class HeaderParser {
         for (const ScalarTypeName& t : scalar_type_names)
             if (t.name == word)
                 return t.type;
-        fail(n, "unknown PLY property type '" + std::string(word) + "'");
+        fail(n, "unknown PLY property type '" + excerpt(word) + "'");
     }
 
     Property property(std::string_view rest, std::size_t n) {
@@ -209,8 +210,8 @@ class HeaderParser {
         for (std::size_t i = 0; i < e.properties.size(); ++i)
             for (std::size_t j = 0; j < i; ++j)
                 if (e.properties[i].name == e.properties[j].name)
-                    fail(e.line, "element '" + e.name + "' has property '" + e.properties[i].name +
-                                     "' twice");
+                    fail(e.line, "element '" + excerpt(e.name) + "' has property '" +
+                                     excerpt(e.properties[i].name) + "' twice");
         if (e.name == "vertex") {
             e.kind = ElementKind::Vertex;
             const std::pair<const char*, Role> slots[] = {{"x", Role::X},   {"y", Role::Y},
@@ -239,9 +240,10 @@ class HeaderParser {
             if (!p && face)
                 p = find(e, "vertex_index");
             if (!p)
-                fail(e.line, e.name + " element has no vertex_indices list");
+                fail(e.line, excerpt(e.name) + " element has no vertex_indices list");
             if (!p->is_list || !is_integer(p->type))
-                fail(e.line, e.name + " property '" + p->name + "' must be a list of integers");
+                fail(e.line, excerpt(e.name) + " property '" + excerpt(p->name) +
+                                 "' must be a list of integers");
             p->role = face ? Role::FaceIndices : Role::StripIndices;
         }
     }
@@ -389,7 +391,7 @@ class AsciiSource {
 
     [[noreturn]] void bad(std::string_view w, const char* expected) const {
         throw BodyProblem{"line " + std::to_string(line_) + ": expected " + expected + ", got '" +
-                          std::string(w) + "'"};
+                          excerpt(w) + "'"};
     }
 
     const char* p_;
@@ -465,7 +467,8 @@ template <class Source> class BodyReader {
             if (!in_.integer(p.count_type, n))
                 truncated();
             if (n < 0)
-                throw BodyProblem{"list '" + p.name + "' has negative length " + std::to_string(n)};
+                throw BodyProblem{"list '" + excerpt(p.name) + "' has negative length " +
+                                  std::to_string(n)};
             if (p.role == Role::Skip) {
                 if (!in_.skip(p.type, static_cast<std::uint64_t>(n)))
                     truncated();

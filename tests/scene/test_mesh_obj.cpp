@@ -174,3 +174,23 @@ TEST_CASE("obj: a UTF-8 byte-order mark before the first line is skipped", "[mes
         wp::load_mesh(mesh_test::write_file("bom_later.obj", body + "\xEF\xBB\xBFo x\n"));
     CHECK(later.triangles.size() == 1);
 }
+
+TEST_CASE("obj: a megabyte-long name or token is quoted in 80 bytes", "[mesh][obj]") {
+    const std::string huge(1 << 20, 'n');
+    const std::string body = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    // The usemtl name in the warning of a name that is no scene material.
+    const wp::TriangleMesh m =
+        wp::load_mesh(mesh_test::write_file("long_usemtl.obj", "usemtl " + huge + "\n" + body));
+    std::vector<wp::Material> materials(1);
+    materials[0].name = "white";
+    std::vector<std::string> warnings;
+    wp::resolve_materials(m, materials, 0, warnings);
+    REQUIRE(warnings.size() == 1);
+    CHECK(warnings[0].size() < 300);
+    CHECK_THAT(warnings[0], Catch::Contains("usemtl '" + std::string(80, 'n') + "...' is not"));
+    // A token the reader cannot read, in its error.
+    const auto path = mesh_test::write_file("long_token.obj", "v 0 " + huge + " 0\n" + body);
+    const std::string error = mesh_test::error_of(path);
+    CHECK(error ==
+          path.string() + ":1: cannot read vertex coordinate '" + std::string(80, 'n') + "...'");
+}
