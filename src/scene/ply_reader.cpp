@@ -73,6 +73,40 @@ bool is_integer(ScalarType t) {
     return t != ScalarType::Float32 && t != ScalarType::Float64;
 }
 
+// The name the header gave the type first in scalar_type_names ("uchar").
+std::string_view type_name(ScalarType t) {
+    for (const ScalarTypeName& n : scalar_type_names)
+        if (n.type == t)
+            return n.name;
+    return "?";
+}
+
+// The values an integer type holds. A binary body cannot hold others, but an
+// ASCII one can ("300" as a uchar list count).
+struct IntegerRange {
+    std::int64_t lowest;
+    std::int64_t highest;
+};
+IntegerRange integer_range(ScalarType t) {
+    switch (t) {
+    case ScalarType::Int8:
+        return {INT8_MIN, INT8_MAX};
+    case ScalarType::UInt8:
+        return {0, UINT8_MAX};
+    case ScalarType::Int16:
+        return {INT16_MIN, INT16_MAX};
+    case ScalarType::UInt16:
+        return {0, UINT16_MAX};
+    case ScalarType::Int32:
+        return {INT32_MIN, INT32_MAX};
+    case ScalarType::UInt32:
+    case ScalarType::Float32:
+    case ScalarType::Float64:
+        break;
+    }
+    return {0, UINT32_MAX};
+}
+
 // What a property means to us; everything else is read and skipped.
 enum class Role { Skip, X, Y, Z, NX, NY, NZ, FaceIndices, StripIndices };
 
@@ -358,12 +392,13 @@ class AsciiSource {
         return true;
     }
 
-    bool integer(ScalarType, std::int64_t& out) {
+    bool integer(ScalarType t, std::int64_t& out) {
         std::string_view w;
         if (!word(w))
             return false;
         if (!parse_integer(w, out))
             bad(w, "an integer");
+        check_fits(t, out);
         return true;
     }
 
@@ -387,6 +422,20 @@ class AsciiSource {
             ++p_;
         w = std::string_view(begin, static_cast<std::size_t>(p_ - begin));
         return !w.empty();
+    }
+
+    // List counts and entries only: else a count of 300 declared uchar is read
+    // as 300, and the entries it claims reported as a truncated file. (A scalar
+    // past its type, a colour of 300, is read as written: its meaning is plain.)
+    void check_fits(ScalarType t, std::int64_t value) const {
+        if (!is_integer(t))
+            return; // an integer where floats are declared: the float is exact enough
+        const IntegerRange range = integer_range(t);
+        if (value < range.lowest || value > range.highest)
+            throw BodyProblem{"line " + std::to_string(line_) + ": " + std::to_string(value) +
+                              " does not fit the declared type " + std::string(type_name(t)) +
+                              " (" + std::to_string(range.lowest) + " to " +
+                              std::to_string(range.highest) + ")"};
     }
 
     [[noreturn]] void bad(std::string_view w, const char* expected) const {
