@@ -132,6 +132,7 @@ BuiltProgram build_program(const cl::Context& context, const cl::Device& device,
 
     std::optional<ProgramCache> store;
     std::uint64_t key = 0;
+    std::string key_text;
     if (cache.enabled) {
         std::filesystem::path dir =
             cache.directory.empty() ? default_program_cache_directory() : cache.directory;
@@ -139,9 +140,11 @@ BuiltProgram build_program(const cl::Context& context, const cl::Device& device,
             built.cache_note = "no cache directory (neither XDG_CACHE_HOME nor HOME is set)";
         } else {
             store.emplace(dir);
-            key = program_cache_key(expanded, caller_options, device_cache_identity(device));
+            const std::string identity = device_cache_identity(device);
+            key = program_cache_key(expanded, caller_options, identity);
+            key_text = program_cache_key_text(expanded, caller_options, identity);
             built.cache_file = store->entry_path(key).string();
-            CacheLookup found = store->load(key);
+            CacheLookup found = store->load(key, key_text);
             if (found.binary) {
                 if (std::optional<cl::Program> loaded =
                         load_binary(context, device, *found.binary, options)) {
@@ -177,8 +180,8 @@ BuiltProgram build_program(const cl::Context& context, const cl::Device& device,
 
     if (store) {
         std::vector<unsigned char> binary = program_binary(built.program, device);
-        std::string failure =
-            binary.empty() ? std::string("the driver gave no binary") : store->store(key, binary);
+        std::string failure = binary.empty() ? std::string("the driver gave no binary")
+                                             : store->store(key, key_text, binary);
         if (!failure.empty())
             built.cache_note += (built.cache_note.empty() ? "" : "; ") + ("not stored: " + failure);
     }
