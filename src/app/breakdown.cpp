@@ -85,7 +85,7 @@ CLI::App* add_breakdown_subcommand(CLI::App& app, BreakdownCommand& command) {
                   "A pixel whose brightest channel is above this sees the light (directly or in "
                   "a mirror); in the reference, else in the full render's last estimate")
         ->capture_default_str()
-        ->check(CLI::PositiveNumber);
+        ->check(positive_finite_number);
     c->add_option("--light-radius", command.light_radius,
                   "Pixels around those that count as near the light")
         ->capture_default_str()

@@ -17,7 +17,7 @@ void prepare_caches(const IntegratorOptions& options) {
                                           : options.program_cache.directory;
     if (dir.empty())
         return;
-    bound_cache(dir, CacheBound{kProgramCacheMaxBytes, 1, ".clbin"});
+    bound_cache(dir, CacheBound{kProgramCacheMaxBytes, 1, ".clbin", "", {}});
     if (const char* chosen = std::getenv("POCL_CACHE_DIR"); chosen != nullptr && *chosen != '\0')
         return; // the user's choice, and the user's to trim
     // PoCL reads the variable when the platform is first queried, which is
@@ -28,7 +28,7 @@ void prepare_caches(const IntegratorOptions& options) {
     if (ec)
         return; // PoCL keeps its default place
     ::setenv("POCL_CACHE_DIR", pocl.c_str(), 1);
-    bound_cache(pocl, CacheBound{kPoclCacheMaxBytes, 2, ""});
+    bound_cache(pocl, CacheBound{kPoclCacheMaxBytes, 2, "", "tempfile_", kPoclTempfileMaxAge});
 }
 
 } // namespace wp

@@ -4,19 +4,22 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/cli_options.hpp"
 #include "util/file.hpp"
 
 namespace wp {
 
 void add_checkpoint_options(CLI::App& render, CheckpointOptions& options) {
-    render.add_option("--checkpoint", options.file,
-                      "Save the film to FILE now and then, and at the end or when interrupted, so "
-                      "that --resume FILE can go on from it");
+    CLI::Option* file = render.add_option(
+        "--checkpoint", options.file,
+        "Save the film to FILE now and then, and at the end or when interrupted, so "
+        "that --resume FILE can go on from it");
     render
         .add_option("--checkpoint-every", options.every_seconds,
                     "Seconds between checkpoints while rendering")
         ->capture_default_str()
-        ->check(CLI::PositiveNumber);
+        ->check(positive_finite_number)
+        ->needs(file); // without it there is nowhere to save: refused, not ignored
     render.add_option("--resume", options.resume,
                       "Start from a checkpoint of the same scene, resolution and options, and "
                       "render up to --spp in all");

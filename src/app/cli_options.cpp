@@ -53,6 +53,15 @@ const CLI::Validator finite_number(
     },
     "FINITE");
 
+const CLI::Validator positive_finite_number(
+    [](const std::string& text) -> std::string {
+        double value = 0.0;
+        if (!CLI::detail::lexical_cast(text, value) || !std::isfinite(value) || value <= 0.0)
+            return "expected a positive finite number, got '" + text + "'";
+        return {};
+    },
+    "POSITIVE");
+
 void add_integrator_options(CLI::App& command, IntegratorOptions& options) {
     command.add_option("--seed", options.seed, "Random seed; the same seed gives the same image")
         ->capture_default_str();

@@ -23,6 +23,11 @@ inline constexpr unsigned max_depth = 1u << 20;
 // options whose value goes into arithmetic (--exposure).
 extern const CLI::Validator finite_number;
 
+// Refuses all but positive finite numbers, for durations and thresholds
+// (--checkpoint-every, --max-time, --light-threshold): CLI::PositiveNumber
+// lets "nan" through, as every comparison with NaN is false.
+extern const CLI::Validator positive_finite_number;
+
 // Every field of IntegratorOptions: --seed, --max-depth, --no-nee, --diffuse,
 // --light-sampling, --roulette-depth, --path-types, --general, --regeneration,
 // --pool and --no-cache (which turns options.program_cache off). The defaults shown are options'

@@ -55,7 +55,10 @@ void check_distinct_outputs(const std::vector<NamedPath>& inputs,
         if (!input.path.empty())
             seen.emplace_back(resolved_path(input.path), &input);
     for (const NamedPath& output : outputs) {
-        if (output.path.empty())
+        std::error_code ec;
+        // A device (/dev/null) is written through, not replaced: several
+        // outputs may share it.
+        if (output.path.empty() || std::filesystem::is_character_file(output.path, ec))
             continue;
         const std::filesystem::path resolved = resolved_path(output.path);
         for (const auto& [other, named] : seen)
@@ -64,6 +67,13 @@ void check_distinct_outputs(const std::vector<NamedPath>& inputs,
                                 "it is the same file as " + named->role + " '" + named->path + "'");
         seen.emplace_back(resolved, &output);
     }
+}
+
+std::vector<NamedPath> scene_inputs(const Scene& scene) {
+    std::vector<NamedPath> inputs = {{"the scene", scene.source}};
+    for (const std::string& file : scene.files)
+        inputs.push_back({"mesh file", file});
+    return inputs;
 }
 
 void write_result_image(const std::string& path, const Image& image, const ViewOptions& view) {
@@ -92,7 +102,7 @@ CLI::App* add_render_subcommand(CLI::App& app, RenderCommand& command) {
                   "Output image; its extension picks the format: .exr or .pfm (linear HDR), "
                   ".png (view)")
         ->capture_default_str();
-    r->add_option("--png", command.png, "Also write a PNG view of the image");
+    r->add_option("--png", command.png, "Also write a PNG view of the image (a .png name)");
     r->add_option("--spp,-s", command.spp, "Samples per pixel")
         ->capture_default_str()
         ->check(CLI::Range(1u, cli_limits::max_samples_per_pixel));
@@ -207,19 +217,20 @@ int run_render(const RenderCommand& command) {
     if (const std::optional<int> status = run_render_as_mpi_worker(command))
         return *status; // a rank other than 0 of an MPI job (render_devices.hpp)
     check_output(command.out, kImageExtensions);
-    check_output(command.png, kImageExtensions);
+    // --png is the view: an .exr or .pfm there would silently be linear.
+    check_output(command.png, {".png"});
     check_output(command.profile_json);
     check_output(command.trace);
     check_output(command.variance, {".exr", ".pfm"});
     check_output(command.checkpoints.file);
     // --checkpoint may be the --resume file (go on saving where it started).
-    check_distinct_outputs({{"the scene", command.scene}},
-                           {{"--out", command.out},
-                            {"--png", command.png},
-                            {"--profile-json", command.profile_json},
-                            {"--trace", command.trace},
-                            {"--variance", command.variance},
-                            {"--checkpoint", command.checkpoints.file}});
+    const std::vector<NamedPath> outputs = {{"--out", command.out},
+                                            {"--png", command.png},
+                                            {"--profile-json", command.profile_json},
+                                            {"--trace", command.trace},
+                                            {"--variance", command.variance},
+                                            {"--checkpoint", command.checkpoints.file}};
+    check_distinct_outputs({{"the scene", command.scene}}, outputs);
     check_distinct_outputs({{"--resume", command.checkpoints.resume}},
                            {{"--out", command.out},
                             {"--png", command.png},
@@ -227,6 +238,7 @@ int run_render(const RenderCommand& command) {
                             {"--trace", command.trace}});
 
     Scene scene = load_scene_for_render(command.scene, command.width, command.height);
+    check_distinct_outputs(scene_inputs(scene), outputs); // its meshes, known once it is read
     const std::string scene_sha256 = file_sha256(command.scene); // for the metadata
     const ViewOptions view = view_for_scene(command.view, scene);
     RenderLoop loop(command.loop, view); // a preview port in use fails here
@@ -258,6 +270,7 @@ int run_render(const RenderCommand& command) {
     // the halt conditions and the checkpoints are dealt with between calls,
     // where every pixel has the same number. Always the same split for the
     // same options, so the image is too.
+    begin_interruptible_work(); // until now a signal ends the process at once
     const RenderLoopResult rendered = loop.run(
         film, command.spp, integrator.samples_per_call(samples_per_call(options)),
         [&](std::uint32_t first, std::uint32_t count, const std::function<void(double)>& progress) {
@@ -328,6 +341,14 @@ int run_render(const RenderCommand& command) {
         std::cerr << "wavepath: interrupted: the outputs hold " << spp << " of the " << command.spp
                   << " samples per pixel asked for\n";
         return 128 + interrupt_signal(); // the shell's code for "ended by this signal"
+    }
+    if (interrupt_requested()) {
+        // A signal after the last wave, while the outputs were written: they
+        // are complete, but whoever sent it must still see that it arrived.
+        std::fflush(stdout);
+        std::cerr << "wavepath: interrupted after the render: the outputs hold all " << spp
+                  << " samples per pixel\n";
+        return 128 + interrupt_signal();
     }
     return 0;
 }

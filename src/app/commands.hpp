@@ -142,6 +142,10 @@ struct NamedPath {
 void check_distinct_outputs(const std::vector<NamedPath>& inputs,
                             const std::vector<NamedPath>& outputs);
 
+// Every file the scene read: "the scene" itself and each "mesh file", for
+// check_distinct_outputs once the scene is loaded.
+std::vector<NamedPath> scene_inputs(const Scene& scene);
+
 // Writes an image that took long to make; if that fails, saves it to a
 // fallback file (in the system's temporary directory) so the work is not
 // lost, and throws FileError naming both the failure and the fallback.

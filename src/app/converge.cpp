@@ -33,7 +33,7 @@ CLI::App* add_converge_subcommand(CLI::App& app, ConvergeCommand& command) {
     auto* time = c->add_option("--max-time", command.max_time,
                                "Render for this many seconds (render time, kernel build "
                                "excluded); the last batch is cut to fit")
-                     ->check(CLI::PositiveNumber);
+                     ->check(positive_finite_number);
     spp->excludes(time);
     c->add_option("--csv", command.csv, "Write the checkpoints as CSV");
     c->add_option("--plot", command.plot, "Write a log-log plot of RMSE against time (SVG)");
@@ -79,6 +79,9 @@ int run_converge(const ConvergeCommand& command) {
         throw std::runtime_error("converge needs a scene file (or --replot)");
 
     Scene scene = load_scene_for_render(command.scene, command.width, command.height);
+    check_distinct_outputs(
+        scene_inputs(scene),
+        {{"--csv", command.csv}, {"--plot", command.plot}, {"--out", command.out}});
     const std::string scene_sha256 = file_sha256(command.scene); // for --out's metadata
 
     Image reference;

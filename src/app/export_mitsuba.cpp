@@ -41,7 +41,7 @@ int run_export_mitsuba(const ExportMitsubaCommand& command) {
         check_output(mesh.string());
         outputs.push_back({"a mesh of the Mitsuba scene", mesh.string()});
     }
-    check_distinct_outputs({{"the scene", command.scene}}, outputs);
+    check_distinct_outputs(scene_inputs(scene), outputs);
 
     for (const std::string& warning : exported.warnings)
         std::cerr << "wavepath: warning: " << warning << "\n";

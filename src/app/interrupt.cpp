@@ -17,10 +17,12 @@ namespace {
 // state a handler may touch, and they are safe across threads too.
 std::atomic<int> g_signal{0};
 static_assert(std::atomic<int>::is_always_lock_free);
+std::atomic<bool> g_work_begun{false};
+static_assert(std::atomic<bool>::is_always_lock_free);
 
 void on_signal(int sig) {
     int none = 0;
-    if (g_signal.compare_exchange_strong(none, sig)) {
+    if (g_work_begun.load() && g_signal.compare_exchange_strong(none, sig)) {
         static const char message[] =
             "\nwavepath: interrupted: finishing the current wave and writing the outputs "
             "(again to quit at once)\n";
@@ -28,8 +30,9 @@ void on_signal(int sig) {
         [[maybe_unused]] const ssize_t written = ::write(2, message, sizeof message - 1);
         return;
     }
-    // The second signal: no half-written output, then the default action
-    // (termination by this signal, which the parent sees as such).
+    // The second signal, or any before the loop began: no half-written
+    // output, then the default action (termination by this signal, which
+    // the parent sees as such).
     remove_pending_temp_files();
     std::signal(sig, SIG_DFL);
     std::raise(sig);
@@ -44,6 +47,10 @@ void install_interrupt_handlers() {
     action.sa_flags = SA_RESTART; // blocking reads and writes carry on after the first one
     sigaction(SIGINT, &action, nullptr);
     sigaction(SIGTERM, &action, nullptr);
+}
+
+void begin_interruptible_work() {
+    g_work_begun.store(true);
 }
 
 bool request_interrupt() {

@@ -61,13 +61,13 @@ function show(status) {
     loading = true;
     next.onload = () => { view.src = next.src; shownSpp = status.spp; loading = false; };
     next.onerror = () => { loading = false; };
-    next.src = "/image.png?spp=" + status.spp;
+    next.src = "image.png?spp=" + status.spp;
   }
 }
 
 async function poll() {
   try {
-    const response = await fetch("/status.json", { cache: "no-store" });
+    const response = await fetch("status.json", { cache: "no-store" });
     show(await response.json());
   } catch (e) {
     stats.textContent = "the render has ended (" + (shownSpp > 0 ? shownSpp + " spp shown" : "no image") + ")";
@@ -79,7 +79,7 @@ view.addEventListener("load", layout);
 addEventListener("resize", layout);
 stop.addEventListener("click", async () => {
   stop.disabled = true;
-  try { await fetch("/stop", { method: "POST" }); } catch (e) {}
+  try { await fetch("stop", { method: "POST" }); } catch (e) {}
   poll();
 });
 poll();

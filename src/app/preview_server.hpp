@@ -3,10 +3,17 @@
 // converges, with its samples per pixel, speed and error estimate, and a
 // stop button that ends the render as Ctrl-C does.
 //
-//   GET  /             the page
-//   GET  /image.png    the latest published image (503 before the first)
-//   GET  /status.json  the latest published status
-//   POST /stop         request_interrupt() (interrupt.hpp)
+//   GET  /TOKEN/             the page
+//   GET  /TOKEN/image.png    the latest published image (503 before the first)
+//   GET  /TOKEN/status.json  the latest published status
+//   POST /TOKEN/stop         request_interrupt() (interrupt.hpp)
+//
+// TOKEN is 128 random bits drawn per run and printed only in url(): any
+// other path is refused (403), so a web page the user visits cannot stop
+// the render or read its image. On a loopback address the Host header must
+// name it (no DNS rebinding), and a POST with an Origin header must come
+// from the page's own origin. Reads time out after a second, and the
+// destructor waits at most half a second for busy clients.
 //
 // The render thread publishes; the server's threads only copy out what was
 // last published, under a mutex, so a slow browser never holds up the render.
@@ -29,7 +36,7 @@ class PreviewServer {
     PreviewServer& operator=(const PreviewServer&) = delete;
 
     int port() const;
-    std::string url() const; // http://ADDRESS:PORT/
+    std::string url() const; // http://ADDRESS:PORT/TOKEN/ (an IPv6 ADDRESS in brackets)
 
     // `png`: an encoded PNG (image/png.hpp encode_png); `status`: a JSON object.
     void publish(std::vector<unsigned char> png, std::string status);

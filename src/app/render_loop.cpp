@@ -109,18 +109,22 @@ void add_render_loop_options(CLI::App& render, RenderLoopOptions& options, std::
                     "--time does")
         ->check(positive);
     render.add_flag("--quiet,-q", options.quiet, "No progress report on stderr");
-    render
-        .add_option("--preview", options.preview_port,
-                    "Serve a live preview of the render (the image, spp, speed, error, a stop "
-                    "button) at http://127.0.0.1:PORT/; 0 picks a free port and prints it")
-        ->expected(0, 1)
-        ->default_str(std::to_string(kDefaultPreviewPort))
-        ->check(CLI::Range(0, 65535));
+    CLI::Option* preview =
+        render
+            .add_option(
+                "--preview", options.preview_port,
+                "Serve a live preview of the render (the image, spp, speed, error, a stop "
+                "button) at http://127.0.0.1:PORT/TOKEN/ (TOKEN: drawn per run, printed with "
+                "the URL); 0 picks a free port")
+            ->expected(0, 1)
+            ->default_str(std::to_string(kDefaultPreviewPort))
+            ->check(CLI::Range(0, 65535));
     render
         .add_option("--preview-bind", options.preview_bind,
                     "The address the preview listens on (0.0.0.0: every interface; the page "
                     "can stop the render, so only on a trusted network)")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->needs(preview); // alone it would be ignored
     CLI::Option* spp_option = render.get_option("--spp");
     spp_option->description("Samples per pixel. With --time or --target-error, a bound on them "
                             "only if given: the first of the three conditions met ends the render");

@@ -190,10 +190,17 @@ std::vector<std::string> split_list(const std::string& text) {
 DeviceInfo select_device(const std::string& requested) {
     std::string from;
     const std::string selector = effective_selector(requested, from);
-    if (selector.find(',') != std::string::npos || lowercase(trim(selector)) == "all")
-        throw DeviceError("this command runs on one device, but '" + selector + "'" + from +
-                          " names several");
+    if (selector.find(',') != std::string::npos)
+        throw DeviceError("this command runs on one device, but the list '" + selector + "'" +
+                          from + " names several");
     std::vector<DeviceInfo> devices = available_devices();
+    // "all" is every device there is: on a machine with one, that one.
+    if (lowercase(trim(selector)) == "all") {
+        if (devices.size() == 1)
+            return devices.front();
+        throw no_match(devices, "this command runs on one device, but 'all'" + from + " names " +
+                                    std::to_string(devices.size()) + " devices");
+    }
     if (selector.empty())
         return default_device(devices);
     return match_device(devices, selector, from, std::vector<bool>(devices.size(), false));

@@ -44,7 +44,8 @@ std::vector<DeviceInfo> list_devices();
 // it is set and not empty, else the first GPU, else the first CPU, else the
 // first device.
 // A selector that lists several devices (see select_devices) is refused:
-// the commands that call this one run on one device.
+// the commands that call this one run on one device. "all" is accepted on a
+// machine with one device, and means that one.
 DeviceInfo select_device(const std::string& selector);
 
 // Picks the devices of one render: a comma-separated list of selectors as

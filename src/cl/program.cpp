@@ -3,9 +3,11 @@
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
+#include <iostream>
 #include <optional>
 #include <set>
 #include <sstream>
+#include <system_error>
 
 #include "cl/embedded_kernels.hpp"
 #include "cl/error.hpp"
@@ -133,6 +135,7 @@ BuiltProgram build_program(const cl::Context& context, const cl::Device& device,
 
     std::optional<ProgramCache> store;
     std::uint64_t key = 0;
+    std::string key_text;
     if (cache.enabled) {
         std::filesystem::path dir =
             cache.directory.empty() ? default_program_cache_directory() : cache.directory;
@@ -140,9 +143,11 @@ BuiltProgram build_program(const cl::Context& context, const cl::Device& device,
             built.cache_note = "no cache directory (neither XDG_CACHE_HOME nor HOME is set)";
         } else {
             store.emplace(dir);
-            key = program_cache_key(expanded, caller_options, device_cache_identity(device));
+            const std::string identity = device_cache_identity(device);
+            key = program_cache_key(expanded, caller_options, identity);
+            key_text = program_cache_key_text(expanded, caller_options, identity);
             built.cache_file = store->entry_path(key).string();
-            CacheLookup found = store->load(key);
+            CacheLookup found = store->load(key, key_text);
             if (found.binary) {
                 if (std::optional<cl::Program> loaded =
                         load_binary(context, device, *found.binary, options)) {
@@ -178,8 +183,8 @@ BuiltProgram build_program(const cl::Context& context, const cl::Device& device,
 
     if (store) {
         std::vector<unsigned char> binary = program_binary(built.program, device);
-        std::string failure =
-            binary.empty() ? std::string("the driver gave no binary") : store->store(key, binary);
+        std::string failure = binary.empty() ? std::string("the driver gave no binary")
+                                             : store->store(key, key_text, binary);
         if (!failure.empty())
             built.cache_note += (built.cache_note.empty() ? "" : "; ") + ("not stored: " + failure);
     }
@@ -221,8 +226,38 @@ BuiltProgram build_wavefront_program(const cl::Context& context, const cl::Devic
                            "kernel first)";
         return built;
     }
-    return build_program(context, device, wavefront_program_source(), "wavefront.cl", options,
-                         cache);
+    BuiltProgram built =
+        build_program(context, device, wavefront_program_source(), "wavefront.cl", options, cache);
+    if (!built.cache_hit)
+        return built;
+    // A cached entry is named and checked by its key and checksum, but its
+    // payload could still be another program's (a copied or crafted file):
+    // one without every stage would fail each render with
+    // CL_INVALID_KERNEL_NAME. Dropped and rebuilt, with a word of why.
+    // ";a;b;" and ";name;", appended piecewise: `";" + std::string` trips a
+    // GCC 12 -Wrestrict false positive.
+    std::string listed = ";";
+    try {
+        listed.append(built.program.getInfo<CL_PROGRAM_KERNEL_NAMES>().c_str());
+    } catch (const cl::Error&) {
+    }
+    listed.append(";");
+    for (std::string_view stage : kStageKernelNames) {
+        std::string wanted = ";";
+        wanted.append(stage).append(";");
+        if (listed.find(wanted) != std::string::npos)
+            continue;
+        std::cerr << "wavepath: warning: the cached kernels '" << built.cache_file
+                  << "' lack the kernel '" << stage << "': removed and rebuilt\n";
+        std::error_code ec;
+        std::filesystem::remove(built.cache_file, ec);
+        BuiltProgram rebuilt = build_program(context, device, wavefront_program_source(),
+                                             "wavefront.cl", options, cache);
+        rebuilt.cache = CacheOutcome::Rejected;
+        rebuilt.cache_note = "the cached binary lacked the kernel '" + std::string(stage) + "'";
+        return rebuilt;
+    }
+    return built;
 }
 
 } // namespace wp

@@ -79,7 +79,9 @@ bool driver_keeps_kernel_cache(const cl::Device& device);
 // Every wavefront kernel (the stages, the fused kernels, mirror_shadow) in one
 // program, through the program cache unless WAVEPATH_NO_CACHE is set
 // (CachePolicy::from_environment()) or the driver keeps its own
-// (CacheOutcome::Driver).
+// (CacheOutcome::Driver). A cached binary that lacks one of the stages' kernels
+// is removed and rebuilt, with a warning on stderr (cache: Rejected,
+// cache_note says which kernel).
 BuiltProgram build_wavefront_program(const cl::Context& context, const cl::Device& device,
                                      const std::string& options);
 BuiltProgram build_wavefront_program(const cl::Context& context, const cl::Device& device,

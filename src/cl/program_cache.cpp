@@ -53,6 +53,26 @@ std::string hex(std::uint64_t value) {
     return text;
 }
 
+// What the first line in which an entry's key text differs from the
+// expected one is about: "another source", "other options" or "another
+// device or driver".
+std::string first_difference(std::string_view stored, std::string_view expected) {
+    for (;;) {
+        const std::size_t stored_end = stored.find('\n');
+        const std::size_t expected_end = expected.find('\n');
+        const std::string_view line = expected.substr(0, expected_end);
+        if (stored.substr(0, stored_end) != line || stored_end == std::string_view::npos ||
+            expected_end == std::string_view::npos) {
+            const std::string_view field = line.substr(0, line.find(' '));
+            return field == "options"  ? "other options"
+                   : field == "device" ? "another device or driver"
+                                       : "another source";
+        }
+        stored.remove_prefix(stored_end + 1);
+        expected.remove_prefix(expected_end + 1);
+    }
+}
+
 } // namespace
 
 std::uint64_t fnv1a64_bytes(const void* data, std::size_t size, std::uint64_t state) {
@@ -85,6 +105,14 @@ std::uint64_t program_cache_key(std::string_view expanded_source, std::string_vi
     return hash_part(device_identity, state);
 }
 
+std::string program_cache_key_text(std::string_view expanded_source, std::string_view options,
+                                   std::string_view device_identity) {
+    std::string text = "source " + hex(fnv1a64(expanded_source)) + " " +
+                       std::to_string(expanded_source.size()) + "\noptions ";
+    text.append(options).append("\ndevice ").append(device_identity);
+    return text;
+}
+
 fs::path default_program_cache_directory() {
     const char* own = std::getenv("WAVEPATH_CACHE_DIR");
     if (own != nullptr && own[0] != '\0')
@@ -113,23 +141,26 @@ fs::path ProgramCache::entry_path(std::uint64_t key) const {
     return directory_ / (hex(key) + ".clbin");
 }
 
-std::vector<unsigned char> ProgramCache::encode(std::uint64_t key,
+std::vector<unsigned char> ProgramCache::encode(std::uint64_t key, std::string_view key_text,
                                                 const std::vector<unsigned char>& binary) {
-    std::vector<unsigned char> bytes(kProgramCacheHeaderSize + binary.size());
+    std::vector<unsigned char> bytes(kProgramCacheHeaderSize + key_text.size() + binary.size());
     std::memcpy(bytes.data(), kMagic, sizeof kMagic);
     put32(bytes, 8, kProgramCacheFormat);
-    put32(bytes, 12, 0);
+    put32(bytes, 12, static_cast<std::uint32_t>(key_text.size()));
     put64(bytes, 16, key);
     put64(bytes, 24, binary.size());
-    put64(bytes, 32, fnv1a64_bytes(binary.data(), binary.size()));
+    put64(bytes, 32, fnv1a64_bytes(binary.data(), binary.size(), fnv1a64(key_text)));
+    if (!key_text.empty())
+        std::memcpy(bytes.data() + kProgramCacheHeaderSize, key_text.data(), key_text.size());
     if (!binary.empty())
-        std::memcpy(bytes.data() + kProgramCacheHeaderSize, binary.data(), binary.size());
+        std::memcpy(bytes.data() + kProgramCacheHeaderSize + key_text.size(), binary.data(),
+                    binary.size());
     return bytes;
 }
 
 std::optional<std::vector<unsigned char>>
-ProgramCache::decode(std::uint64_t key, const std::vector<unsigned char>& bytes,
-                     std::string& fault) {
+ProgramCache::decode(std::uint64_t key, std::string_view key_text,
+                     const std::vector<unsigned char>& bytes, std::string& fault) {
     if (bytes.size() < kProgramCacheHeaderSize) {
         fault = "truncated header (" + std::to_string(bytes.size()) + " bytes)";
         return std::nullopt;
@@ -147,25 +178,36 @@ ProgramCache::decode(std::uint64_t key, const std::vector<unsigned char>& bytes,
         fault = "key mismatch";
         return std::nullopt;
     }
-    std::uint64_t size = get64(bytes, 24);
-    if (size != bytes.size() - kProgramCacheHeaderSize) {
-        fault = "size mismatch (header says " + std::to_string(size) + " bytes, file holds " +
-                std::to_string(bytes.size() - kProgramCacheHeaderSize) + ")";
+    const std::uint64_t text_size = get32(bytes, 12);
+    const std::uint64_t size = get64(bytes, 24);
+    const std::uint64_t held = bytes.size() - kProgramCacheHeaderSize;
+    if (text_size > held || size != held - text_size) {
+        fault = "size mismatch (header says " + std::to_string(text_size) + " + " +
+                std::to_string(size) + " bytes, file holds " + std::to_string(held) + ")";
         return std::nullopt;
     }
     if (size == 0) {
         fault = "empty binary";
         return std::nullopt;
     }
-    const unsigned char* payload = bytes.data() + kProgramCacheHeaderSize;
-    if (fnv1a64_bytes(payload, static_cast<std::size_t>(size)) != get64(bytes, 32)) {
+    const unsigned char* text = bytes.data() + kProgramCacheHeaderSize;
+    const unsigned char* payload = text + text_size;
+    if (fnv1a64_bytes(payload, static_cast<std::size_t>(size),
+                      fnv1a64_bytes(text, static_cast<std::size_t>(text_size))) !=
+        get64(bytes, 32)) {
         fault = "checksum mismatch";
+        return std::nullopt;
+    }
+    const std::string_view stored(reinterpret_cast<const char*>(text),
+                                  static_cast<std::size_t>(text_size));
+    if (stored != key_text) {
+        fault = "its stored key is for " + first_difference(stored, key_text);
         return std::nullopt;
     }
     return std::vector<unsigned char>(payload, payload + size);
 }
 
-CacheLookup ProgramCache::load(std::uint64_t key) const {
+CacheLookup ProgramCache::load(std::uint64_t key, std::string_view key_text) const {
     CacheLookup result;
     if (directory_.empty())
         return result;
@@ -174,7 +216,7 @@ CacheLookup ProgramCache::load(std::uint64_t key) const {
     if (!fs::is_regular_file(path, ec))
         return result; // a plain miss
     try {
-        result.binary = decode(key, read_file_bytes(path), result.rejected);
+        result.binary = decode(key, key_text, read_file_bytes(path), result.rejected);
         if (result.binary)
             return result;
     } catch (const FileError& e) {
@@ -184,7 +226,8 @@ CacheLookup ProgramCache::load(std::uint64_t key) const {
     return result;
 }
 
-std::string ProgramCache::store(std::uint64_t key, const std::vector<unsigned char>& binary) const {
+std::string ProgramCache::store(std::uint64_t key, std::string_view key_text,
+                                const std::vector<unsigned char>& binary) const {
     if (directory_.empty())
         return "no cache directory (neither XDG_CACHE_HOME nor HOME is set)";
     std::error_code ec;
@@ -193,7 +236,7 @@ std::string ProgramCache::store(std::uint64_t key, const std::vector<unsigned ch
         return "cannot create '" + directory_.string() + "': " + ec.message();
     // Unsynced: after a crash an entry may be empty or partial, which load()
     // detects (size and checksum) and replaces.
-    const std::vector<unsigned char> bytes = encode(key, binary);
+    const std::vector<unsigned char> bytes = encode(key, key_text, binary);
     try {
         write_bytes_atomically(entry_path(key), bytes.data(), bytes.size(), Durability::Unsynced);
     } catch (const FileError& e) {

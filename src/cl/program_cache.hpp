@@ -4,21 +4,26 @@
 // $WAVEPATH_CACHE_DIR overrides both), one file per program, named by a
 // 64-bit FNV-1a hash of everything that decides the binary: the expanded
 // source text, the build options, and the device (its name and version, the
-// driver version and the platform version). Each file is a 40-byte header
-// followed by the binary that clGetProgramInfo(CL_PROGRAM_BINARIES) returned:
+// driver version and the platform version). Each file is a 40-byte header,
+// the key's text (program_cache_key_text: what the key hashes, in words),
+// then the binary that clGetProgramInfo(CL_PROGRAM_BINARIES) returned:
 //
 //   offset  size  field
 //        0     8  magic "WPCLBIN\0"
 //        8     4  format version (kProgramCacheFormat), little-endian
-//       12     4  reserved, 0
+//       12     4  key text size in bytes
 //       16     8  key (the hash that also names the file)
 //       24     8  payload size in bytes
-//       32     8  payload checksum (FNV-1a 64 of the payload)
+//       32     8  checksum (FNV-1a 64 of the key text, then the payload)
+//       40     .  key text, then payload
 //
-// A file that is short, has the wrong magic, version, key or size, or whose
-// checksum does not match is removed on load and never used; so is one the
-// driver rejects (see build_program). Writes go to a temporary file in the
-// same directory that is then renamed over the entry, so readers (and other
+// A file that is short, has the wrong magic, version, key, key text or size,
+// or whose checksum does not match is removed on load and never used; so is
+// one the driver rejects (see build_program). The key text is checked as
+// well as the hash because the hash alone names a file: a copied or crafted
+// file of another program, under this program's name and with its hash, is
+// refused by the text (options, source, device and driver) it was built from. Writes go to a
+// temporary file in the same directory that is then renamed over the entry, so readers (and other
 // processes writing the same entry) never see a partial file.
 #pragma once
 
@@ -33,7 +38,8 @@
 
 namespace wp {
 
-inline constexpr std::uint32_t kProgramCacheFormat = 1;
+// Format 1 had no key text; its entries are rejected and rebuilt.
+inline constexpr std::uint32_t kProgramCacheFormat = 2;
 inline constexpr std::size_t kProgramCacheHeaderSize = 40;
 
 // FNV-1a, 64 bits. `state` continues an earlier hash.
@@ -49,6 +55,12 @@ std::string device_cache_identity(const cl::Device& device);
 // two different (source, options, device) triples concatenate alike.
 std::uint64_t program_cache_key(std::string_view expanded_source, std::string_view options,
                                 std::string_view device_identity);
+
+// What the key hashes, as text stored in the entry and compared on load:
+// "source <FNV-1a 64 of the expanded source> <bytes>\noptions <options>\n
+// device <device identity>".
+std::string program_cache_key_text(std::string_view expanded_source, std::string_view options,
+                                   std::string_view device_identity);
 
 // Where the program cache lives by default: $WAVEPATH_CACHE_DIR if set, else
 // $XDG_CACHE_HOME/wavepath if that variable is an absolute path, else
@@ -87,20 +99,24 @@ class ProgramCache {
     const std::filesystem::path& directory() const { return directory_; }
     std::filesystem::path entry_path(std::uint64_t key) const;
 
-    // The entry's binary, if it is present and intact; a damaged or stale
-    // entry is removed and its fault returned in `rejected`.
-    CacheLookup load(std::uint64_t key) const;
+    // The entry's binary, if it is present, intact and built from key_text;
+    // a damaged, stale or foreign entry is removed and its fault returned in
+    // `rejected`.
+    CacheLookup load(std::uint64_t key, std::string_view key_text) const;
     // Stores atomically, creating the directory if needed. Returns "" on
     // success, else why not (the build goes on without the cache).
-    std::string store(std::uint64_t key, const std::vector<unsigned char>& binary) const;
+    std::string store(std::uint64_t key, std::string_view key_text,
+                      const std::vector<unsigned char>& binary) const;
     void remove(std::uint64_t key) const;
 
-    // An entry file's bytes: header plus payload.
-    static std::vector<unsigned char> encode(std::uint64_t key,
+    // An entry file's bytes: header, key text and payload.
+    static std::vector<unsigned char> encode(std::uint64_t key, std::string_view key_text,
                                              const std::vector<unsigned char>& binary);
     // The payload of an entry's bytes, or the reason it is unusable.
-    static std::optional<std::vector<unsigned char>>
-    decode(std::uint64_t key, const std::vector<unsigned char>& bytes, std::string& fault);
+    static std::optional<std::vector<unsigned char>> decode(std::uint64_t key,
+                                                            std::string_view key_text,
+                                                            const std::vector<unsigned char>& bytes,
+                                                            std::string& fault);
 
   private:
     std::filesystem::path directory_;

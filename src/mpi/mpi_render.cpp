@@ -11,6 +11,7 @@
 
 #include "cl/device.hpp"
 #include "cl/error.hpp"
+#include "render/checkpoint.hpp"
 
 namespace wp {
 namespace {
@@ -226,18 +227,69 @@ class MpiPeers : public RenderPeers {
     std::vector<double> done_; // samples per pixel finished this call, per rank
 };
 
+// What a rank's samples depend on: the checkpoints' identity (scene
+// content, film shape, options with the kernels' build options, version), so
+// that a rank started with another scene or other options is caught before
+// its samples are mixed into the image.
+nlohmann::json fingerprint_json(const CheckpointIdentity& id) {
+    return {{"scene", id.scene_hash},
+            {"width", id.width},
+            {"height", id.height},
+            {"options", id.options},
+            {"version", id.version}};
+}
+
+CheckpointIdentity fingerprint_from_json(const nlohmann::json& j) {
+    return {j.at("scene"), j.at("width"), j.at("height"), j.at("options"), j.at("version")};
+}
+
+// The first word of `a` that differs from `b`'s ("estimator=camera").
+std::string first_difference(const std::string& a, const std::string& b) {
+    std::size_t i = 0;
+    while (i < a.size() && i < b.size() && a[i] == b[i])
+        ++i;
+    const std::size_t start = a.rfind(' ', i == 0 ? 0 : i - 1);
+    const std::size_t from = start == std::string::npos ? 0 : start + 1;
+    const std::size_t end = a.find(' ', i);
+    return a.substr(from, end == std::string::npos ? std::string::npos : end - from);
+}
+
+// "" if rank r's render is rank 0's, else what differs, in words.
+std::string disagreement(const CheckpointIdentity& mine, const CheckpointIdentity& theirs) {
+    const auto quote = [](const std::string& word) {
+        return "'" + (word.empty() ? std::string("(nothing)") : word) + "'";
+    };
+    if (theirs.width != mine.width || theirs.height != mine.height)
+        return "its film is " + std::to_string(theirs.width) + "x" + std::to_string(theirs.height) +
+               ", rank 0's " + std::to_string(mine.width) + "x" + std::to_string(mine.height) +
+               " (other --width/--height or scene resolution)";
+    if (theirs.scene_hash != mine.scene_hash)
+        return "its scene differs from rank 0's (another scene file, or other contents or "
+               "meshes)";
+    if (theirs.options != mine.options)
+        return "its options differ from rank 0's: " +
+               quote(first_difference(theirs.options, mine.options)) + " where rank 0 has " +
+               quote(first_difference(mine.options, theirs.options));
+    if (theirs.version != mine.version)
+        return "it runs " + theirs.version + ", rank 0 " + mine.version;
+    return "";
+}
+
 struct StartReport {
     bool ok = false;
     std::uint32_t devices = 0;
     std::string host;
     std::string error;
+    CheckpointIdentity fingerprint; // when ok
 };
 
 std::vector<StartReport> hear_start_reports(const MpiJob& job) {
     std::vector<StartReport> reports(job.size());
     for (int r = 1; r < job.size(); ++r) {
         const nlohmann::json j = nlohmann::json::parse(job.receive_text(r, kStart));
-        reports[r] = {j.at("ok"), j.at("devices"), j.at("host"), j.at("error")};
+        reports[r] = {j.at("ok"), j.at("devices"), j.at("host"), j.at("error"), {}};
+        if (reports[r].ok)
+            reports[r].fingerprint = fingerprint_from_json(j.at("fingerprint"));
     }
     return reports;
 }
@@ -272,6 +324,18 @@ std::unique_ptr<MultiDeviceRenderer> open_mpi_renderer(MpiJob& job, const Scene&
     bool go = !failure;
     for (int r = 1; r < job.size(); ++r)
         go = go && reports[r].ok;
+    // Every rank must render the same image, or its samples would be mixed
+    // silently into another's.
+    std::string disagreeing;
+    if (go) {
+        const CheckpointIdentity mine =
+            checkpoint_identity(scene, options, renderer->integrator().program().options);
+        for (int r = 1; r < job.size() && disagreeing.empty(); ++r)
+            if (const std::string what = disagreement(mine, reports[r].fingerprint); !what.empty())
+                disagreeing = job.name_of(r) + " (" + reports[r].host +
+                              ") does not render what rank 0 does: " + what;
+        go = disagreeing.empty();
+    }
     answer_start(job, go);
     if (failure)
         std::rethrow_exception(failure);
@@ -279,6 +343,8 @@ std::unique_ptr<MultiDeviceRenderer> open_mpi_renderer(MpiJob& job, const Scene&
         if (!reports[r].ok)
             throw std::runtime_error(job.name_of(r) + " (" + reports[r].host +
                                      "): " + reports[r].error);
+    if (!disagreeing.empty())
+        throw std::runtime_error(disagreeing);
 
     std::vector<std::uint32_t> per_rank(job.size(), 0);
     std::vector<std::string> hosts(job.size(), job.host());
@@ -306,6 +372,8 @@ int run_mpi_worker(MpiJob& job, const std::function<Scene()>& load_scene,
             std::cerr << "wavepath: warning: " << who << ": " << line << "\n";
         });
         report["devices"] = renderer->device_count();
+        report["fingerprint"] = fingerprint_json(
+            checkpoint_identity(scene, options, renderer->integrator().program().options));
     } catch (...) {
         report["ok"] = false;
         report["error"] = exception_text(std::current_exception());

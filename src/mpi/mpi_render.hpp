@@ -8,8 +8,11 @@
 // adds in rank order. Only rank 0 writes outputs.
 //
 // The protocol, by message tag (rank r and rank 0):
-//   start   r -> 0  JSON {ok, devices, error}: could r open its devices and the scene?
-//   go      0 -> r  1 to render, 0 to give up (some rank could not start)
+//   start   r -> 0  JSON {ok, devices, error, fingerprint}: could r open its
+//                   devices and the scene, and what does it render (scene
+//                   content, film shape, options: render/checkpoint.hpp)?
+//   go      0 -> r  1 to render, 0 to give up (some rank could not start, or
+//                   renders something else than rank 0)
 //   request r -> 0  samples per pixel completed since r's last request
 //   reply   0 -> r  {kind, first, count}: a chunk; "done" (this call has no
 //                   more: send the film); "end" (the render is over)
@@ -34,7 +37,10 @@ namespace wp {
 
 // On rank 0: opens the local devices, hears every rank's start-up report,
 // and returns the renderer with the other ranks attached; throws the first
-// rank's error ("rank 2 of 4 (host): no OpenCL device ...") if any failed.
+// rank's error ("rank 2 of 4 (host): no OpenCL device ...") if any failed,
+// or names the first rank whose fingerprint differs from rank 0's and what
+// differs ("rank 1 of 2 (host) does not render what rank 0 does: its
+// options differ from rank 0's: 'estimator=...' where rank 0 has ...").
 std::unique_ptr<MultiDeviceRenderer> open_mpi_renderer(MpiJob& job, const Scene& scene,
                                                        const std::string& devices,
                                                        const IntegratorOptions& options,

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstring>
 #include <string_view>
 #include <tuple>
@@ -270,6 +271,19 @@ FilmCheckpoint decode_checkpoint(const std::vector<unsigned char>& bytes, const 
     }
     if (r.u64("checksum") != checksum)
         r.fail("damaged: its checksum does not match its contents");
+    // The kernels drop non-finite samples (counted as NaN/Inf in the summary),
+    // so a saved film's sums are finite: a NaN here is a crafted or damaged
+    // file whose checksum was made to match, and it would resume into a NaN
+    // image while the summary reported no NaN sample.
+    const char* const sum_names[] = {"sum", "sum of squares", "odd-sample sum"};
+    int which = 0;
+    for (const std::vector<double>* a : {&sums.sum, &sums.sum_squares, &sums.odd_sum}) {
+        for (std::size_t i = 0; i < a->size(); ++i)
+            if (!std::isfinite((*a)[i]))
+                r.fail("damaged: pixel " + std::to_string(i / 3) + "'s " + sum_names[which] +
+                       " is not finite (" + std::to_string((*a)[i]) + ")");
+        ++which;
+    }
     // Written only between render() calls, where every pixel holds every
     // sample index below samples_per_pixel, half of them odd.
     for (std::size_t p = 0; p < pixels; ++p)

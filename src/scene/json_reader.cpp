@@ -243,12 +243,7 @@ std::string number_text(double x) {
 }
 
 std::string shorten(const std::string& s, std::size_t n) {
-    if (s.size() <= n)
-        return s;
-    std::size_t cut = n;
-    while (cut > 0 && (static_cast<unsigned char>(s[cut]) & 0xC0) == 0x80)
-        --cut;
-    return s.substr(0, cut) + "...";
+    return excerpt(s, n);
 }
 
 std::string pointer_text(const Pointer& p) {

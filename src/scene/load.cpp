@@ -434,6 +434,7 @@ class SceneReader : private json::Reader {
             options.transform = read_transform(*this, *it, p / "transform");
 
         TriangleMesh mesh;
+        scene_.files.push_back((folder_ / file).string());
         try {
             mesh = load_mesh(folder_ / file, options);
         } catch (const MeshError& e) {

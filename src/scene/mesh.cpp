@@ -31,7 +31,8 @@ MeshError MeshError::at_line(const std::filesystem::path& file, std::size_t line
 
 MeshError MeshError::at_element(const std::filesystem::path& file, const std::string& element,
                                 std::size_t index, const std::string& message) {
-    return MeshError(file.string() + ": " + element + " " + std::to_string(index) + ": " + message);
+    return MeshError(file.string() + ": " + excerpt(element) + " " + std::to_string(index) + ": " +
+                     message);
 }
 
 namespace {
@@ -167,7 +168,8 @@ std::vector<std::uint32_t> resolve_materials(const TriangleMesh& mesh,
         if (it != by_name.end())
             scene_index[m] = it->second;
         else
-            warnings.push_back(one_line(mesh.source + ": usemtl '" + mesh.material_names[m] +
+            warnings.push_back(one_line(mesh.source + ": usemtl '" +
+                                        excerpt(mesh.material_names[m]) +
                                         "' is not a scene material; its faces get the object's "
                                         "material"));
     }

@@ -26,6 +26,7 @@
 #include "scene/mesh.hpp"
 #include "scene/parse_number.hpp"
 #include "scene/polygon_mesh.hpp"
+#include "util/one_line.hpp"
 
 namespace wp {
 
@@ -44,6 +45,8 @@ enum Kind { Position = 0, Texcoord = 1, Normal = 2 };
 constexpr const char* kind_name[] = {"vertex", "texture", "normal"};
 constexpr const char* kind_plural[] = {"vertices", "texture coordinates", "normals"};
 
+constexpr std::string_view kByteOrderMark = "\xEF\xBB\xBF";
+
 // The check pass described at the top of the file.
 class ObjCheck {
   public:
@@ -53,6 +56,13 @@ class ObjCheck {
     void run() {
         std::size_t line_number = 0;
         std::size_t pos = 0;
+        // A UTF-8 byte-order mark (Windows editors write one) would make the
+        // first line's keyword unknown: that line would be dropped, and the
+        // faces indexing it reported out of range. Both passes skip it.
+        if (text_.compare(0, kByteOrderMark.size(), kByteOrderMark) == 0) {
+            pos = kByteOrderMark.size();
+            copied_ = true;
+        }
         while (pos < text_.size()) {
             std::size_t end = text_.find('\n', pos);
             if (end == std::string::npos)
@@ -95,13 +105,13 @@ class ObjCheck {
     bool every_corner_has_normal = true;
 
     // What tinyobjloader reads: the file itself, or, when the file has a
-    // statement that is not used (see check_line) or a carriage return inside
-    // a line (tinyobjloader ends a line there, the check does not), a copy with
-    // those lines blank and those returns spaces. So tinyobjloader sees exactly
-    // the lines the check saw, and none of the statements whose parsers have
-    // undefined behaviour on hostile numbers (a `vw` skin weight's joint id of
-    // 1e309 is converted to int: found by obj_fuzzer). Blank lines keep the
-    // line numbers.
+    // statement that is not used (see check_line), a carriage return inside
+    // a line (tinyobjloader ends a line there, the check does not) or a
+    // byte-order mark, a copy with those lines blank, those returns spaces
+    // and no mark. So tinyobjloader sees exactly the lines the check saw, and
+    // none of the statements whose parsers have undefined behaviour on
+    // hostile numbers (a `vw` skin weight's joint id of 1e309 is converted to
+    // int: found by obj_fuzzer). Blank lines keep the line numbers.
     const std::string& text_for_tinyobjloader() const { return copied_ ? copy_ : text_; }
 
   private:
@@ -158,11 +168,10 @@ class ObjCheck {
                 fail(n, std::string(what) + " needs three coordinates, got " + std::to_string(i));
             double x = 0.0;
             if (!parse_double(token, x))
-                fail(n, "cannot read " + std::string(what) + " coordinate '" + std::string(token) +
-                            "'");
+                fail(n,
+                     "cannot read " + std::string(what) + " coordinate '" + excerpt(token) + "'");
             if (!std::isfinite(x))
-                fail(n, std::string(what) + " coordinate is not finite ('" + std::string(token) +
-                            "')");
+                fail(n, std::string(what) + " coordinate is not finite ('" + excerpt(token) + "')");
             length2 += x * x;
         }
         return length2;
@@ -182,10 +191,10 @@ class ObjCheck {
                     break;
                 t.remove_prefix(slash + 1);
                 if (parts == 3)
-                    fail(n, "cannot read face corner '" + std::string(token) + "'");
+                    fail(n, "cannot read face corner '" + excerpt(token) + "'");
             }
             if (part[Position].empty())
-                fail(n, "cannot read face corner '" + std::string(token) + "'");
+                fail(n, "cannot read face corner '" + excerpt(token) + "'");
             for (std::size_t k = 0; k < parts; ++k)
                 if (!part[k].empty())
                     check_index(part[k], static_cast<Kind>(k), token, n);
@@ -202,7 +211,7 @@ class ObjCheck {
     void check_index(std::string_view part, Kind kind, std::string_view token, std::size_t n) {
         std::int64_t index = 0;
         if (!parse_integer(part, index))
-            fail(n, "cannot read face corner '" + std::string(token) + "'");
+            fail(n, "cannot read face corner '" + excerpt(token) + "'");
         const std::string what = std::string("face ") + kind_name[kind] + " index ";
         if (index == 0)
             fail(n, what + "0 is invalid (OBJ indices start at 1)");

@@ -25,6 +25,7 @@
 #include "scene/mesh.hpp"
 #include "scene/parse_number.hpp"
 #include "scene/polygon_mesh.hpp"
+#include "util/one_line.hpp"
 
 namespace wp {
 
@@ -70,6 +71,40 @@ std::size_t size_of(ScalarType t) {
 
 bool is_integer(ScalarType t) {
     return t != ScalarType::Float32 && t != ScalarType::Float64;
+}
+
+// The name the header gave the type first in scalar_type_names ("uchar").
+std::string_view type_name(ScalarType t) {
+    for (const ScalarTypeName& n : scalar_type_names)
+        if (n.type == t)
+            return n.name;
+    return "?";
+}
+
+// The values an integer type holds. A binary body cannot hold others, but an
+// ASCII one can ("300" as a uchar list count).
+struct IntegerRange {
+    std::int64_t lowest;
+    std::int64_t highest;
+};
+IntegerRange integer_range(ScalarType t) {
+    switch (t) {
+    case ScalarType::Int8:
+        return {INT8_MIN, INT8_MAX};
+    case ScalarType::UInt8:
+        return {0, UINT8_MAX};
+    case ScalarType::Int16:
+        return {INT16_MIN, INT16_MAX};
+    case ScalarType::UInt16:
+        return {0, UINT16_MAX};
+    case ScalarType::Int32:
+        return {INT32_MIN, INT32_MAX};
+    case ScalarType::UInt32:
+    case ScalarType::Float32:
+    case ScalarType::Float64:
+        break;
+    }
+    return {0, UINT32_MAX};
 }
 
 // What a property means to us; everything else is read and skipped.
@@ -144,7 +179,7 @@ class HeaderParser {
                 else if (f == "binary_big_endian")
                     header.format = Format::BinaryBigEndian;
                 else
-                    fail(n, "unknown PLY format '" + std::string(f) + "'");
+                    fail(n, "unknown PLY format '" + excerpt(f) + "'");
                 have_format = true;
             } else if (keyword == "element") {
                 header.elements.push_back(element(rest, n, header.elements));
@@ -153,7 +188,7 @@ class HeaderParser {
                     fail(n, "property before any element");
                 header.elements.back().properties.push_back(property(rest, n));
             } else {
-                fail(n, "unknown PLY header line '" + std::string(line) + "'");
+                fail(n, "unknown PLY header line '" + excerpt(line) + "'");
             }
         }
         for (Element& e : header.elements)
@@ -177,7 +212,7 @@ class HeaderParser {
         e.line = n;
         for (const Element& p : previous)
             if (p.name == e.name)
-                fail(n, "element '" + e.name + "' appears twice");
+                fail(n, "element '" + excerpt(e.name) + "' appears twice");
         return e;
     }
 
@@ -185,7 +220,7 @@ class HeaderParser {
         for (const ScalarTypeName& t : scalar_type_names)
             if (t.name == word)
                 return t.type;
-        fail(n, "unknown PLY property type '" + std::string(word) + "'");
+        fail(n, "unknown PLY property type '" + excerpt(word) + "'");
     }
 
     Property property(std::string_view rest, std::size_t n) {
@@ -209,8 +244,8 @@ class HeaderParser {
         for (std::size_t i = 0; i < e.properties.size(); ++i)
             for (std::size_t j = 0; j < i; ++j)
                 if (e.properties[i].name == e.properties[j].name)
-                    fail(e.line, "element '" + e.name + "' has property '" + e.properties[i].name +
-                                     "' twice");
+                    fail(e.line, "element '" + excerpt(e.name) + "' has property '" +
+                                     excerpt(e.properties[i].name) + "' twice");
         if (e.name == "vertex") {
             e.kind = ElementKind::Vertex;
             const std::pair<const char*, Role> slots[] = {{"x", Role::X},   {"y", Role::Y},
@@ -239,9 +274,10 @@ class HeaderParser {
             if (!p && face)
                 p = find(e, "vertex_index");
             if (!p)
-                fail(e.line, e.name + " element has no vertex_indices list");
+                fail(e.line, excerpt(e.name) + " element has no vertex_indices list");
             if (!p->is_list || !is_integer(p->type))
-                fail(e.line, e.name + " property '" + p->name + "' must be a list of integers");
+                fail(e.line, excerpt(e.name) + " property '" + excerpt(p->name) +
+                                 "' must be a list of integers");
             p->role = face ? Role::FaceIndices : Role::StripIndices;
         }
     }
@@ -356,12 +392,13 @@ class AsciiSource {
         return true;
     }
 
-    bool integer(ScalarType, std::int64_t& out) {
+    bool integer(ScalarType t, std::int64_t& out) {
         std::string_view w;
         if (!word(w))
             return false;
         if (!parse_integer(w, out))
             bad(w, "an integer");
+        check_fits(t, out);
         return true;
     }
 
@@ -387,9 +424,23 @@ class AsciiSource {
         return !w.empty();
     }
 
+    // List counts and entries only: else a count of 300 declared uchar is read
+    // as 300, and the entries it claims reported as a truncated file. (A scalar
+    // past its type, a colour of 300, is read as written: its meaning is plain.)
+    void check_fits(ScalarType t, std::int64_t value) const {
+        if (!is_integer(t))
+            return; // an integer where floats are declared: the float is exact enough
+        const IntegerRange range = integer_range(t);
+        if (value < range.lowest || value > range.highest)
+            throw BodyProblem{"line " + std::to_string(line_) + ": " + std::to_string(value) +
+                              " does not fit the declared type " + std::string(type_name(t)) +
+                              " (" + std::to_string(range.lowest) + " to " +
+                              std::to_string(range.highest) + ")"};
+    }
+
     [[noreturn]] void bad(std::string_view w, const char* expected) const {
         throw BodyProblem{"line " + std::to_string(line_) + ": expected " + expected + ", got '" +
-                          std::string(w) + "'"};
+                          excerpt(w) + "'"};
     }
 
     const char* p_;
@@ -465,7 +516,8 @@ template <class Source> class BodyReader {
             if (!in_.integer(p.count_type, n))
                 truncated();
             if (n < 0)
-                throw BodyProblem{"list '" + p.name + "' has negative length " + std::to_string(n)};
+                throw BodyProblem{"list '" + excerpt(p.name) + "' has negative length " +
+                                  std::to_string(n)};
             if (p.role == Role::Skip) {
                 if (!in_.skip(p.type, static_cast<std::uint64_t>(n)))
                     truncated();

@@ -101,6 +101,9 @@ struct Sphere {
 
 struct Scene {
     std::string source; // file name the scene came from, for messages
+    // The other files it read (its meshes), as opened, in order: outputs
+    // must not overwrite any of them (app/commands.hpp).
+    std::vector<std::string> files;
     Camera camera;
     std::vector<Material> materials;
     std::vector<Triangle> triangles; // quads and meshes are split into triangles

@@ -69,11 +69,34 @@ void collect(const fs::path& dir, int depth, const CacheBound& bound, std::vecto
     }
 }
 
+std::size_t remove_stale(const fs::path& dir, const CacheBound& bound) {
+    if (bound.stale_prefix.empty())
+        return 0;
+    const auto cutoff = fs::file_time_type::clock::now() - bound.stale_after;
+    std::size_t removed = 0;
+    std::error_code ec;
+    for (auto it = fs::directory_iterator(dir, ec); !ec && it != fs::directory_iterator();
+         it.increment(ec)) {
+        if (it->path().filename().string().rfind(bound.stale_prefix, 0) != 0)
+            continue;
+        std::error_code item_ec;
+        if (!it->is_regular_file(item_ec) || item_ec)
+            continue;
+        const auto written = it->last_write_time(item_ec);
+        if (item_ec || written > cutoff)
+            continue;
+        if (fs::remove(it->path(), item_ec) && !item_ec)
+            ++removed;
+    }
+    return removed;
+}
+
 } // namespace
 
 CachePruning bound_cache(const fs::path& dir, const CacheBound& bound) {
     CachePruning result;
     try {
+        result.stale_removed = remove_stale(dir, bound);
         std::vector<Entry> entries;
         collect(dir, std::max(bound.depth, 1), bound, entries);
         for (const Entry& e : entries)

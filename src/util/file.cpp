@@ -10,6 +10,8 @@
 #include <system_error>
 
 #include <fcntl.h>
+#include <grp.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace wp {
@@ -103,6 +105,106 @@ void sync_file(const fs::path& file) {
         throw FileError(cannot("flush temporary file", file), errno_text(err));
 }
 
+// What a non-regular file is, for messages ("a FIFO").
+const char* kind_of(mode_t mode) {
+    if (S_ISDIR(mode))
+        return "a directory";
+    if (S_ISCHR(mode))
+        return "a character device";
+    if (S_ISBLK(mode))
+        return "a block device";
+    if (S_ISFIFO(mode))
+        return "a FIFO";
+    if (S_ISSOCK(mode))
+        return "a socket";
+    return "not a regular file";
+}
+
+// Whether the file's permission bits let this process's user write it: by
+// the owner, group or other class the user falls in, as ls shows them. Not
+// access(2), which says yes to root for any file: a file someone marked
+// read-only stays theirs to replace, whoever runs wavepath.
+bool mode_allows_writing(const struct stat& st) {
+    if (st.st_uid == ::geteuid())
+        return (st.st_mode & S_IWUSR) != 0;
+    bool in_group = st.st_gid == ::getegid();
+    if (!in_group) {
+        gid_t groups[256];
+        const int count = ::getgroups(256, groups);
+        for (int i = 0; i < count && !in_group; ++i)
+            in_group = groups[i] == st.st_gid;
+    }
+    return (st.st_mode & (in_group ? S_IWGRP : S_IWOTH)) != 0;
+}
+
+// How an existing output is to be written. Regular files (and new names) are
+// replaced by a rename; a character device (/dev/null) or a FIFO is written
+// through, since renaming over it would replace the device node itself;
+// anything else is refused. Throws FileError "<action>: <reason>".
+enum class OutputKind { Replace, WriteThrough };
+OutputKind output_kind(const fs::path& path, const std::string& action) {
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0)
+        return OutputKind::Replace; // a new file (or a dangling link, replaced as before)
+    if (S_ISREG(st.st_mode)) {
+        if (!mode_allows_writing(st))
+            throw FileError(action, "the file is read-only (its permissions do not let this "
+                                    "user write it); remove it or change its mode first");
+        return OutputKind::Replace;
+    }
+    if (S_ISDIR(st.st_mode))
+        throw FileError(action, "it is a directory");
+    if (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode))
+        return OutputKind::WriteThrough;
+    throw FileError(action, std::string("it is ") + kind_of(st.st_mode) +
+                                "; outputs must be regular files, character devices or FIFOs");
+}
+
+// Writes `temp`'s bytes into the existing device or FIFO at `path`, which is
+// opened, never replaced. A FIFO with no reader is an error, not a wait.
+// Throws the bare reason; write_file_atomically names the path.
+void copy_into(const fs::path& temp, const fs::path& path) {
+    const int in = ::open(temp.c_str(), O_RDONLY | O_CLOEXEC);
+    if (in < 0)
+        throw FileError(cannot("reopen temporary file", temp), errno_text(errno));
+    const int out = ::open(path.c_str(), O_WRONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
+    if (out < 0) {
+        const int err = errno;
+        ::close(in);
+        // The caller's message names the path: just the reason here.
+        throw std::runtime_error(err == ENXIO ? "no process is reading the FIFO" : errno_text(err));
+    }
+    // Blocking from here on: a reader that is slow must not make the write fail.
+    ::fcntl(out, F_SETFL, ::fcntl(out, F_GETFL) & ~O_NONBLOCK);
+    char buffer[1 << 16];
+    int err = 0;
+    for (;;) {
+        const ssize_t n = ::read(in, buffer, sizeof buffer);
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n < 0) {
+            err = errno;
+            break;
+        }
+        if (n == 0)
+            break;
+        for (ssize_t done = 0; done < n && err == 0;) {
+            const ssize_t w = ::write(out, buffer + done, static_cast<std::size_t>(n - done));
+            if (w < 0 && errno != EINTR)
+                err = errno;
+            else if (w > 0)
+                done += w;
+        }
+        if (err != 0)
+            break;
+    }
+    ::close(in);
+    if (::close(out) != 0 && err == 0)
+        err = errno;
+    if (err != 0)
+        throw std::runtime_error(errno_text(err));
+}
+
 } // namespace
 
 std::string errno_text(int err) {
@@ -117,18 +219,34 @@ std::string lower_extension(const fs::path& path) {
 }
 
 std::vector<unsigned char> read_file_bytes(const fs::path& path) {
-    // fopen succeeds on a directory on Linux; report it as the open error it really is.
-    std::error_code ec;
-    if (fs::is_directory(path, ec))
-        throw FileError(cannot("open", path), errno_text(EISDIR));
-    const std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
-    if (!file)
+    // Only regular files: a FIFO would block until a writer comes (for ever,
+    // and before any signal handler can help), and a device such as
+    // /dev/zero never ends. stat first, so that opening is never what blocks;
+    // O_NONBLOCK and fstat after, for a file swapped in between.
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0)
         throw FileError(cannot("open", path), errno_text(errno));
-    // Read in chunks rather than trusting a size from stat: the file may be a pipe or
-    // change while we read, and this way the bytes returned are exactly the bytes read.
+    if (S_ISDIR(st.st_mode))
+        throw FileError(cannot("open", path), errno_text(EISDIR));
+    if (!S_ISREG(st.st_mode))
+        throw FileError(cannot("open", path),
+                        std::string("it is ") + kind_of(st.st_mode) + ", not a regular file");
+    const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0)
+        throw FileError(cannot("open", path), errno_text(errno));
+    const std::unique_ptr<std::FILE, FileCloser> file(::fdopen(fd, "rb"));
+    if (!file) {
+        const int err = errno;
+        ::close(fd);
+        throw FileError(cannot("open", path), errno_text(err));
+    }
+    if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode))
+        throw FileError(cannot("open", path), "it is not a regular file");
+    // Read in chunks rather than trusting the size from stat: the file may
+    // change while we read, and this way the bytes returned are exactly the
+    // bytes read.
     std::vector<unsigned char> bytes;
-    if (const auto hint = fs::file_size(path, ec); !ec)
-        bytes.reserve(static_cast<std::size_t>(hint));
+    bytes.reserve(static_cast<std::size_t>(st.st_size));
     unsigned char chunk[1 << 16];
     for (;;) {
         const std::size_t n = std::fread(chunk, 1, sizeof chunk, file.get());
@@ -158,9 +276,9 @@ void check_parent_directory(const fs::path& path) {
 void check_writable(const fs::path& path) {
     check_parent_directory(path);
     const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
-    std::error_code ec;
-    if (fs::is_directory(path, ec))
-        throw FileError(cannot("write", path), "it is a directory");
+    // A device or FIFO is written through, with the temporary file elsewhere.
+    if (output_kind(path, cannot("write", path)) == OutputKind::WriteThrough)
+        return;
     const long name_max = ::pathconf(dir.c_str(), _PC_NAME_MAX);
     const std::size_t limit = name_max > 0 ? static_cast<std::size_t>(name_max) : NAME_MAX;
     const std::size_t name = path.filename().native().size();
@@ -204,13 +322,25 @@ void write_file_atomically(const fs::path& path,
     if (path.empty() || !path.has_filename())
         throw FileError(action, "not a file name");
     check_parent_directory(path);
+    const OutputKind kind = output_kind(path, action);
 
     fs::path temp;
     std::error_code ec;
     try {
-        temp = create_temp_file(path.has_parent_path() ? path.parent_path() : fs::path("."), path);
+        // Written through: the whole output is made first (a failing writer
+        // sends nothing), in the temporary directory, since a device's
+        // directory (/dev) need not take new files.
+        const fs::path dir = kind == OutputKind::WriteThrough ? fs::temp_directory_path()
+                             : path.has_parent_path()         ? path.parent_path()
+                                                              : fs::path(".");
+        temp = create_temp_file(dir, path);
         const PendingTempGuard pending(temp);
         write(temp);
+        if (kind == OutputKind::WriteThrough) {
+            copy_into(temp, path);
+            fs::remove(temp, ec);
+            return;
+        }
         if (durability == Durability::Synced)
             sync_file(temp);
         if (std::rename(temp.c_str(), path.c_str()) != 0)

@@ -34,7 +34,9 @@ std::string errno_text(int err);
 std::string lower_extension(const std::filesystem::path& path);
 
 // The file's contents. Throws FileError "cannot open '<path>': <reason>" (a
-// directory is "Is a directory") or "cannot read '<path>': <reason>".
+// directory is "Is a directory"; a FIFO, device or socket "it is a FIFO, not
+// a regular file", refused without opening it, so that no read blocks or
+// runs without end) or "cannot read '<path>': <reason>".
 std::vector<unsigned char> read_file_bytes(const std::filesystem::path& path);
 std::string read_file_text(const std::filesystem::path& path);
 
@@ -46,8 +48,10 @@ void check_parent_directory(const std::filesystem::path& path);
 // write_file_atomically could write path: its directory exists and takes new
 // files (tried by creating and removing one), path is not a directory, and
 // its name leaves room for the temporary file's suffix within the
-// filesystem's name limit. For commands that check their outputs before
-// hours of work, not after.
+// filesystem's name limit; an existing file at path is one its permission
+// bits let this user write, or a character device or FIFO (written
+// through, see below), not a block device or socket. For commands that
+// check their outputs before hours of work, not after.
 void check_writable(const std::filesystem::path& path);
 
 // The path with symbolic links, "." and ".." resolved, for telling whether
@@ -74,6 +78,13 @@ enum class Durability { Synced, Unsynced };
 // complete one. If the writer throws or any step fails, the temporary file
 // is removed, whatever was at path before is left untouched, and a FileError
 // "cannot write '<path>': <reason>" is thrown.
+//
+// What is never replaced: an existing file whose permission bits do not let
+// this user write it (even root: someone marked it read-only), a directory,
+// a block device or a socket are refused with that FileError. A character
+// device (/dev/null) or a FIFO is written through instead: the whole output
+// is made in a temporary file in the system's temporary directory and then
+// written into it; a FIFO with no reader is an error, not a wait.
 void write_file_atomically(const std::filesystem::path& path,
                            const std::function<void(const std::filesystem::path& temp)>& write,
                            Durability durability = Durability::Synced);

@@ -42,4 +42,13 @@ std::string one_line(std::string s) {
     return s;
 }
 
+std::string excerpt(std::string_view s, std::size_t max_bytes) {
+    if (s.size() <= max_bytes)
+        return std::string(s);
+    std::size_t cut = max_bytes;
+    while (cut > 0 && (static_cast<unsigned char>(s[cut]) & 0xC0) == 0x80)
+        --cut; // s[cut] continues a sequence: cut before the sequence's start
+    return std::string(s.substr(0, cut)) + "...";
+}
+
 } // namespace wp

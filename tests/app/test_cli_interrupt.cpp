@@ -141,3 +141,37 @@ TEST_CASE("cli: commands other than render keep Ctrl-C's immediate effect") {
     REQUIRE(WIFSIGNALED(status));
     CHECK(WTERMSIG(status) == SIGINT);
 }
+
+TEST_CASE("cli: before the render has begun, the first signal ends the process at once") {
+    Scratch s;
+    // Empty kernel caches: the process spends seconds building kernels, and
+    // the signal comes while it does (it is not rendering yet).
+    const fs::path cache = s.dir / "cache", pocl = s.dir / "pocl";
+    fs::create_directories(pocl);
+    ::setenv("WAVEPATH_CACHE_DIR", cache.c_str(), 1);
+    ::setenv("POCL_CACHE_DIR", pocl.c_str(), 1);
+    Child child({"render", kScene, "--width", "8", "--height", "8", "--spp", kManySamples, "--out",
+                 (s.dir / "never.exr").string()},
+                s);
+    ::unsetenv("WAVEPATH_CACHE_DIR");
+    ::unsetenv("POCL_CACHE_DIR");
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    if (child.err().find(" spp on ") != std::string::npos) {
+        WARN("skipped: the kernels were built within half a second");
+        child.signal(SIGKILL);
+        child.wait();
+        return;
+    }
+    const auto sent = std::chrono::steady_clock::now();
+    child.signal(SIGTERM);
+    const int status = child.wait();
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count();
+    INFO("stderr: " << child.err());
+    CHECK(WIFSIGNALED(status)); // ended by the signal, not after a wave and the outputs
+    CHECK((WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM));
+    CHECK(seconds < 5.0);
+    CHECK(child.err().find("finishing the current wave") == std::string::npos);
+    CHECK_FALSE(fs::exists(s.dir / "never.exr"));
+    CHECK(temporary_files(s.dir).empty());
+}

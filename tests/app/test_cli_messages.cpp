@@ -99,6 +99,10 @@ TEST_CASE("cli: the program cache and PoCL's kernel cache stay bounded") {
     };
     make(cache / "0000000000000000.clbin", 300ull << 20);
     make(cache / "pocl" / "ZZ" / "OLDPROGRAM" / "program.bc", 600ull << 20);
+    // What PoCL leaves behind: an empty temporary file, a day old, and one a
+    // compile might be writing now.
+    make(cache / "pocl" / "tempfile_AbC123", 0);
+    std::ofstream(cache / "pocl" / "tempfile_Now456").put('x');
     const std::string arguments = "render " + kHexroom + " --spp 1 --width 4 --height 4 --out '" +
                                   (s.dir / "x.pfm").string() + "'";
     Run run = wavepath(arguments, s, "WAVEPATH_CACHE_DIR='" + cache.string() + "' POCL_CACHE_DIR=");
@@ -106,6 +110,8 @@ TEST_CASE("cli: the program cache and PoCL's kernel cache stay bounded") {
     REQUIRE(run.exit_code == 0);
     CHECK_FALSE(fs::exists(cache / "0000000000000000.clbin"));
     CHECK_FALSE(fs::exists(cache / "pocl" / "ZZ" / "OLDPROGRAM"));
+    CHECK_FALSE(fs::exists(cache / "pocl" / "tempfile_AbC123"));
+    CHECK(fs::exists(cache / "pocl" / "tempfile_Now456"));
     // This run's kernels went to PoCL's cache, inside wavepath's; the
     // wavefront program itself is left to PoCL's cache (CacheOutcome::Driver).
     std::size_t programs = 0, pocl_files = 0;

@@ -93,3 +93,41 @@ TEST_CASE("cli mpi: a rank that cannot open its device ends the job with its err
     CHECK(stderr_text.find("no-such-device") != std::string::npos);
     CHECK_FALSE(fs::exists(image));
 }
+
+TEST_CASE("cli mpi: a rank that renders something else ends the job naming it and what differs") {
+    const std::string launcher = mpirun();
+    if (launcher.empty()) {
+        WARN("skipped: wavepath was built without MPI, or mpirun is absent");
+        return;
+    }
+    Scratch s;
+    const fs::path image = s.dir / "never.exr", err = s.dir / "mpi-err.txt";
+    const std::string rank0 =
+        " render " + kHexroom + " --spp 2 --width 8 --height 8 --out '" + image.string() + "'";
+    struct Case {
+        std::string rank1_flags;
+        std::string what;
+    };
+    for (const Case& c : {Case{" --path-types camera", "its options differ from rank 0's"},
+                          Case{" --width 16", "its film is 16x8, rank 0's 8x8"}}) {
+        INFO(c.rank1_flags);
+        // Rank 1's arguments: rank 0's with its --width replaced, or more flags.
+        std::string rank1 = rank0;
+        if (c.rank1_flags.rfind(" --width", 0) == 0)
+            rank1.replace(rank1.find(" --width 8"), 10, c.rank1_flags);
+        else
+            rank1 += c.rank1_flags;
+        const std::string command = "WAVEPATH_DEVICE='" + test_device_index() + "' " + launcher +
+                                    " -np 1 '" + WAVEPATH_EXE + "'" + rank0 + " : -np 1 '" +
+                                    WAVEPATH_EXE + "'" + rank1 + " >/dev/null 2>'" + err.string() +
+                                    "'";
+        const int status = std::system(command.c_str());
+        const std::string stderr_text = slurp(err);
+        INFO(stderr_text);
+        CHECK(status != 0);
+        CHECK(stderr_text.rfind("wavepath: error: rank 1 of 2 (", 0) ==
+              0); // the first line names the rank
+        CHECK(stderr_text.find("does not render what rank 0 does: " + c.what) != std::string::npos);
+        CHECK_FALSE(fs::exists(image));
+    }
+}

@@ -3,6 +3,7 @@
 // (headless Chromium, skipped when absent), and its stop button.
 #include <catch2/catch.hpp>
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -33,18 +34,26 @@ namespace {
 const std::string kScene = std::string(WAVEPATH_SOURCE_DIR) + "/scenes/hexroom.json";
 constexpr const char* kManySamples = "1000000"; // hours: it ends only by the stop
 
-// The port the render prints when it starts serving.
-int preview_port(const Child& child) {
+// Where the render serves its preview: the port, and the URL's path with
+// its per-run token ("/0123.../").
+struct Preview {
+    int port = 0;
+    std::string base;
+    std::string url() const { return "http://127.0.0.1:" + std::to_string(port) + base; }
+};
+
+// The preview the render prints when it starts serving.
+Preview preview_of(const Child& child) {
     const std::string err = child.wait_for_stderr("/ (its Stop button");
     std::smatch match;
-    REQUIRE(
-        std::regex_search(err, match, std::regex("preview at http://127\\.0\\.0\\.1:([0-9]+)/")));
-    return std::stoi(match[1]);
+    REQUIRE(std::regex_search(
+        err, match, std::regex("preview at http://127\\.0\\.0\\.1:([0-9]+)(/[0-9a-f]{32}/)")));
+    return {std::stoi(match[1]), match[2]};
 }
 
-std::string get(int port, const std::string& path) {
-    httplib::Client client("127.0.0.1", port);
-    const httplib::Result result = client.Get(path.c_str());
+std::string get(const Preview& preview, const std::string& path) {
+    httplib::Client client("127.0.0.1", preview.port);
+    const httplib::Result result = client.Get((preview.base + path).c_str());
     REQUIRE(result);
     REQUIRE(result->status == 200);
     return result->body;
@@ -59,9 +68,9 @@ double status_field(const std::string& status, const std::string& name) {
 }
 
 // Polls /status.json until the render holds at least `spp` samples per pixel.
-void wait_for_spp(int port, double spp) {
+void wait_for_spp(const Preview& preview, double spp) {
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(2);
-    while (!(status_field(get(port, "/status.json"), "spp") >= spp)) {
+    while (!(status_field(get(preview, "status.json"), "spp") >= spp)) {
         REQUIRE(std::chrono::steady_clock::now() < deadline);
         std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }
@@ -84,9 +93,9 @@ Rgb8 decode_png(const std::string& bytes) {
     return image;
 }
 
-void post_stop(int port) {
-    httplib::Client client("127.0.0.1", port);
-    const httplib::Result result = client.Post("/stop");
+void post_stop(const Preview& preview) {
+    httplib::Client client("127.0.0.1", preview.port);
+    const httplib::Result result = client.Post((preview.base + "stop").c_str());
     REQUIRE(result);
     CHECK(result->status == 200);
     CHECK(result->body == "stopping\n");
@@ -141,17 +150,17 @@ TEST_CASE("cli: the preview serves the current image and status, and POST /stop 
     Child child({"render", kScene, "--width", "48", "--height", "32", "--spp", kManySamples,
                  "--quiet", "--out", exr.string(), "--png", png.string(), "--preview", "0"},
                 s);
-    const int port = preview_port(child);
-    wait_for_spp(port, 4);
+    const Preview preview = preview_of(child);
+    wait_for_spp(preview, 4);
 
     // An image and the status published with it: the spp before and after
     // fetching the image agree (a publish comes at most once a second).
     std::string status, image_bytes;
     for (int attempt = 0;; ++attempt) {
         REQUIRE(attempt < 20);
-        status = get(port, "/status.json");
-        image_bytes = get(port, "/image.png");
-        if (status_field(get(port, "/status.json"), "spp") == status_field(status, "spp"))
+        status = get(preview, "status.json");
+        image_bytes = get(preview, "image.png");
+        if (status_field(get(preview, "status.json"), "spp") == status_field(status, "spp"))
             break;
     }
     INFO("status: " << status);
@@ -182,11 +191,11 @@ TEST_CASE("cli: the preview serves the current image and status, and POST /stop 
         wp::rel_mse_from_halves(film.half_mean(0), film.half_mean(1), spp - spp / 2, spp / 2);
     CHECK(status_field(status, "rel_mse") == Approx(estimate).epsilon(1e-5)); // 6 digits
 
-    const std::string page = get(port, "/");
+    const std::string page = get(preview, "");
     CHECK(page.find("<img id=\"view\"") != std::string::npos);
-    CHECK(page.find("/status.json") != std::string::npos);
+    CHECK(page.find("\"status.json\"") != std::string::npos);
 
-    post_stop(port);
+    post_stop(preview);
     check_stopped(child, exr, spp);
     CHECK(fs::file_size(png) > 0);
 }
@@ -203,8 +212,8 @@ TEST_CASE("cli: the preview page shows the image in a browser") {
                  std::to_string(height), "--spp", kManySamples, "--quiet", "--out", exr.string(),
                  "--png", final_png.string(), "--preview", "0"},
                 s);
-    const int port = preview_port(child);
-    wait_for_spp(port, 16);
+    const Preview preview = preview_of(child);
+    wait_for_spp(preview, 16);
 
     // Headless, a few seconds of the page's own time: it polls the status
     // and loads the image. --no-sandbox: Chromium's sandbox refuses root.
@@ -213,13 +222,12 @@ TEST_CASE("cli: the preview page shows the image in a browser") {
     const std::string command =
         "chromium --headless --no-sandbox --disable-gpu --hide-scrollbars --window-size=" +
         std::to_string(window_width) + "," + std::to_string(window_height) +
-        " --virtual-time-budget=3000 --screenshot='" + shot.string() +
-        "' http://127.0.0.1:" + std::to_string(port) + "/ >'" + (s.dir / "chromium.txt").string() +
-        "' 2>&1";
+        " --virtual-time-budget=3000 --screenshot='" + shot.string() + "' " + preview.url() +
+        " >'" + (s.dir / "chromium.txt").string() + "' 2>&1";
     const int browser = std::system(command.c_str());
     INFO("chromium: " << slurp(s.dir / "chromium.txt"));
     REQUIRE(browser == 0);
-    post_stop(port);
+    post_stop(preview);
     check_stopped(child, exr, 16);
 
     const Rgb8 screen = decode_png(slurp(shot));
@@ -264,6 +272,84 @@ TEST_CASE("cli: the preview page shows the image in a browser") {
     CHECK(hi - lo > 100.0);
 }
 
+namespace {
+
+// A client that connected to `port` and trickles a byte of a request line
+// now and then, never finishing it (a slow or hostile client).
+int open_trickling_client(int port) {
+    const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+    REQUIRE(fd >= 0);
+    sockaddr_in address{};
+    address.sin_family = AF_INET;
+    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    address.sin_port = htons(static_cast<std::uint16_t>(port));
+    REQUIRE(::connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) == 0);
+    REQUIRE(::send(fd, "G", 1, MSG_NOSIGNAL) == 1);
+    return fd;
+}
+
+int status_of(const httplib::Result& result) {
+    return result ? result->status : -1;
+}
+
+} // namespace
+
+TEST_CASE("cli: the preview needs its token, refuses other origins and hosts, and slow clients "
+          "neither starve it nor hold up the exit") {
+    Scratch s;
+    const fs::path exr = s.dir / "out.exr";
+    Child child({"render", kScene, "--width", "16", "--height", "16", "--spp", kManySamples,
+                 "--quiet", "--out", exr.string(), "--preview", "0"},
+                s);
+    const Preview preview = preview_of(child);
+    wait_for_spp(preview, 1);
+
+    httplib::Client client("127.0.0.1", preview.port);
+    client.set_connection_timeout(5);
+    client.set_read_timeout(5);
+    // Without the token: nothing, and no stop.
+    CHECK(status_of(client.Get("/status.json")) == 403);
+    CHECK(status_of(client.Get("/")) == 403);
+    CHECK(status_of(client.Post("/stop")) == 403);
+    // A page of another origin, and a name rebound to 127.0.0.1.
+    CHECK(status_of(client.Post((preview.base + "stop").c_str(),
+                                {{"Origin", "http://evil.example"}}, "", "text/plain")) == 403);
+    CHECK(status_of(client.Get((preview.base + "status.json").c_str(),
+                               {{"Host", "evil.example:" + std::to_string(preview.port)}})) == 403);
+    CHECK(get(preview, "status.json").find("\"state\": \"rendering\"") != std::string::npos);
+
+    // Eight clients that trickle bytes: the status is still served.
+    std::vector<int> slow;
+    for (int i = 0; i < 8; ++i)
+        slow.push_back(open_trickling_client(preview.port));
+    std::atomic<bool> trickling{true};
+    std::thread trickle([&] {
+        while (trickling) {
+            for (const int fd : slow)
+                ::send(fd, "E", 1, MSG_NOSIGNAL); // fails once the server dropped it
+            std::this_thread::sleep_for(std::chrono::milliseconds(300));
+        }
+    });
+    const auto before = std::chrono::steady_clock::now();
+    CHECK(status_of(client.Get((preview.base + "status.json").c_str())) == 200);
+    // The page's own stop (same origin) ends the render, and the exit does
+    // not wait for the trickling clients.
+    CHECK(status_of(client.Post((preview.base + "stop").c_str(),
+                                {{"Origin", "http://127.0.0.1:" + std::to_string(preview.port)}},
+                                "", "text/plain")) == 200);
+    const int status = child.wait();
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - before).count();
+    trickling = false;
+    trickle.join();
+    for (const int fd : slow)
+        ::close(fd);
+    INFO("stderr: " << child.err());
+    REQUIRE(WIFEXITED(status));
+    CHECK(WEXITSTATUS(status) == 130);
+    CHECK(seconds < 10.0);
+}
+
 TEST_CASE("cli: a preview port in use is a one-line error before any work") {
     Scratch s;
     // Another server, listening on a free port.
@@ -285,4 +371,20 @@ TEST_CASE("cli: a preview port in use is a one-line error before any work") {
     CHECK(run.err.find("kernels built") == std::string::npos);
     CHECK(!fs::exists(out));
     ::close(other);
+}
+
+TEST_CASE("cli: an IPv6 preview address is printed in brackets") {
+    Scratch s;
+    const Run run =
+        wavepath("render " + kHexroom + " --width 8 --height 8 --spp 1 --quiet" +
+                     " --preview 0 --preview-bind ::1 --out '" + (s.dir / "x.exr").string() + "'",
+                 s);
+    if (run.exit_code != 0 && run.err.find("cannot serve the preview") != std::string::npos) {
+        WARN("skipped: no IPv6 loopback here: " << run.err);
+        return;
+    }
+    INFO("stderr: " << run.err);
+    CHECK(run.exit_code == 0);
+    CHECK(
+        std::regex_search(run.err, std::regex("preview at http://\\[::1\\]:[0-9]+/[0-9a-f]{32}/")));
 }

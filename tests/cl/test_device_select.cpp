@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "cl/device.hpp"
 #include "support/test_device.hpp"
@@ -57,4 +58,22 @@ TEST_CASE("device: an empty selector follows WAVEPATH_DEVICE, an explicit one ig
         ScopedDeviceVariable variable("");
         CHECK_NOTHROW(select_device("")); // empty: the first GPU or CPU, as without it
     }
+}
+
+TEST_CASE("device: 'all' for a one-device command is that device where there is one") {
+    ScopedDeviceVariable variable(nullptr);
+    const std::vector<DeviceInfo> devices = list_devices();
+    REQUIRE_FALSE(devices.empty());
+    if (devices.size() == 1) {
+        CHECK(select_device("all").index_string() == devices.front().index_string());
+        CHECK(select_device(" ALL ").index_string() == devices.front().index_string());
+    } else {
+        // Not "names several" with one device: the count, and what exists.
+        CHECK_THROWS_WITH(select_device("all"),
+                          Catch::Contains("'all' names " + std::to_string(devices.size()) +
+                                          " devices; available devices:"));
+    }
+    // A list is several selectors whatever the machine has.
+    CHECK_THROWS_WITH(select_device("0:0,0:0"),
+                      Catch::Contains("runs on one device, but the list '0:0,0:0' names several"));
 }

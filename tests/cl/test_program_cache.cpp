@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <optional>
 #include <string>
@@ -77,6 +78,15 @@ std::vector<cl_uint> run_add(const cl::Program& program) {
 }
 
 const std::vector<cl_uint> kAdded{12, 13, 14, 15};
+
+// Bytes before an entry's payload: the header and the key text.
+std::size_t entry_header_size(const std::vector<unsigned char>& entry) {
+    REQUIRE(entry.size() >= kProgramCacheHeaderSize);
+    std::size_t text = 0;
+    for (int i = 0; i < 4; ++i)
+        text |= static_cast<std::size_t>(entry[12 + static_cast<std::size_t>(i)]) << (8 * i);
+    return kProgramCacheHeaderSize + text;
+}
 
 std::vector<std::string> entry_files(const test::TempDir& dir) {
     std::vector<std::string> names = dir.entries();
@@ -157,19 +167,20 @@ TEST_CASE("program cache: WAVEPATH_NO_CACHE turns the default cache off") {
 
 TEST_CASE("program cache: entries round-trip and every kind of damage is rejected") {
     const std::uint64_t key = 0x0123456789abcdefull;
+    const std::string text = program_cache_key_text("source", "-D A=1", "device|1.0|3.0");
     const std::vector<unsigned char> binary{1, 2, 3, 4, 5, 6, 7, 8, 9, 10};
-    const std::vector<unsigned char> entry = ProgramCache::encode(key, binary);
-    REQUIRE(entry.size() == kProgramCacheHeaderSize + binary.size());
+    const std::vector<unsigned char> entry = ProgramCache::encode(key, text, binary);
+    REQUIRE(entry.size() == kProgramCacheHeaderSize + text.size() + binary.size());
 
     std::string fault;
-    auto decoded = ProgramCache::decode(key, entry, fault);
+    auto decoded = ProgramCache::decode(key, text, entry, fault);
     REQUIRE(decoded);
     CHECK(*decoded == binary);
     CHECK(fault.empty());
 
     auto rejected = [&](std::vector<unsigned char> bytes, std::uint64_t with_key = 0) {
         std::string why;
-        bool ok = ProgramCache::decode(with_key ? with_key : key, bytes, why).has_value();
+        bool ok = ProgramCache::decode(with_key ? with_key : key, text, bytes, why).has_value();
         CHECK_FALSE(why.empty());
         return !ok ? why : std::string("accepted");
     };
@@ -190,7 +201,49 @@ TEST_CASE("program cache: entries round-trip and every kind of damage is rejecte
     std::vector<unsigned char> flipped = entry;
     flipped.back() ^= 0x40;
     CHECK(rejected(flipped) == "checksum mismatch");
-    CHECK(rejected(ProgramCache::encode(key, {})) == "empty binary");
+    CHECK(rejected(ProgramCache::encode(key, text, {})) == "empty binary");
+    std::vector<unsigned char> text_size = entry;
+    text_size[12] ^= 0x01;
+    CHECK(rejected(text_size).find("size mismatch") != std::string::npos);
+}
+
+TEST_CASE("program cache: the key's text is stored in the entry and must match") {
+    // The hash names the file and is in the header, so a copied or crafted
+    // entry of another program can carry it: the text it hashes (source
+    // hash, options, device and driver) must match as well.
+    const std::string source = "__kernel void k() {}";
+    const std::string text = program_cache_key_text(source, "-D A=1", "cpu|OpenCL 3.0|5.0|PoCL");
+    char hash[17];
+    std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(fnv1a64(source)));
+    CHECK(text ==
+          "source " + std::string(hash) + " 20\noptions -D A=1\ndevice cpu|OpenCL 3.0|5.0|PoCL");
+    const std::uint64_t key = 42;
+    const std::vector<unsigned char> binary{9, 8, 7};
+    struct Foreign {
+        std::string text;
+        std::string fault;
+    };
+    for (const Foreign& f : {
+             Foreign{program_cache_key_text(source + " ", "-D A=1", "cpu|OpenCL 3.0|5.0|PoCL"),
+                     "its stored key is for another source"},
+             Foreign{program_cache_key_text(source, "-D A=2", "cpu|OpenCL 3.0|5.0|PoCL"),
+                     "its stored key is for other options"},
+             Foreign{program_cache_key_text(source, "-D A=1", "cpu|OpenCL 3.0|5.1|PoCL"),
+                     "its stored key is for another device or driver"},
+             Foreign{"", "its stored key is for another source"},
+         }) {
+        INFO(f.text);
+        std::string fault;
+        CHECK_FALSE(
+            ProgramCache::decode(key, text, ProgramCache::encode(key, f.text, binary), fault));
+        CHECK(fault == f.fault);
+    }
+    // A format-1 entry (no key text) is stale: rejected, then rebuilt.
+    std::vector<unsigned char> old = ProgramCache::encode(key, text, binary);
+    old[8] = 1;
+    std::string fault;
+    CHECK_FALSE(ProgramCache::decode(key, text, old, fault));
+    CHECK(fault == "format version 1, expected " + std::to_string(kProgramCacheFormat));
 }
 
 TEST_CASE("program cache: a second build is a hit, and the cached program runs") {
@@ -247,11 +300,17 @@ TEST_CASE("program cache: changing the source, an option or the device misses") 
     const std::string expanded = expand_includes(add_kernel("device"), "add.cl");
     BuiltProgram donor = build_add(other.path(), add_kernel("device"));
     std::vector<unsigned char> binary = test::read_bytes(donor.cache_file);
-    binary.erase(binary.begin(), binary.begin() + kProgramCacheHeaderSize);
+    binary.erase(binary.begin(),
+                 binary.begin() + static_cast<std::ptrdiff_t>(entry_header_size(binary)));
     ProgramCache cache(dir.path());
     const std::uint64_t foreign_key =
         program_cache_key(expanded, kOptions, device_cache_identity(device.info.device) + "|other");
-    REQUIRE(cache.store(foreign_key, binary).empty());
+    REQUIRE(cache
+                .store(foreign_key,
+                       program_cache_key_text(expanded, kOptions,
+                                              device_cache_identity(device.info.device) + "|other"),
+                       binary)
+                .empty());
     CHECK(build_add(dir.path(), add_kernel("device")).cache == CacheOutcome::Miss);
     CHECK(std::filesystem::exists(cache.entry_path(foreign_key))); // untouched
 }
@@ -297,10 +356,29 @@ TEST_CASE("program cache: a corrupt payload or a binary the driver refuses is re
             garbage[i] = static_cast<unsigned char>(i * 131 + 7);
         std::string name = std::filesystem::path(first.cache_file).stem().string();
         std::uint64_t key = std::stoull(name, nullptr, 16);
-        test::write_bytes(first.cache_file, ProgramCache::encode(key, garbage));
+        const std::string text =
+            program_cache_key_text(expand_includes(add_kernel(), "add.cl"), kOptions,
+                                   device_cache_identity(test::device().info.device));
+        test::write_bytes(first.cache_file, ProgramCache::encode(key, text, garbage));
         BuiltProgram rebuilt = build_add(dir.path());
         CHECK(rebuilt.cache == CacheOutcome::Rejected);
         CHECK(rebuilt.cache_note == "the driver rejected the cached binary");
+        CHECK(run_add(rebuilt.program) == kAdded);
+    }
+    SECTION("an intact entry under this key built with other options") {
+        // The other build's own binary, its hash rewritten to this key's:
+        // only the stored key text tells them apart.
+        test::TempDir other;
+        BuiltProgram donor = build_add(other.path(), add_kernel(), kOptions + " -D UNUSED=3");
+        std::vector<unsigned char> foreign = test::read_bytes(donor.cache_file);
+        const std::string name = std::filesystem::path(first.cache_file).stem().string();
+        const std::uint64_t key = std::stoull(name, nullptr, 16);
+        for (int i = 0; i < 8; ++i)
+            foreign[16 + static_cast<std::size_t>(i)] = static_cast<unsigned char>(key >> (8 * i));
+        test::write_bytes(first.cache_file, foreign);
+        BuiltProgram rebuilt = build_add(dir.path());
+        CHECK(rebuilt.cache == CacheOutcome::Rejected);
+        CHECK(rebuilt.cache_note == "its stored key is for other options");
         CHECK(run_add(rebuilt.program) == kAdded);
     }
     SECTION("a stale format version") {
@@ -347,6 +425,29 @@ TEST_CASE("program cache: the wavefront program goes through the cache by defaul
     CHECK(second.cache == CacheOutcome::Hit);
     for (const char* name : {"generate", "intersect", "shade", "shadow", "accumulate"})
         CHECK_NOTHROW(cl::Kernel(second.program, name));
+
+    // Another program's binary under the wavefront's key, with a valid
+    // checksum (a copied or crafted entry): dropped and rebuilt, not used.
+    test::TempDir donor_dir;
+    std::vector<unsigned char> foreign = test::read_bytes(build_add(donor_dir.path()).cache_file);
+    foreign.erase(foreign.begin(),
+                  foreign.begin() + static_cast<std::ptrdiff_t>(entry_header_size(foreign)));
+    ProgramCache cache(dir.path() / "wavepath");
+    const std::uint64_t key =
+        program_cache_key(expand_includes(wavefront_program_source(), "wavefront.cl"), "",
+                          device_cache_identity(device.info.device));
+    REQUIRE(cache.entry_path(key).string() == second.cache_file);
+    const std::string text =
+        program_cache_key_text(expand_includes(wavefront_program_source(), "wavefront.cl"), "",
+                               device_cache_identity(device.info.device));
+    REQUIRE(cache.store(key, text, foreign).empty());
+    BuiltProgram third = build_wavefront_program(device.context, device.info.device, "");
+    CHECK(third.cache == CacheOutcome::Rejected);
+    CHECK(third.cache_note.find("lacked the kernel") != std::string::npos);
+    for (const char* name : {"generate", "intersect", "shade", "shadow", "accumulate"})
+        CHECK_NOTHROW(cl::Kernel(third.program, name));
+    CHECK(build_wavefront_program(device.context, device.info.device, "").cache ==
+          CacheOutcome::Hit); // the rebuilt program was stored again
 
     EnvGuard off("WAVEPATH_NO_CACHE", "1");
     CHECK(build_wavefront_program(device.context, device.info.device, "").cache ==

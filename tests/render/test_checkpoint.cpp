@@ -224,6 +224,29 @@ TEST_CASE("checkpoint: a missing, foreign, truncated or damaged file is refused"
         reseal(bytes);
         CHECK(refusal(bytes) == "damaged: pixel 4 holds 7 samples, not the header's 6");
     }
+    SECTION("non-finite sums, checksum resealed") {
+        // A render never saves them (the kernels drop non-finite samples), and
+        // resumed they would make a NaN image whose summary says no NaN.
+        const std::size_t film_start = good.size() - 8 - kWidth * kHeight * 11 * 8;
+        struct Poison {
+            std::size_t value; // index among the 9 * pixels doubles
+            std::uint64_t bits;
+            std::string reason;
+        };
+        for (const Poison& p :
+             {Poison{4, 0x7ff8000000000000ull, "damaged: pixel 1's sum is not finite (nan)"},
+              Poison{18 + 17, 0x7ff0000000000000ull,
+                     "damaged: pixel 5's sum of squares is not finite (inf)"},
+              Poison{36, 0xfff0000000000000ull,
+                     "damaged: pixel 0's odd-sample sum is not finite (-inf)"}}) {
+            std::vector<unsigned char> bytes = good;
+            for (int i = 0; i < 8; ++i)
+                bytes[film_start + 8 * p.value + static_cast<std::size_t>(i)] =
+                    static_cast<unsigned char>(p.bits >> (8 * i));
+            reseal(bytes);
+            CHECK(refusal(bytes) == p.reason);
+        }
+    }
     SECTION("through a file") {
         test::TempDir dir;
         std::vector<unsigned char> bytes(good.begin(), good.begin() + 100);

@@ -179,6 +179,13 @@ TEST_CASE("mesh errors: PLY body", "[mesh][errors][ply]") {
          ": face 0: line 13: expected an integer, got '1.5'"},
         {"ascii_truncated.ply", ply_tri_header + ply_tri_vertices + "3 0 1\n",
          ": face 0: file ends early (truncated?)"},
+        // An ASCII body can hold a value its declared type cannot: named as
+        // such, not as a truncated file.
+        {"count_past_uchar.ply", ply_tri_header + ply_tri_vertices + "300 0 1 2\n",
+         ": face 0: line 13: 300 does not fit the declared type uchar (0 to 255)"},
+        {"index_past_int.ply", ply_tri_header + ply_tri_vertices + "3 0 1 3000000000\n",
+         ": face 0: line 13: 3000000000 does not fit the declared type int (-2147483648 to "
+         "2147483647)"},
         {"no_faces.ply",
          ply_vertices + "element face 0\nproperty list uchar int vertex_indices\nend_header\n" +
              ply_tri_vertices,

@@ -151,3 +151,46 @@ TEST_CASE("obj: the extension is matched without regard to case", "[mesh][obj]")
     const auto path = mesh_test::write_file("upper.OBJ", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     CHECK(wp::load_mesh(path).triangles.size() == 1);
 }
+
+TEST_CASE("obj: a UTF-8 byte-order mark before the first line is skipped", "[mesh][obj]") {
+    // Without the skip the first line's keyword is "\xEF\xBB\xBFv": the line
+    // is dropped and the face's index 3 is out of range.
+    const std::string body = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    const wp::TriangleMesh m =
+        wp::load_mesh(mesh_test::write_file("bom.obj", "\xEF\xBB\xBF" + body));
+    REQUIRE(m.positions.size() == 3);
+    REQUIRE(m.triangles.size() == 1);
+    CHECK(m.triangles[0] == std::array<std::uint32_t, 3>{0, 1, 2});
+    CHECK(m.positions[0] == glm::dvec3(0, 0, 0));
+    CHECK(m.positions[1] == glm::dvec3(1, 0, 0));
+    // A mark before a usemtl, in a file of CRLF lines.
+    const wp::TriangleMesh named = wp::load_mesh(mesh_test::write_file(
+        "bom_usemtl.obj",
+        "\xEF\xBB\xBFusemtl red\r\nv 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nf 1 2 3\r\n"));
+    CHECK(named.material_names == std::vector<std::string>{"", "red"});
+    CHECK(named.triangle_materials == std::vector<std::uint32_t>{1});
+    // Only at the file's start: elsewhere the bytes are an unknown statement.
+    const wp::TriangleMesh later =
+        wp::load_mesh(mesh_test::write_file("bom_later.obj", body + "\xEF\xBB\xBFo x\n"));
+    CHECK(later.triangles.size() == 1);
+}
+
+TEST_CASE("obj: a megabyte-long name or token is quoted in 80 bytes", "[mesh][obj]") {
+    const std::string huge(1 << 20, 'n');
+    const std::string body = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    // The usemtl name in the warning of a name that is no scene material.
+    const wp::TriangleMesh m =
+        wp::load_mesh(mesh_test::write_file("long_usemtl.obj", "usemtl " + huge + "\n" + body));
+    std::vector<wp::Material> materials(1);
+    materials[0].name = "white";
+    std::vector<std::string> warnings;
+    wp::resolve_materials(m, materials, 0, warnings);
+    REQUIRE(warnings.size() == 1);
+    CHECK(warnings[0].size() < 300);
+    CHECK_THAT(warnings[0], Catch::Contains("usemtl '" + std::string(80, 'n') + "...' is not"));
+    // A token the reader cannot read, in its error.
+    const auto path = mesh_test::write_file("long_token.obj", "v 0 " + huge + " 0\n" + body);
+    const std::string error = mesh_test::error_of(path);
+    CHECK(error ==
+          path.string() + ":1: cannot read vertex coordinate '" + std::string(80, 'n') + "...'");
+}

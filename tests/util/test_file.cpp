@@ -12,6 +12,11 @@
 #include <string>
 #include <vector>
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
+#include <unistd.h>
+
 using wp::FileError;
 using wp::test::TempDir;
 namespace fs = std::filesystem;
@@ -80,14 +85,22 @@ TEST_CASE("write_file_atomically reports a missing directory clearly", "[atomic]
 
 TEST_CASE("a failed rename removes the temp file and leaves the target alone", "[atomic]") {
     TempDir dir;
-    // A non-empty directory cannot be replaced by a file.
+    // A directory cannot be renamed over a file: the writer leaves one
+    // where the temporary file was.
     const auto path = dir / "taken";
-    fs::create_directory(path);
-    wp::test::write_text(path / "inside", "keep");
-    CHECK_THROWS_WITH(wp::write_bytes_atomically(path, "data", 4),
+    wp::test::write_text(path, "keep");
+    CHECK_THROWS_WITH(wp::write_file_atomically(path,
+                                                [](const fs::path& temp) {
+                                                    fs::remove(temp);
+                                                    fs::create_directory(temp);
+                                                }),
                       Catch::StartsWith("cannot write '" + path.string() + "': cannot rename"));
-    CHECK(wp::test::read_text(path / "inside") == "keep");
+    CHECK(wp::test::read_text(path) == "keep");
     CHECK(dir.entries() == std::vector<std::string>{"taken"});
+    // A directory at the path itself is refused before anything is written.
+    fs::create_directory(dir / "sub");
+    CHECK_THROWS_WITH(wp::write_bytes_atomically(dir / "sub", "data", 4),
+                      "cannot write '" + (dir / "sub").string() + "': it is a directory");
 }
 
 TEST_CASE("an unsynced write replaces the file as atomically as a synced one", "[atomic]") {
@@ -184,4 +197,80 @@ TEST_CASE("remove_pending_temp_files removes the temporary file of a write in pr
     wp::test::write_text(seen, "unrelated file with the old temporary name");
     wp::remove_pending_temp_files();
     CHECK(fs::exists(seen));
+}
+
+namespace {
+
+// A character device node in the test's own directory (the number of
+// /dev/null, 1:3, or /dev/full, 1:7), never under /dev; false where this
+// user may not make one.
+bool make_char_device(const fs::path& path, unsigned minor) {
+    return ::mknod(path.c_str(), S_IFCHR | 0666, makedev(1, minor)) == 0;
+}
+
+} // namespace
+
+TEST_CASE("an output that is a device or FIFO is written through, never replaced", "[atomic]") {
+    TempDir dir;
+    const auto null = dir / "null", full = dir / "full";
+    if (!make_char_device(null, 3) || !make_char_device(full, 7)) {
+        WARN("mknod is not allowed here: " << wp::errno_text(errno));
+        return;
+    }
+    CHECK_NOTHROW(wp::check_writable(null));
+    wp::write_bytes_atomically(null, "trace", 5);
+    struct stat st {};
+    REQUIRE(::stat(null.c_str(), &st) == 0);
+    CHECK(S_ISCHR(st.st_mode)); // still the device, not a regular file renamed over it
+    CHECK(dir.entries() == std::vector<std::string>{"full", "null"});
+
+    // A device that fails the write fails it with one line, and stays.
+    CHECK_THROWS_WITH(wp::write_bytes_atomically(full, "checkpoint", 10),
+                      "cannot write '" + full.string() + "': No space left on device");
+    REQUIRE(::stat(full.c_str(), &st) == 0);
+    CHECK(S_ISCHR(st.st_mode));
+
+    // A FIFO with no reader is refused at once instead of waited on.
+    const auto fifo = dir / "fifo";
+    REQUIRE(::mkfifo(fifo.c_str(), 0666) == 0);
+    CHECK_NOTHROW(wp::check_writable(fifo));
+    CHECK_THROWS_WITH(wp::write_bytes_atomically(fifo, "x", 1),
+                      "cannot write '" + fifo.string() + "': no process is reading the FIFO");
+    REQUIRE(::stat(fifo.c_str(), &st) == 0);
+    CHECK(S_ISFIFO(st.st_mode));
+    // With a reader, the bytes go through it.
+    const int reader = ::open(fifo.c_str(), O_RDONLY | O_NONBLOCK);
+    REQUIRE(reader >= 0);
+    wp::write_bytes_atomically(fifo, "abc", 3);
+    char got[8] = {};
+    CHECK(::read(reader, got, sizeof got) == 3);
+    ::close(reader);
+    CHECK(std::string(got) == "abc");
+}
+
+TEST_CASE("a read-only output file is refused, not replaced", "[atomic]") {
+    TempDir dir;
+    const auto path = dir / "theirs.exr";
+    wp::test::write_text(path, "someone else's");
+    fs::permissions(path, fs::perms::owner_read | fs::perms::group_read | fs::perms::others_read);
+    const std::string message = "cannot write '" + path.string() +
+                                "': the file is read-only (its permissions do not let this user "
+                                "write it); remove it or change its mode first";
+    CHECK_THROWS_WITH(wp::check_writable(path), message);
+    CHECK_THROWS_WITH(wp::write_bytes_atomically(path, "mine", 4), message);
+    CHECK(wp::test::read_text(path) == "someone else's");
+    CHECK(dir.entries() == std::vector<std::string>{"theirs.exr"});
+}
+
+TEST_CASE("read_file_bytes refuses FIFOs and devices without blocking", "[file]") {
+    TempDir dir;
+    const auto fifo = dir / "scene.json";
+    REQUIRE(::mkfifo(fifo.c_str(), 0666) == 0); // no writer: opening it would block
+    CHECK_THROWS_WITH(wp::read_file_bytes(fifo),
+                      "cannot open '" + fifo.string() + "': it is a FIFO, not a regular file");
+    const auto zero = dir / "zero.ply";
+    if (::mknod(zero.c_str(), S_IFCHR | 0666, makedev(1, 5)) == 0) // endless, as /dev/zero
+        CHECK_THROWS_WITH(wp::read_file_bytes(zero), "cannot open '" + zero.string() +
+                                                         "': it is a character device, not a "
+                                                         "regular file");
 }

@@ -40,3 +40,18 @@ TEST_CASE("one_line makes any bytes a clean message", "[one_line]") {
         CHECK(one_line(cleaned) == cleaned); // clean text is left as it is
     }
 }
+
+TEST_CASE("excerpt cuts long quoted input, never inside a UTF-8 sequence", "[one_line]") {
+    using wp::excerpt;
+    CHECK(excerpt("short") == "short");
+    CHECK(excerpt(std::string(80, 'a')) == std::string(80, 'a'));
+    CHECK(excerpt(std::string(81, 'a')) == std::string(80, 'a') + "...");
+    CHECK(excerpt(std::string(1 << 20, 'm')).size() == 83);
+    // A euro sign (3 bytes) across the cut at 4 is left out whole.
+    CHECK(excerpt("abc\xE2\x82\xAC"
+                  "def",
+                  4) == "abc...");
+    CHECK(excerpt("abc\xE2\x82\xAC"
+                  "def",
+                  6) == "abc\xE2\x82\xAC...");
+}
