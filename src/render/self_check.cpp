@@ -78,11 +78,20 @@ bool agree(const Film& specialised, const Film& general, std::string& detail) {
 }
 
 // The verdict's cache key: the program's, with both variants' options.
-std::uint64_t verdict_key(const DeviceContext& device, const std::string& specialised,
-                          const std::string& general) {
+// The verdict's cache entry: its key, and the key's text the entry holds and
+// is checked against (program_cache.hpp).
+struct VerdictKey {
+    std::uint64_t key = 0;
+    std::string text;
+};
+
+VerdictKey verdict_key(const DeviceContext& device, const std::string& specialised,
+                       const std::string& general) {
     static const std::string source = expand_includes(wavefront_program_source(), "wavefront.cl");
-    return program_cache_key(source, "self-check\n" + specialised + "\n" + general,
-                             device_cache_identity(device.info.device));
+    const std::string options = "self-check\n" + specialised + "\n" + general;
+    const std::string identity = device_cache_identity(device.info.device);
+    return {program_cache_key(source, options, identity),
+            program_cache_key_text(source, options, identity)};
 }
 
 std::optional<ProgramCache> verdict_store(const CachePolicy& policy) {
@@ -121,9 +130,9 @@ SelfCheckVerdict check_kernels(DeviceContext& device, const Scene& scene,
     const std::string general = kernel_build_options(SceneFeatures::general_for(features), options);
     SelfCheckVerdict verdict;
     const std::optional<ProgramCache> store = verdict_store(options.program_cache);
-    const std::uint64_t key = verdict_key(device, specialised, general);
+    const VerdictKey key = verdict_key(device, specialised, general);
     if (store) {
-        if (CacheLookup found = store->load(key); found.binary) {
+        if (CacheLookup found = store->load(key.key, key.text); found.binary) {
             const std::string text(found.binary->begin(), found.binary->end());
             verdict.from_cache = true;
             verdict.passed = text.rfind("pass:", 0) == 0;
@@ -138,7 +147,7 @@ SelfCheckVerdict check_kernels(DeviceContext& device, const Scene& scene,
     verdict.passed = agree(a, b, verdict.detail);
     if (store) {
         const std::string text = (verdict.passed ? "pass: " : "fail: ") + verdict.detail;
-        store->store(key, std::vector<unsigned char>(text.begin(), text.end()));
+        store->store(key.key, key.text, std::vector<unsigned char>(text.begin(), text.end()));
     }
     return verdict;
 }

@@ -160,7 +160,7 @@ TEST_CASE("loader: materials", "[scene][load]") {
 }
 
 TEST_CASE("loader: conductors read Mitsuba's parameters and defaults", "[scene][load]") {
-    const wp::Scene s = wp::parse_scene(R"({"camera": )" + kCamera + R"(, "materials": {
+    const wp::Scene s = wp::parse_scene(R"({"camera": )" + kSceneCamera + R"(, "materials": {
             "plain": {"type": "conductor"},
             "gold": {"type": "conductor", "material": "Au", "specular_reflectance": [1, 0.5, 1]},
             "given": {"type": "conductor", "eta": [1, 2, 3], "k": [4, 5, 6]},
