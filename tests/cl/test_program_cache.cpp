@@ -12,6 +12,7 @@
 
 #include "cl/program.hpp"
 #include "cl/program_cache.hpp"
+#include "support/env_guard.hpp"
 #include "support/temp_dir.hpp"
 #include "support/test_device.hpp"
 
@@ -19,30 +20,7 @@ using namespace wp;
 
 namespace {
 
-// Sets (or unsets, with nullptr) an environment variable for one scope.
-class EnvGuard {
-  public:
-    EnvGuard(const char* name, const char* value) : name_(name) {
-        if (const char* old = std::getenv(name))
-            old_ = old;
-        if (value)
-            setenv(name, value, 1);
-        else
-            unsetenv(name);
-    }
-    ~EnvGuard() {
-        if (old_)
-            setenv(name_.c_str(), old_->c_str(), 1);
-        else
-            unsetenv(name_.c_str());
-    }
-    EnvGuard(const EnvGuard&) = delete;
-    EnvGuard& operator=(const EnvGuard&) = delete;
-
-  private:
-    std::string name_;
-    std::optional<std::string> old_;
-};
+using test::EnvGuard;
 
 // A kernel small enough to build in a moment; `tag` changes the source text.
 std::string add_kernel(const std::string& tag = "") {

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "render/self_check.hpp"
+#include "support/env_guard.hpp"
 #include "support/render_helpers.hpp"
 #include "support/temp_dir.hpp"
 
@@ -16,30 +17,7 @@ using namespace wp;
 
 namespace {
 
-// Sets (or unsets, with nullptr) an environment variable for one scope.
-class EnvGuard {
-  public:
-    EnvGuard(const char* name, const char* value) : name_(name) {
-        if (const char* old = std::getenv(name))
-            old_ = old;
-        if (value)
-            setenv(name, value, 1);
-        else
-            unsetenv(name);
-    }
-    ~EnvGuard() {
-        if (old_)
-            setenv(name_.c_str(), old_->c_str(), 1);
-        else
-            unsetenv(name_.c_str());
-    }
-    EnvGuard(const EnvGuard&) = delete;
-    EnvGuard& operator=(const EnvGuard&) = delete;
-
-  private:
-    std::string name_;
-    std::optional<std::string> old_;
-};
+using test::EnvGuard;
 
 // The built-in scene of `wavepath devices --check` (every feature, 14
 // triangles and 2 spheres: quick to compile), at 8x8.
