@@ -9,14 +9,21 @@
 #   2. the hexroom, specialised and general kernels, compared with PoCL's
 #      images of the same seed (`wavepath compare`: bit-identical values,
 #      and a 5-sigma z-test on the variances), with --profile per stage;
-#   3. the kernel-level tests (tests/cl, tests/kernels) on the device;
-#   4. every stress scene, compared with PoCL's the same way;
-#   5. a sweep of pool size and work-group size on the hexroom.
+#   3. the hexroom at 800x800, 64 spp (issue #33's measure), cold, then
+#      warm and alternating with
+#   4. Mitsuba 3's cuda_ad_rgb on the same scene, if pack-mitsuba.sh added
+#      it; `bench` (stages against the copy bandwidth); a reference image
+#      from each, and both renderers' errors against wavepath's;
+#   5. every stress scene, compared with PoCL's images;
+#   6. a sweep of launch plan, work-group size, regeneration and pool size
+#      on the hexroom, twice;
+#   7. the kernel-level tests (tests/cl, tests/kernels) on the device.
 # Environment:
 #   WP_KIT_DEVICE  the device selector (default "NVIDIA": part of its name)
 #   WP_KIT_ICD     a vendors folder for OCL_ICD_VENDORS (default: one made
 #                  here naming the NVIDIA driver's libnvidia-opencl.so.1)
-#   WP_KIT_QUICK=1 a smaller sweep, for practice on a CPU device
+#   WP_KIT_QUICK=1 smaller renders and sweep, for practice on a CPU device
+#   WP_KIT_PYTHON, WP_KIT_MITSUBA_VARIANT  python3 and cuda_ad_rgb by default
 set -uo pipefail
 kit=$(cd "$(dirname "$0")" && pwd)
 out=${OUT:-$kit/out}
@@ -117,33 +124,108 @@ compare() {
 compare hexroom scenes/hexroom.json
 compare hexroom-general scenes/hexroom.json
 
-# 3. The kernel-level tests on the device.
-for t in "$kit"/bin/wavepath_*_tests; do
-  WAVEPATH_TEST_DEVICE=$device run 150 "$out/tests.txt" "$t" --reporter compact
+# 3 and 4. Issue #33's measure: the hexroom at 800x800 and 64 spp, wavepath
+# (its launch plan chosen by device, --profile on the first warm render)
+# and Mitsuba 3's cuda_ad_rgb (pack-mitsuba.sh) alternating on the same GPU;
+# `bench` (the stages against the copy bandwidth); a reference of many
+# samples from each for the error and the agreement of the two renderers.
+if [[ -n "${WP_KIT_QUICK:-}" ]]; then
+  hsize=128 hspp=4 href=16 mspp=1 mref=2 mrepeats=1
+else
+  hsize=800 hspp=64 href=1024 mspp=64 mref=1024 mrepeats=3
+fi
+hexroom() { # OUTPUT SPP SEED [ARGS...]
+  local name=$1 spp=$2 seed=$3
+  shift 3
+  run 120 "$out/headline.txt" "$wp" render "$kit/scenes/hexroom.json" --width $hsize \
+    --height $hsize --spp "$spp" --seed "$seed" --device "$device" --quiet \
+    -o "$images/$name.exr" "$@"
+}
+mitsuba_ready=""
+if [[ -e $kit/mitsuba.tar.xz ]]; then
+  mkdir -p "$work/site"
+  tar -C "$work/site" -xJf "$kit/mitsuba.tar.xz" && mitsuba_ready=1
+  # Dr.Jit opens the driver's libcuda and OptiX libraries by name; give it
+  # the paths beside the OpenCL library.
+  driver_dir=$(dirname "${found:-/usr/local/nvidia/lib64/x}")
+  for lib in libcuda.so.1 libnvoptix.so.1; do
+    say "$lib: $(ls "$driver_dir/$lib" 2>/dev/null || ldconfig -p 2>/dev/null |
+      awk -v l="$lib" '$1 == l {print $NF; exit}')"
+  done
+  [[ -e $driver_dir/libcuda.so.1 ]] && export DRJIT_LIBCUDA_PATH=$driver_dir/libcuda.so.1
+  [[ -e $driver_dir/libnvoptix.so.1 ]] && export DRJIT_LIBOPTIX_PATH=$driver_dir/libnvoptix.so.1
+else
+  say "no mitsuba.tar.xz in the kit: Mitsuba's side is skipped"
+fi
+mitsuba() { # SPP REPEATS OUTPUT [ARGS...]
+  [[ -n $mitsuba_ready ]] || return 0
+  local spp=$1 repeats=$2 name=$3
+  shift 3
+  PYTHONPATH=$work/site${PYTHONPATH:+:$PYTHONPATH} run 120 "$out/mitsuba.txt" \
+    "${WP_KIT_PYTHON:-python3}" "$kit/mitsuba/mitsuba_gpu.py" "$kit/mitsuba/hexroom.xml" \
+    --spp "$spp" --repeats "$repeats" --out "$images/$name.exr" \
+    --variant "${WP_KIT_MITSUBA_VARIANT:-cuda_ad_rgb}" "$@" || say "FAIL mitsuba: see mitsuba.txt"
+}
+hexroom wp-hexroom $hspp 1 # the cold build
+for round in 1 2 3; do
+  if ((round < 3)); then
+    mitsuba $mspp $mrepeats mi-hexroom
+  else
+    mitsuba $mspp $mrepeats mi-hexroom --reference-spp $mref \
+      --reference-out "$images/mi-hexroom-ref.exr"
+  fi
+  if ((round == 1)); then
+    hexroom wp-hexroom $hspp $((round + 1)) --profile
+  else
+    hexroom wp-hexroom $hspp $((round + 1))
+  fi
 done
+hexroom wp-hexroom-ref $href 99
+[[ -e $out/mitsuba.txt ]] && cat "$out/mitsuba.txt" >>"$log"
+run 120 "$out/bench.txt" "$wp" bench "$kit/scenes/hexroom.json" --size $hsize --spp $hspp \
+  --device "$device"
+for image in wp-hexroom mi-hexroom mi-hexroom-ref; do
+  [[ -e $images/$image.exr ]] && run 30 "$out/headline.txt" "$wp" compare \
+    "$images/$image.exr" "$images/wp-hexroom-ref.exr"
+done
+[[ -e $images/mi-hexroom-ref.exr ]] && run 30 "$out/headline.txt" "$wp" compare \
+  "$images/wp-hexroom.exr" "$images/mi-hexroom-ref.exr"
 
-# 4. The stress scenes.
+# 5. The stress scenes.
 for ref in "$kit"/ref/stress-*.args; do
   name=$(basename "$ref" .args)
   compare "$name" "scenes/stress/${name#stress-}.json"
 done
 
-# 5. Pool size and work-group size on the hexroom: samples/s of each.
+# 6. Launch plans, work-group sizes, regeneration and pool on the hexroom:
+# samples/s of each, everything else as the device's plan has it.
 if [[ -n "${WP_KIT_QUICK:-}" ]]; then
-  size=128 spp=4 pools="4096 16384" groups="64 128"
+  size=128 spp=4 groups="64 128"
 else
-  size=1024 spp=16 pools="65536 262144 1048576" groups="32 64 128 256"
+  size=1024 spp=64 groups="32 64 128 256"
 fi
-for plan in stages wave; do
-  for pool in $pools; do
-    for group in $groups; do
-      WAVEPATH_WORK_GROUP_SIZE=$group run 60 "$out/sweep.txt" "$wp" render \
-        "$kit/scenes/hexroom.json" --width $size --height $size --spp $spp --pool $pool \
-        --regeneration --launch-plan $plan --device "$device" -o "$work/sweep.exr" --quiet
-    done
+sweep() { # ARGS...: one render of the sweep
+  run 60 "$out/sweep.txt" "$wp" render "$kit/scenes/hexroom.json" --width $size --height $size \
+    --spp $spp --device "$device" -o "$work/sweep.exr" --quiet "$@"
+}
+for repeat in 1 2; do
+  for plan in stages bounce wave; do
+    sweep --launch-plan $plan
   done
+  for group in $groups; do
+    echo "# WAVEPATH_WORK_GROUP_SIZE=$group" >>"$out/sweep.txt"
+    WAVEPATH_WORK_GROUP_SIZE=$group sweep
+  done
+  sweep --no-regeneration
+  sweep --pool $((size * size / 4))
 done
-awk '/^\$ /{cmd=$0} /^rendered/{print cmd; print}' "$out/sweep.txt" >>"$log"
+awk '/^# /{env=$0} /^\$ /{cmd=$0} /^rendered/{print env; print cmd; print; env=""}' \
+  "$out/sweep.txt" >>"$log"
+
+# 7. The kernel-level tests on the device: last, as the longest step.
+for t in "$kit"/bin/wavepath_*_tests; do
+  WAVEPATH_TEST_DEVICE=$device run 150 "$out/tests.txt" "$t" --reporter compact
+done
 
 tar -C "$work" -czf "$out/images.tar.gz" images
 say "done in $(elapsed) s; FAILs: $(grep -c '^FAIL' "$log")"
