@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <optional>
@@ -92,6 +93,56 @@ std::string expand_includes(std::string_view text, std::string_view name) {
     return out;
 }
 
+std::string log_with_source_lines(const std::string& log, std::string_view expanded) {
+    // origin[n]: the file and line of the expanded text's line n (1-based).
+    std::vector<std::string> origin(1);
+    std::string file = "?";
+    std::size_t line = 1;
+    std::size_t start = 0;
+    while (start < expanded.size()) {
+        std::size_t end = expanded.find('\n', start);
+        if (end == std::string_view::npos)
+            end = expanded.size();
+        std::string_view text = expanded.substr(start, end - start);
+        start = end + 1;
+        origin.push_back(file + ":" + std::to_string(line));
+        if (text.rfind("#line ", 0) == 0) {
+            std::size_t open = text.find('"'), close = text.rfind('"');
+            if (open != std::string_view::npos && close > open) {
+                line = std::strtoul(std::string(text.substr(6)).c_str(), nullptr, 10);
+                file = std::string(text.substr(open + 1, close - open - 1));
+                continue;
+            }
+        }
+        ++line;
+    }
+    std::string out;
+    std::size_t at = 0;
+    while (at < log.size()) {
+        std::size_t found = log.find('<', at);
+        if (found == std::string::npos)
+            break;
+        std::size_t digits = std::string::npos;
+        for (const char* marker : {"<kernel>:", "<source>:"})
+            if (log.compare(found, std::strlen(marker), marker) == 0)
+                digits = found + std::strlen(marker);
+        std::size_t after =
+            digits == std::string::npos ? digits : log.find_first_not_of("0123456789", digits);
+        if (digits == std::string::npos || after == digits) {
+            out.append(log, at, found + 1 - at);
+            at = found + 1;
+            continue;
+        }
+        const std::size_t n = std::strtoul(log.substr(digits, after - digits).c_str(), nullptr, 10);
+        out.append(log, at, found - at);
+        out += n < origin.size() ? origin[n] : log.substr(found, after - found);
+        at = after;
+    }
+    if (at < log.size())
+        out.append(log, at, std::string::npos);
+    return out;
+}
+
 const char* cache_outcome_name(CacheOutcome outcome) {
     switch (outcome) {
     case CacheOutcome::Off:
@@ -108,21 +159,31 @@ const char* cache_outcome_name(CacheOutcome outcome) {
     return "?";
 }
 
-// Options a device needs besides the caller's. Oclgrind (the simulator of
-// .ci/oclgrind-check) cannot run llvm.bitreverse, which clang makes of
-// sobol.h's bit reversal; there sobol.h reverses through a table instead
-// (the same bits).
+// Options a device needs besides the caller's.
+//  - Division and square root correctly rounded wherever the device can: by
+//    default OpenCL allows 2.5 and 3 ulps, which NVIDIA's compiler uses, and
+//    the sphere test's roots (sphere.h) then put a small far sphere's hit
+//    point off by a tenth of its radius along the ray: on the H200 the
+//    stability case sphere-far-small came out 2.2 % darker than PoCL's image
+//    and the analytic value, its rim 20 % (docs/gpu.md). CPU devices round
+//    these correctly anyway.
+//  - Oclgrind (the simulator of .ci/oclgrind-check) cannot run
+//    llvm.bitreverse, which clang makes of sobol.h's bit reversal; there
+//    sobol.h reverses through a table instead (the same bits).
 std::string device_workaround_options(const cl::Device& device) {
+    std::string options;
+    if (device.getInfo<CL_DEVICE_SINGLE_FP_CONFIG>() & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT)
+        options += " -cl-fp32-correctly-rounded-divide-sqrt";
     const cl::Platform platform(device.getInfo<CL_DEVICE_PLATFORM>());
     if (platform.getInfo<CL_PLATFORM_NAME>().find("Oclgrind") != std::string::npos)
-        return " -D WP_BIT_REVERSAL_TABLE=1";
-    return "";
+        options += " -D WP_BIT_REVERSAL_TABLE=1";
+    return options;
 }
 
 BuiltProgram build_program(const cl::Context& context, const cl::Device& device,
                            std::string_view source, std::string_view source_name,
                            const std::string& caller_options, const CachePolicy& cache) {
-    // The workaround depends on the device alone, which the cache key holds
+    // The workarounds depend on the device alone, which the cache key holds
     // already: the key and the reported options are the caller's.
     const std::string options = caller_options + device_workaround_options(device);
     auto start = std::chrono::steady_clock::now();
@@ -176,8 +237,10 @@ BuiltProgram build_program(const cl::Context& context, const cl::Device& device,
             log = "(the driver gave no build log)";
         }
         throw BuildError("OpenCL kernel build of '" + std::string(source_name) + "' failed (" +
-                             cl_error_name(error.err()) + "); the compiler log is above",
-                         log);
+                             cl_error_name(error.err()) + ") on " +
+                             device.getInfo<CL_DEVICE_NAME>() + ", driver " +
+                             device.getInfo<CL_DRIVER_VERSION>() + "; the compiler log is above",
+                         log_with_source_lines(log, expanded));
     }
     built.build_seconds = elapsed();
 

@@ -31,6 +31,12 @@ std::string_view kernel_file(std::string_view name);
 // diagnostics name the original file and line.
 std::string expand_includes(std::string_view text, std::string_view name);
 
+// `log` with every location given as a line of the expanded text, as
+// NVIDIA's compiler gives them ("<kernel>:318:14: error: ..."; it ignores
+// #line), rewritten as the original file and line ("broken.cl:3:14: ...")
+// from expand_includes' #line markers. Other locations are left as they are.
+std::string log_with_source_lines(const std::string& log, std::string_view expanded);
+
 // How a build went with the program cache.
 enum class CacheOutcome {
     Off,      // the cache was not used

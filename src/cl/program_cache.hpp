@@ -38,8 +38,10 @@
 
 namespace wp {
 
-// Format 1 had no key text; its entries are rejected and rebuilt.
-inline constexpr std::uint32_t kProgramCacheFormat = 2;
+// Format 1 had no key text; format 2's entries were built without the
+// correctly rounded division and square root (device_workaround_options,
+// program.cpp). Older entries are rejected and rebuilt.
+inline constexpr std::uint32_t kProgramCacheFormat = 3;
 inline constexpr std::size_t kProgramCacheHeaderSize = 40;
 
 // FNV-1a, 64 bits. `state` continues an earlier hash.

@@ -1,4 +1,6 @@
 // Building kernels: embedded includes, and a failed build's diagnostics.
+#include <algorithm>
+
 #include <catch2/catch.hpp>
 
 #include "cl/program.hpp"
@@ -34,6 +36,31 @@ TEST_CASE("program: a failed build reports the compiler log with file and line")
         CHECK(e.log().find("broken.cl:3") != std::string::npos);
         CHECK(e.log().find("no_such_variable") != std::string::npos);
     }
+}
+
+TEST_CASE("program: a log that numbers the expanded text's lines is given the original ones") {
+    // NVIDIA's compiler ignores #line and names lines of the text it was
+    // given, as "<kernel>:LINE:COLUMN" (seen on the H200, docs/gpu.md).
+    const std::string expanded =
+        expand_includes("#include \"rng.h\"\nint x;\nint y = z;\n", "t.cl");
+    std::size_t line_of_y = 1;
+    for (std::size_t i = 0; i < expanded.find("int y"); ++i)
+        line_of_y += expanded[i] == '\n';
+    const std::string log = "<kernel>:" + std::to_string(line_of_y) +
+                            ":9: error: use of undeclared identifier 'z'\n<built-in>:1: note";
+    CHECK(log_with_source_lines(log, expanded) ==
+          "t.cl:3:9: error: use of undeclared identifier 'z'\n<built-in>:1: note");
+    // A line inside an included header names that header.
+    const std::size_t header_line =
+        1 + static_cast<std::size_t>(
+                std::count(expanded.begin(), expanded.begin() + expanded.find("wp_mix32"), '\n'));
+    CHECK(log_with_source_lines("<source>:" + std::to_string(header_line) + ": x", expanded)
+              .rfind("rng.h:", 0) == 0);
+    // Lines past the text, and logs without such locations, are left alone.
+    CHECK(log_with_source_lines("<kernel>:99999:1: e", expanded) == "<kernel>:99999:1: e");
+    CHECK(log_with_source_lines("t.cl:3:9: error <", expanded) == "t.cl:3:9: error <");
+    CHECK(log_with_source_lines("see <kernel>:" + std::to_string(line_of_y), expanded) ==
+          "see t.cl:3");
 }
 
 TEST_CASE("program: every stage of the wavefront program builds") {
