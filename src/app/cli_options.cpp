@@ -122,10 +122,12 @@ void add_integrator_options(CLI::App& command, IntegratorOptions& options) {
                {Traversal::Auto, Traversal::Hierarchy, Traversal::Loop},
                "How rays find their hits: 'bvh' (a bounding volume hierarchy), 'loop' (test every "
                "primitive) or 'auto' (the hierarchy past 64 primitives)");
-    command.add_flag(
-        "--regeneration,!--no-regeneration", options.regeneration,
+    command.add_flag_function(
+        "--regeneration,!--no-regeneration",
+        [&options](std::int64_t count) { options.regeneration = count > 0; },
         "Refill the slots of finished paths with new samples at once, keeping queues full "
-        "(default: off, one wave of samples at a time; see docs/profiling.md)");
+        "(default: by device, as measured: off on a CPU, one wave of samples at a time; on "
+        "elsewhere; `wavepath info` says which; docs/profiling.md, docs/gpu.md)");
     add_choice(command, "--launch-plan", options.launch_plan,
                {LaunchPlan::Auto, LaunchPlan::Stages, LaunchPlan::Bounce, LaunchPlan::Wave},
                "How the stages are launched: 'stages' (a kernel per stage), 'bounce' (intersect, "

@@ -207,12 +207,6 @@ Film allocate_film(int width, int height) {
     }
 }
 
-std::uint32_t samples_per_call(const IntegratorOptions& options) {
-    // One wave without regeneration (a slot per pixel); with it, enough that
-    // the refilled pool stays busy past the first paths' end.
-    return options.regeneration ? 8 : 1;
-}
-
 int run_render(const RenderCommand& command) {
     if (const std::optional<int> status = run_render_as_mpi_worker(command))
         return *status; // a rank other than 0 of an MPI job (render_devices.hpp)
@@ -272,7 +266,8 @@ int run_render(const RenderCommand& command) {
     // same options, so the image is too.
     begin_interruptible_work(); // until now a signal ends the process at once
     const RenderLoopResult rendered = loop.run(
-        film, command.spp, integrator.samples_per_call(samples_per_call(options)),
+        film, command.spp,
+        integrator.samples_per_call(integrator.integrator().launch_plan().samples_per_call),
         [&](std::uint32_t first, std::uint32_t count, const std::function<void(double)>& progress) {
             integrator.render(first, count, film, progress);
             checkpoints.save_if_due(first + count, film);
@@ -292,6 +287,7 @@ int run_render(const RenderCommand& command) {
                                       .samples_resumed = resumed,
                                       .options = options,
                                       .devices = device_names(integrator),
+                                      .launch_plan = integrator.integrator().launch_summary(),
                                       .render_seconds = integrator.stats().render_seconds});
     write_result_image(command.out, image, view);
     if (!command.png.empty())
@@ -324,7 +320,7 @@ int run_render(const RenderCommand& command) {
         context.spp = spp;
         context.build_options = integrator.integrator().program().options;
         context.build_seconds = integrator.integrator().program().build_seconds;
-        context.regeneration = options.regeneration;
+        context.regeneration = integrator.integrator().launch_plan().regeneration;
         context.pool_size = integrator.integrator().pool_size();
         context.launch_plan = to_string(integrator.integrator().launch_plan().plan);
         if (command.profile)

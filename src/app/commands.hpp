@@ -163,10 +163,6 @@ Image read_reference_for(const std::string& path, const Scene& scene);
 // needs N MiB ..." where the allocation fails.
 Film allocate_film(int width, int height);
 
-// How many samples per pixel run_render asks of one render() call: the
-// granularity at which an interrupted render stops.
-std::uint32_t samples_per_call(const IntegratorOptions& options);
-
 // With `check`, each device's self-check too (render/self_check.hpp) on a
 // built-in scene with every feature; exit status 1 if one fails.
 int run_devices(bool check = false);

@@ -141,6 +141,7 @@ int run_converge(const ConvergeCommand& command) {
              .samples_requested = settings.max_spp > 0 ? settings.max_spp : last.spp,
              .options = options,
              .devices = {device.info.name},
+             .launch_plan = integrator.launch_summary(),
              .render_seconds = last.seconds});
         write_result_image(command.out, image, view_for_scene(command.view, scene));
     }

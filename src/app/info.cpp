@@ -313,8 +313,16 @@ int run_info(const InfoCommand& command) {
                     check->detail.c_str(), check->from_cache ? ", remembered" : "");
     std::printf("build options: %s\n", built.options.c_str());
     std::printf("sampler: %s\n", to_string(command.integrator.sampler).c_str());
-    std::printf("launch plan: %s (%s)\n", to_string(integrator.launch_plan().plan).c_str(),
-                integrator.launch_plan().why.c_str());
+    const ChosenLaunchPlan& plan = integrator.launch_plan();
+    std::printf("launch plan: %s (%s)\n", to_string(plan.plan).c_str(), plan.why.c_str());
+    std::printf("regeneration: %s (%s); the film folded every %u iterations; %u samples per "
+                "pixel a render call\n",
+                plan.regeneration ? "on" : "off", plan.regeneration_why.c_str(),
+                plan.iterations_per_flush, plan.samples_per_call);
+    std::printf("work-groups of %zu work-items; path slots: %s\n", integrator.work_group_size(),
+                command.integrator.pool_size == 0
+                    ? "one per pixel"
+                    : ("at most " + std::to_string(command.integrator.pool_size)).c_str());
     print_geometry_memory(integrator.device_scene());
 
     const CachePolicy& cache = command.integrator.program_cache;

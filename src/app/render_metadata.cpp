@@ -27,7 +27,7 @@ std::string file_sha256(const std::string& path) {
 Metadata render_metadata(const RenderRecord& record) {
     const double samples = static_cast<double>(record.width) * static_cast<double>(record.height) *
                            (record.samples_done - record.samples_resumed);
-    return {
+    Metadata metadata{
         {"wavepath.version", WAVEPATH_VERSION},
         {"wavepath.commit", WAVEPATH_GIT_DESCRIBE},
         {"wavepath.scene", record.scene_file},
@@ -46,6 +46,10 @@ Metadata render_metadata(const RenderRecord& record) {
                                             ? format_text("%.4g", samples / record.render_seconds)
                                             : "n/a"},
     };
+    if (!record.launch_plan.empty())
+        metadata.insert(metadata.begin() + 13, /* after wavepath.devices */
+                        {"wavepath.launch_plan", record.launch_plan});
+    return metadata;
 }
 
 } // namespace wp

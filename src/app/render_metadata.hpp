@@ -26,6 +26,7 @@ struct RenderRecord {
     std::uint32_t samples_resumed = 0; // per pixel, taken from a checkpoint (--resume)
     IntegratorOptions options;
     std::vector<std::string> devices; // the name of each device that rendered
+    std::string launch_plan;          // WavefrontIntegrator::launch_summary() of the first
     double render_seconds = 0.0;      // kernel build excluded
 };
 
@@ -34,8 +35,9 @@ struct RenderRecord {
 // scene_sha256 (of the scene file's bytes; the mesh files it names are not
 // included), resolution ("WxH"), samples_per_pixel,
 // samples_requested, resumed_from (samples_resumed), seed, estimator (describe_estimator),
-// max_depth, devices (joined by "; "), render_seconds and samples_per_second (of this run's
-// samples: a resumed render's time does not include the checkpoint's).
+// max_depth, devices (joined by "; "), launch_plan (plan, regeneration, pool and
+// work-group size of the first device; omitted when empty), render_seconds and samples_per_second
+// (of this run's samples: a resumed render's time does not include the checkpoint's).
 Metadata render_metadata(const RenderRecord& record);
 
 } // namespace wp

@@ -181,8 +181,8 @@ std::string checkpoint_options(const IntegratorOptions& options, const std::stri
            " estimator=" + describe_estimator(options) +
            " general=" + std::to_string(options.general_kernels) +
            " traversal=" + to_string(options.traversal) +
-           " terminator-fix=" + std::to_string(options.shadow_terminator_fix) +
-           " regeneration=" + std::to_string(options.regeneration) +
+           " terminator-fix=" + std::to_string(options.shadow_terminator_fix) + " regeneration=" +
+           (options.regeneration ? std::to_string(*options.regeneration) : std::string("auto")) +
            " pool=" + std::to_string(options.pool_size) + " build=" + build_options;
 }
 

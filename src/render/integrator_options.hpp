@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "cl/program_cache.hpp"
@@ -94,11 +95,13 @@ struct IntegratorOptions {
     // "Samplers").
     Sampler sampler = Sampler::Sobol;
     // Refill finished slots with new samples at once, instead of waiting for
-    // the whole pool to finish (a "wave") before generating again. Off by
-    // default: on PoCL's CPU device it was measured 30-40 % slower (camera
-    // rays of scattered pixels lose the coherence SIMD lanes rely on; see
-    // docs/profiling.md). It keeps launches full, which is what a GPU needs.
-    bool regeneration = false;
+    // the whole pool to finish (a "wave") before generating again. Unset:
+    // by device (choose_launch_plan, render/wavefront.hpp): off on a CPU
+    // device, where PoCL was measured 30-40 % slower with it (camera rays of
+    // scattered pixels lose the coherence SIMD lanes rely on; see
+    // docs/profiling.md), on elsewhere: it keeps launches full, which is what
+    // a GPU needs (3.5x on the H200, docs/gpu.md).
+    std::optional<bool> regeneration;
     // Path slots; 0 means one per pixel. Fewer save device memory (the
     // per-slot rows of WP_PATH_BUFFERS, path_buffer_bytes() in
     // render/device_buffers.hpp) at some cost in parallelism.

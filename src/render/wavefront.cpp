@@ -13,12 +13,6 @@
 namespace wp {
 namespace {
 
-// Iterations between folding the device's float32 film into the host's
-// double film. With one slot per pixel a pixel finishes a sample every two
-// to four iterations, so a batch holds about ten samples: float32 sums stay
-// accurate and the (width x height x 48 byte) read stays rare.
-constexpr std::uint64_t kIterationsPerFlush = 32;
-
 // Launches use work-groups of this size (or the device's maximum, if smaller)
 // and round the item count up to a multiple; kernels ignore the excess items
 // and never depend on the group size. A fixed size matters on PoCL, which
@@ -28,13 +22,13 @@ constexpr std::uint32_t kWorkGroupSize = 64;
 // The wave plan: with regeneration a megakernel launch runs this many tasks
 // of each slot back to back (without, one: each launch is one wave); the
 // film is folded after this many tasks per slot, about as often as the
-// stages plan folds it (kIterationsPerFlush).
+// stages plan folds it on a CPU (ChosenLaunchPlan::iterations_per_flush).
 constexpr std::uint32_t kWaveTasksPerFlush = 8;
 
 // The work-group size: kWorkGroupSize, or WAVEPATH_WORK_GROUP_SIZE (for
 // measuring; docs/performance.md), at most the device's maximum and
 // WP_MAX_WORK_GROUP_SIZE (shade's compaction arrays, kernels/shade.cl).
-std::size_t work_group_size(const DeviceInfo& device) {
+std::size_t work_group_size_for(const DeviceInfo& device) {
     std::size_t size = kWorkGroupSize;
     if (const char* text = std::getenv("WAVEPATH_WORK_GROUP_SIZE"))
         if (const long value = std::strtol(text, nullptr, 10); value > 0)
@@ -70,29 +64,57 @@ void check_device_memory(const DeviceInfo& device, int width, int height, std::u
 } // namespace
 
 ChosenLaunchPlan choose_launch_plan(LaunchPlan requested, const DeviceInfo& device,
-                                    bool vectorised_tracing) {
-    if (requested != LaunchPlan::Auto)
-        return {requested, "asked for (--launch-plan " + to_string(requested) + ")"};
-    if (device.type != "CPU")
-        return {LaunchPlan::Stages,
-                "auto: a " + (device.type.empty() ? std::string("non-CPU") : device.type) +
-                    " device: separate stage kernels, full launches (a default, not measured "
-                    "here)"};
-    if (vectorised_tracing)
-        return {LaunchPlan::Stages,
-                "auto: a CPU device and fixed-count tracing, which PoCL vectorises across a "
-                "work-group only in the separate intersect and shadow kernels (fused, it runs "
-                "scalar: 2.4x slower; docs/performance.md, \"Launch plans (fusion), measured\")"};
-    return {LaunchPlan::Wave,
-            "auto: a CPU device and hierarchy or general tracing, which no plan vectorises: the "
-            "wave megakernel saves the stages' memory traffic and host round trips "
-            "(docs/performance.md, \"Launch plans (fusion), measured\")"};
+                                    bool vectorised_tracing, std::optional<bool> regeneration) {
+    const bool cpu = device.type == "CPU";
+    ChosenLaunchPlan chosen;
+    if (requested != LaunchPlan::Auto) {
+        chosen.plan = requested;
+        chosen.why = "asked for (--launch-plan " + to_string(requested) + ")";
+    } else if (!cpu) {
+        chosen.plan = LaunchPlan::Stages;
+        chosen.why = "auto: a " + (device.type.empty() ? std::string("non-CPU") : device.type) +
+                     " device: separate stage kernels (on the H200: 1.1x the bounce plan's "
+                     "samples/s, 1.4x the wave plan's; docs/gpu.md, \"The launch plan of a GPU\")";
+    } else if (vectorised_tracing) {
+        chosen.plan = LaunchPlan::Stages;
+        chosen.why = "auto: a CPU device and fixed-count tracing, which PoCL vectorises across a "
+                     "work-group only in the separate intersect and shadow kernels (fused, it "
+                     "runs scalar: 2.4x slower; docs/performance.md, \"Launch plans (fusion), "
+                     "measured\")";
+    } else {
+        chosen.plan = LaunchPlan::Wave;
+        chosen.why = "auto: a CPU device and hierarchy or general tracing, which no plan "
+                     "vectorises: the wave megakernel saves the stages' memory traffic and host "
+                     "round trips (docs/performance.md, \"Launch plans (fusion), measured\")";
+    }
+    if (regeneration) {
+        chosen.regeneration = *regeneration;
+        chosen.regeneration_why =
+            *regeneration ? "asked for (--regeneration)" : "asked for (--no-regeneration)";
+    } else if (cpu) {
+        chosen.regeneration = false;
+        chosen.regeneration_why = "auto: off on a CPU device (30-40 % slower with it on PoCL, "
+                                  "docs/profiling.md)";
+    } else {
+        chosen.regeneration = true;
+        chosen.regeneration_why = "auto: on for a GPU, whose launches it keeps full (3.5x the "
+                                  "samples/s on the H200, docs/gpu.md)";
+    }
+    // The film: on a CPU device a fold costs about what the iterations
+    // between folds do; a GPU runs 32 iterations in a fraction of the fold's
+    // time (the H200 spent 1.5 s folding and 0.6 s rendering the hexroom at
+    // 800x800, 64 spp), so it folds 8 times less often, and the CLI asks for
+    // more samples per call. A pixel then sums at most about 80 samples in
+    // float32 between folds: a relative rounding error near 1e-6.
+    chosen.iterations_per_flush = cpu ? 32u : 256u;
+    chosen.samples_per_call = !chosen.regeneration ? 1u : (cpu ? 8u : 32u);
+    return chosen;
 }
 
 WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const Scene& scene,
                                          IntegratorOptions options)
     : device_(device), features_(integrator_features(scene, options)), options_(options),
-      group_size_(work_group_size(device.info)) {
+      group_size_(wp::work_group_size_for(device.info)) {
     const int width = scene.camera.width, height = scene.camera.height;
     pixel_count_ = static_cast<std::uint32_t>(width) * static_cast<std::uint32_t>(height);
     pool_size_ =
@@ -121,7 +143,7 @@ WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const Scene& sce
         }
     }
     plan_ = choose_launch_plan(options_.launch_plan, device_.info,
-                               compiled.fixed_counts && !compiled.bvh);
+                               compiled.fixed_counts && !compiled.bvh, options_.regeneration);
     scene_ = flatten_scene(scene, compiled.bvh);
     program_ = build_wavefront_program(device_.context, device_.info.device, build_options,
                                        options_.program_cache);
@@ -151,6 +173,12 @@ WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const Scene& sce
         bind_buffers(kernel, buffers_);
     if (mirror_shadows_)
         bind_buffers(mirror_shadow_kernel_, buffers_);
+}
+
+std::string WavefrontIntegrator::launch_summary() const {
+    return to_string(plan_.plan) +
+           (plan_.regeneration ? ", regeneration" : ", one wave at a time") + ", pool " +
+           std::to_string(pool_size_) + ", work-groups of " + std::to_string(group_size_);
 }
 
 void WavefrontIntegrator::clear_film() {
@@ -304,7 +332,7 @@ void WavefrontIntegrator::trace_bounces(Film& film,
         const std::uint32_t finished = counts[WP_COUNTER_FINISHED];
         stats_.iterations += 1;
         stats_.queue_lengths.push_back(traced);
-        if (!options_.regeneration && traced > 0) {
+        if (!plan_.regeneration && traced > 0) {
             if (stats_.rays_per_bounce.size() <= bounce)
                 stats_.rays_per_bounce.resize(bounce + 1, 0);
             stats_.rays_per_bounce[bounce++] += traced;
@@ -348,8 +376,8 @@ void WavefrontIntegrator::trace_bounces(Film& film,
         // Refill: with regeneration the slots that just finished start their
         // next sample now; without, the pool waits until it has drained.
         upper_bound = next;
-        const bool refill_finished = options_.regeneration && finished > 0;
-        const bool refill_all = !options_.regeneration && next == 0;
+        const bool refill_finished = plan_.regeneration && finished > 0;
+        const bool refill_all = !plan_.regeneration && next == 0;
         if (refill_finished || refill_all) {
             std::uint32_t slots = refill_finished ? finished : pool_size_;
             launch(Stage::Generate, make_launch(slots, out, refill_finished), slots);
@@ -361,7 +389,11 @@ void WavefrontIntegrator::trace_bounces(Film& film,
         }
         survivors = next;
         in = out;
-        if ((iteration + 1) % kIterationsPerFlush == 0)
+        // With one slot per pixel a pixel finishes a sample every two to four
+        // iterations: between folds a pixel's float32 sums hold about
+        // iterations_per_flush / 3 samples, and the (width x height x 48
+        // byte) read stays rare.
+        if ((iteration + 1) % plan_.iterations_per_flush == 0)
             flush_film(film);
     }
 }
@@ -373,7 +405,7 @@ void WavefrontIntegrator::trace_waves(std::uint32_t count, Film& film,
     // Without regeneration a launch is one wave, one task per slot; with it a
     // slot runs several tasks back to back (regeneration within the
     // work-item). Every slot has at most `owned` x count tasks.
-    const std::uint32_t per_launch = options_.regeneration ? kWaveTasksPerFlush : 1u;
+    const std::uint32_t per_launch = plan_.regeneration ? kWaveTasksPerFlush : 1u;
     const std::uint64_t owned = (pixel_count_ + pool_size_ - 1) / pool_size_;
     const std::uint64_t tasks = owned * count;
     const double pixels = static_cast<double>(pixel_count_);

@@ -45,17 +45,27 @@ struct RenderStats {
     double host_seconds = 0.0;   // host work inside it (folding the film)
 };
 
-// The launch plan `requested` resolves to on `device` for a program whose
-// tracing is (or is not) the fixed-count kind that PoCL vectorises across a
-// work-group (SceneFeatures::fixed_counts without a hierarchy). Auto: by
+// How the integrator launches its work on one device: the launch plan
+// `requested` resolves to for a program whose tracing is (or is not) the
+// fixed-count kind that PoCL vectorises across a work-group
+// (SceneFeatures::fixed_counts without a hierarchy), regeneration, and how
+// often the device's float32 film is folded into the host's. Auto: by
 // device type and that, from the measurements of docs/performance.md,
-// "Launch plans (fusion), measured". And why, in one line for `wavepath info`.
+// "Launch plans (fusion), measured", and docs/gpu.md, "The launch plan of a
+// GPU". And why, in one line for `wavepath info`.
 struct ChosenLaunchPlan {
     LaunchPlan plan = LaunchPlan::Stages;
     std::string why;
+    bool regeneration = false;
+    std::string regeneration_why;
+    // Iterations of the stages plans between folds of the film; samples per
+    // render call the CLI asks for (the wave plan folds per call).
+    std::uint32_t iterations_per_flush = 32;
+    std::uint32_t samples_per_call = 1;
 };
 ChosenLaunchPlan choose_launch_plan(LaunchPlan requested, const DeviceInfo& device,
-                                    bool vectorised_tracing);
+                                    bool vectorised_tracing,
+                                    std::optional<bool> regeneration = std::nullopt);
 
 // The features the integrator gives `scene` under `options` (analyse_features,
 // then the traversal and shadow culling asked for), and those its kernels are
@@ -91,6 +101,10 @@ class WavefrontIntegrator {
     const IntegratorOptions& options() const { return options_; }
     // The plan the render runs (never Auto) and why it was chosen.
     const ChosenLaunchPlan& launch_plan() const { return plan_; }
+    // "stages, regeneration, pool 640000, work-groups of 64": the plan as
+    // `wavepath info` and the image metadata give it.
+    std::string launch_summary() const;
+    std::size_t work_group_size() const { return group_size_; }
     // The self-check's verdict, if one was asked for and applied: the
     // specialised and general options differ (render/self_check.hpp).
     const std::optional<SelfCheckVerdict>& self_check() const { return self_check_; }

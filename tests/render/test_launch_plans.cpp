@@ -227,6 +227,34 @@ TEST_CASE("Launch plans: auto picks by device type and tracing kind, an explicit
     }
 }
 
+TEST_CASE("Launch plans: regeneration and the film's folds by device type, an explicit choice "
+          "is kept",
+          "[launch-plan]") {
+    DeviceInfo cpu, gpu;
+    cpu.type = "CPU";
+    gpu.type = "GPU";
+    const ChosenLaunchPlan on_cpu = choose_launch_plan(LaunchPlan::Auto, cpu, true);
+    const ChosenLaunchPlan on_gpu = choose_launch_plan(LaunchPlan::Auto, gpu, true);
+    // The CPU plan as it was: one wave at a time, a sample per call.
+    CHECK_FALSE(on_cpu.regeneration);
+    CHECK(on_cpu.samples_per_call == 1);
+    CHECK(on_cpu.iterations_per_flush == 32);
+    // A GPU keeps its launches full and folds the film less often.
+    CHECK(on_gpu.regeneration);
+    CHECK(on_gpu.iterations_per_flush > on_cpu.iterations_per_flush);
+    CHECK(on_gpu.samples_per_call > 8);
+    CHECK(on_gpu.regeneration_why.find("auto") == 0);
+    for (bool asked : {false, true})
+        for (const DeviceInfo& device : {cpu, gpu}) {
+            const ChosenLaunchPlan chosen =
+                choose_launch_plan(LaunchPlan::Stages, device, true, asked);
+            CHECK(chosen.regeneration == asked);
+            CHECK(chosen.regeneration_why.find("asked for") == 0);
+            // Without regeneration a call is one wave: one sample per pixel.
+            CHECK((chosen.samples_per_call == 1) == !asked);
+        }
+}
+
 TEST_CASE("Launch plans: on the test device, auto keeps the stages for the hexroom's specialised "
           "kernels and takes the wave for its hierarchy",
           "[launch-plan]") {
