@@ -4,6 +4,7 @@
 // without leaving a temporary file.
 #include <catch2/catch.hpp>
 
+#include <cerrno>
 #include <chrono>
 #include <csignal>
 #include <filesystem>
@@ -12,6 +13,9 @@
 #include <thread>
 #include <vector>
 
+#include <fcntl.h>
+#include <poll.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -128,6 +132,48 @@ TEST_CASE("cli: an image that cannot be written after the render is saved elsewh
     const wp::Image image = wp::read_image(fallback);
     CHECK(image.width == 24);
     fs::remove(fallback);
+}
+
+TEST_CASE("cli: a SIGINT during the final write still exits with 130, the outputs complete") {
+    // The output is a FIFO whose reader waits: the image (128x64 floats x 3,
+    // 98 kB) is more than the pipe holds (64 kB), so the write blocks midway
+    // until the test reads, and the signal arrives after the last wave,
+    // during the write. Before the fix the process then exited with 0.
+    Scratch s;
+    const fs::path fifo = s.dir / "out.pfm";
+    REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+    // A reader already there: wavepath refuses a FIFO nobody reads.
+    const int reader = ::open(fifo.c_str(), O_RDONLY | O_NONBLOCK);
+    REQUIRE(reader >= 0);
+    Child child({"render", kScene, "--width", "128", "--height", "64", "--spp", "2", "--out",
+                 fifo.string()},
+                s);
+    // Wait until the image begins to arrive: the render is over.
+    pollfd ready{reader, POLLIN, 0};
+    REQUIRE(::poll(&ready, 1, 300000) == 1);
+    child.signal(SIGINT);
+    std::this_thread::sleep_for(std::chrono::milliseconds(200)); // the signal is handled
+    // Now read it all: the writer finishes, the process exits.
+    ::fcntl(reader, F_SETFL, 0);
+    std::string bytes;
+    char buffer[65536];
+    for (ssize_t n; (n = ::read(reader, buffer, sizeof buffer)) != 0;) {
+        if (n < 0 && errno == EINTR)
+            continue;
+        REQUIRE(n > 0);
+        bytes.append(buffer, static_cast<std::size_t>(n));
+    }
+    ::close(reader);
+    const int status = child.wait();
+    const std::string err = child.err();
+    INFO("stderr: " << err);
+    REQUIRE(WIFEXITED(status));
+    CHECK(WEXITSTATUS(status) == 130);
+    CHECK(err.find("interrupted after the render: the outputs hold all 2 samples per pixel") !=
+          std::string::npos);
+    // The whole image came through: a PFM header and 128 x 64 x 3 floats.
+    CHECK(bytes.rfind("PF\n128 64\n", 0) == 0);
+    CHECK(bytes.size() > 128u * 64u * 3u * sizeof(float));
 }
 
 TEST_CASE("cli: commands other than render keep Ctrl-C's immediate effect") {
