@@ -1,21 +1,21 @@
 /* Materials: the one place that selects a BSDF by material kind.
  *
- * Material kinds (WpMaterial.kind, WP_MATERIAL_* in wp_shared.h):
- *   diffuse   Lambertian, kernels/bsdf/diffuse.h
- *   mirror    perfect specular reflection, kernels/bsdf/mirror.h (compiled
- *             only with WP_HAS_MIRROR)
- *   emitter   emits (WpMaterial.emission, front face) and scatters nothing:
- *             a path ends there
- * Diffuse is the fallback, so a kind compiled out of a program can never be
- * met by it (the scene's features decide what is compiled,
- * src/render/device_scene.cpp). docs/architecture.md lists what a new kind
- * touches.
+ * The kinds are the rows of WP_MATERIALS (wp_shared.h); a row with a BSDF
+ * has its header kernels/bsdf/NAME.h, included below, and is dispatched to
+ * when its feature switch WP_HAS_KIND (scene_features.h) is on. The emitter
+ * has no BSDF: it emits (WpMaterial.emission, front face) and scatters
+ * nothing, so a path ends there. Diffuse is the fallback, so a kind compiled
+ * out of a program can never be met by it (the scene's features decide what
+ * is compiled, src/render/device_scene.cpp). docs/architecture.md lists what
+ * a new kind touches.
  */
 #ifndef WP_BSDF_H
 #define WP_BSDF_H
 
+#include "bsdf/conductor.h"
 #include "bsdf/diffuse.h"
 #include "bsdf/mirror.h"
+#include "bsdf/roughconductor.h"
 #include "scene_features.h"
 
 /* 1 if the material scatters no light at all (its path ends). */
@@ -23,30 +23,59 @@ static inline int wp_bsdf_is_black(const WpMaterial* m) {
     return m->kind == WP_MATERIAL_EMITTER;
 }
 
-/* Returns wp_KIND_FUNCTION(...) of the material's kind: the one place that
- * selects a BSDF. A new kind is one more line here, guarded by its feature
- * switch (a constant, so the test folds away when the kind is compiled out). */
-#define WP_BSDF_DISPATCH(m, function, ...)                                                         \
-    if (WP_HAS_MIRROR && (m)->kind == WP_MATERIAL_MIRROR)                                          \
-        return wp_mirror_##function(__VA_ARGS__);                                                  \
-    return wp_diffuse_##function(__VA_ARGS__)
+/* wp_bsdf_FUNCTION returns wp_NAME_FUNCTION(...) of the material's kind: one
+ * test per row of WP_MATERIALS with a BSDF, guarded by its feature switch (a
+ * constant, so the test folds away when the kind is compiled out), and
+ * diffuse as the fallback. `call` is FUNCTION(arguments). */
+#define WP_BSDF_TRY(KIND, name, bsdf, call)                                                        \
+    WP_IF(bsdf)(if (WP_HAS_##KIND && m->kind == WP_MATERIAL_##KIND) return wp_##name##_##call;)
 
 /* 1 for a delta BSDF: light can reach it only along its sampled direction. */
+#define WP_BSDF_IS_DELTA_ROW(KIND, Name, name, value, bsdf, glossy)                                \
+    WP_BSDF_TRY(KIND, name, bsdf, is_delta())
 static inline int wp_bsdf_is_delta(const WpMaterial* m) {
-    WP_BSDF_DISPATCH(m, is_delta, );
+    WP_MATERIALS(WP_BSDF_IS_DELTA_ROW)
+    return wp_diffuse_is_delta();
 }
 
+#define WP_BSDF_SAMPLE_ROW(KIND, Name, name, value, bsdf, glossy)                                  \
+    WP_BSDF_TRY(KIND, name, bsdf, sample(m, wo, n, u1, u2))
 static inline WpBsdfSample wp_bsdf_sample(const WpMaterial* m, float3 wo, float3 n, float u1,
                                           float u2) {
-    WP_BSDF_DISPATCH(m, sample, m, wo, n, u1, u2);
+    WP_MATERIALS(WP_BSDF_SAMPLE_ROW)
+    return wp_diffuse_sample(m, wo, n, u1, u2);
 }
 
+#define WP_BSDF_EVAL_ROW(KIND, Name, name, value, bsdf, glossy)                                    \
+    WP_BSDF_TRY(KIND, name, bsdf, eval_pi(m, wo, wi, n))
 static inline float3 wp_bsdf_eval_pi(const WpMaterial* m, float3 wo, float3 wi, float3 n) {
-    WP_BSDF_DISPATCH(m, eval_pi, m, wo, wi, n);
+    WP_MATERIALS(WP_BSDF_EVAL_ROW)
+    return wp_diffuse_eval_pi(m, wo, wi, n);
 }
 
+#define WP_BSDF_PDF_ROW(KIND, Name, name, value, bsdf, glossy)                                     \
+    WP_BSDF_TRY(KIND, name, bsdf, pdf(m, wo, wi, n))
 static inline float wp_bsdf_pdf(const WpMaterial* m, float3 wo, float3 wi, float3 n) {
-    WP_BSDF_DISPATCH(m, pdf, m, wo, wi, n);
+    WP_MATERIALS(WP_BSDF_PDF_ROW)
+    return wp_diffuse_pdf(m, wo, wi, n);
+}
+
+/* Whether the program has a glossy kind (the glossy column of WP_MATERIALS):
+ * a constant for #if. */
+#define WP_GLOSSY_TERM(KIND, Name, name, value, bsdf, glossy) WP_IF(glossy)(|| WP_HAS_##KIND)
+#define WP_HAS_GLOSSY (0 WP_MATERIALS(WP_GLOSSY_TERM))
+
+/* 1 where next-event estimation is weighed against BSDF sampling by multiple
+ * importance sampling (kernels/shade.cl): the glossy kinds. A Lambertian
+ * vertex keeps pure light sampling (emission its sampled rays find does not
+ * count), the estimator of the report's images; a delta one has no next
+ * event. */
+#define WP_GLOSSY_KIND(KIND, Name, name, value, bsdf, glossy)                                      \
+    WP_IF(glossy)(if (WP_HAS_##KIND && m->kind == WP_MATERIAL_##KIND) return 1;)
+static inline int wp_bsdf_weighs_light(const WpMaterial* m) {
+    WP_MATERIALS(WP_GLOSSY_KIND)
+    (void)m;
+    return 0;
 }
 
 #endif /* WP_BSDF_H */

@@ -63,7 +63,17 @@ typedef struct {
     float3 direction;  /* unit, from the shadow-ray origin towards the light */
     float length;      /* how far the shadow ray must stay unblocked */
     float3 irradiance; /* Le * cos_surface * cos_light / d^2 / pdf: multiply by the BRDF */
+    float pdf;         /* the solid-angle density of direction (for MIS) */
 } WpLightSample;
+
+/* The power heuristic's weight of the strategy of density `own` against
+ * `other` (0 when its own density is 0, 1 when the other's is). */
+static inline float wp_mis_power(float own, float other) {
+    if (!(own > 0.0f))
+        return 0.0f;
+    float r = other / own;
+    return 1.0f / (1.0f + r * r);
+}
 
 /* The shadow ray from `origin` to a light point, stopping just short of it. */
 static inline int wp_aim_shadow_ray(float3 origin, float3 point, const WpTriangle* light,
@@ -117,6 +127,7 @@ static inline int wp_sample_light(const WpSceneView* scene, float3 position, flo
             0.5f * length(cross(light.v1.xyz - light.v0.xyz, light.v2.xyz - light.v0.xyz));
         out->irradiance = scene->materials[wp_triangle_material(&light)].emission.xyz *
                           (cos_surface * solid_angle * scene->light_area / triangle_area);
+        out->pdf = triangle_area / (scene->light_area * solid_angle);
         return 1;
     }
     /* Too small (or too large) a solid angle for float: area sampling below. */
@@ -132,7 +143,33 @@ static inline int wp_sample_light(const WpSceneView* scene, float3 position, flo
     float geometry = cos_surface * cos_light / (distance * distance);
     out->irradiance = scene->materials[wp_triangle_material(&light)].emission.xyz *
                       (geometry * scene->light_area);
+    out->pdf = distance * distance / (cos_light * scene->light_area);
     return 1;
+}
+
+/* The solid-angle density with which wp_sample_light, at `position`, picks the
+ * direction to `point` on the front face of the light triangle `light` (what
+ * multiple importance sampling weighs a BSDF-sampled hit on a light with). */
+static inline float wp_light_pdf(const WpSceneView* scene, const WpTriangle* light, float3 position,
+                                 float3 point) {
+    float3 light_normal = normalize(wp_triangle_normal(light));
+    float3 to_light = point - position;
+    float distance = length(to_light);
+    float cos_light = -dot(light_normal, to_light / distance);
+    if (!(cos_light > 0.0f) || scene->light_count == 0u)
+        return 0.0f;
+#if WP_LIGHT_SAMPLING == WP_LIGHT_SOLID_ANGLE
+    float3 r0 = light->v0.xyz - position, r1 = light->v1.xyz - position,
+           r2 = light->v2.xyz - position;
+    float solid_angle = wp_spherical_triangle_area(r0, r1, r2);
+    if (-dot(r0, light_normal) > 0.0f && solid_angle >= WP_MIN_SPHERICAL_AREA &&
+        solid_angle <= WP_MAX_SPHERICAL_AREA) {
+        float triangle_area =
+            0.5f * length(cross(light->v1.xyz - light->v0.xyz, light->v2.xyz - light->v0.xyz));
+        return triangle_area / (scene->light_area * solid_angle);
+    }
+#endif
+    return distance * distance / (cos_light * scene->light_area);
 }
 
 #endif /* WP_LIGHTS_H */

@@ -41,6 +41,12 @@
  * mirror spheres (mirror_spheres[], their numbers in spheres[]). Paths with
  * two or more mirror bounces keep weight 1.
  *
+ * "Diffuse" above stands for any vertex that is not delta (a glossy one
+ * does the same, with its own BSDF's density), and "mirror" for the `mirror`
+ * material kind only (Mitsuba's conductor with material "none"): other
+ * delta surfaces, such as a smooth conductor with a Fresnel term, are not
+ * sampled by this strategy, and paths off them keep weight 1.
+ *
  * The shading side (kernels/shade.cl) keeps the last diffuse vertex and its
  * BSDF density in mirror_vertex, and WP_PATH_PLANAR_MIRROR (or
  * WP_PATH_SPHERE_MIRROR with the sphere's number) in path_flags while the
@@ -75,15 +81,6 @@
 #undef WP_MIRROR_NEE
 #define WP_MIRROR_NEE 0
 #endif
-
-/* The power heuristic's weight of the strategy of density `own` against
- * `other` (0 when its own density is 0, 1 when the other's is). */
-static inline float wp_mis_power(float own, float other) {
-    if (!(own > 0.0f))
-        return 0.0f;
-    float r = other / own;
-    return 1.0f / (1.0f + r * r);
-}
 
 /* Whether the point p of t's plane lies inside t or on its edge. */
 static inline int wp_mirror_triangle_holds(WpTriangle t, float3 p) {
@@ -425,21 +422,25 @@ static inline float wp_mirror_emission_weight(const WpSceneView* scene, wp_uint 
     return wp_mis_power(vertex.w, wp_mirror_light_pdf(scene, distance, cos_light));
 }
 
-/* 1 if a specular bounce at this surface is off a planar mirror (a flat
+/* 1 if a bounce off a mirror at this surface is off a planar mirror (a flat
  * mirror triangle: the host puts every one in a WpMirrorGroup). */
 static inline int wp_is_planar_mirror(const WpSceneView* scene, wp_uint primitive,
                                       const WpSurface* surface) {
     return wp_primitive_kind(scene, primitive) == WP_PRIMITIVE_TRIANGLE && !surface->smooth;
 }
 
-/* The path flags after a bounce at this surface (`primitive`): the mirror
- * flags say whether it was the first mirror after a diffuse vertex (and
- * which sphere), for the emission weight at the next vertex. */
+/* The path flags after a bounce at this surface (`primitive`, of a material
+ * of the `mirror` kind when `mirror`): the mirror flags say whether it was the
+ * first mirror after a non-delta vertex (and which sphere), for the emission
+ * weight at the next vertex. Only the mirror kind: the mirrored strategy
+ * samples the scene's mirrors (the host's WpMirrorGroup and mirror_spheres,
+ * both of that kind), and a path off any other delta surface (a smooth
+ * conductor) keeps weight 1. */
 static inline wp_uint wp_mirror_flags_after(const WpSceneView* scene, wp_uint flags,
                                             wp_uint primitive, const WpSurface* surface,
-                                            int specular) {
+                                            int mirror) {
     wp_uint kept = flags & ~(WP_PATH_PLANAR_MIRROR | WP_PATH_SPHERE_MIRROR | WP_PATH_SPHERE_BITS);
-    if (!specular || (flags & WP_PATH_SPECULAR)) /* not a mirror right after a diffuse vertex */
+    if (!mirror || (flags & WP_PATH_SPECULAR)) /* not a mirror right after a non-delta vertex */
         return kept;
     if (wp_is_planar_mirror(scene, primitive, surface))
         return kept | WP_PATH_PLANAR_MIRROR;

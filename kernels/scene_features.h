@@ -7,6 +7,8 @@
 #ifndef WP_SCENE_FEATURES_H
 #define WP_SCENE_FEATURES_H
 
+#include "wp_shared.h"
+
 #ifndef WP_HAS_TRIANGLES
 #define WP_HAS_TRIANGLES 1
 #endif
@@ -16,9 +18,22 @@
 #ifndef WP_HAS_DIFFUSE
 #define WP_HAS_DIFFUSE 1
 #endif
+/* Material kinds in use: one WP_HAS_KIND per kind with a BSDF (the bsdf
+ * column of WP_MATERIALS, wp_shared.h; the check below fails to compile when
+ * a row has no default here). */
 #ifndef WP_HAS_MIRROR
 #define WP_HAS_MIRROR 1
 #endif
+#ifndef WP_HAS_CONDUCTOR
+#define WP_HAS_CONDUCTOR 1
+#endif
+#ifndef WP_HAS_ROUGHCONDUCTOR
+#define WP_HAS_ROUGHCONDUCTOR 1
+#endif
+#define WP_MATERIAL_FEATURE_CHECK(KIND, Name, name, value, bsdf, glossy)                           \
+    WP_IF(bsdf)(wp_has_##name##_is_defined = WP_HAS_##KIND, )
+enum { WP_MATERIALS(WP_MATERIAL_FEATURE_CHECK) wp_material_features_checked };
+#undef WP_MATERIAL_FEATURE_CHECK
 #ifndef WP_HAS_SHADING_NORMALS /* triangles with vertex normals */
 #define WP_HAS_SHADING_NORMALS 1
 #endif

@@ -1,19 +1,26 @@
 /* Stage 3, shade: what happens where each queued ray hit, in four steps.
  *
  *  1. Emission: an emitter's front face adds throughput x radiance, but only
- *     for camera rays and rays after a specular bounce. After a diffuse
- *     bounce the light was already counted by next-event estimation, and
- *     counting it again would count it twice. (With WP_USE_NEE=0 there is no
+ *     for camera rays and rays after a delta bounce. After a diffuse bounce
+ *     the light was already counted by next-event estimation, and counting it
+ *     again would count it twice; after a glossy bounce it counts with the
+ *     multiple importance sampling weight of the BSDF sample against the
+ *     light sample (the power heuristic). (With WP_USE_NEE=0 there is no
  *     step 2 and emitters count after every bounce.)
  *  2. Next-event estimation (surfaces that are not delta BSDFs): sample a
  *     point on the lights (lights.h) and queue one shadow ray carrying the
- *     contribution it would make if nothing blocks it.
- *  3. Scattering: the material's BSDF (bsdf.h) picks the next direction and
- *     the factor the throughput takes.
- *  Triangles with vertex normals shade by the interpolated normal and send
- *  rays from the terminator-fixed point (primitive.h); whether light from
- *  below their flat facet arrives is the shadow ray's to say, and paths
- *  scattered into the facet are absorbed.
+ *     contribution it would make if nothing blocks it; at a glossy surface
+ *     weighed against BSDF sampling, as step 1's emission is.
+ *  3. Scattering: the material's BSDF (bsdf.h) picks the next direction, the
+ *     factor the throughput takes and what kind of bounce it was (flags).
+ *     The new ray leaves by the side of the surface the sample's flags name
+ *     (reflection: the side the ray came from; transmission: the other),
+ *     offset to that side. A sample whose direction the geometric normal puts
+ *     on the other side is absorbed: with shading normals (triangles with
+ *     vertex normals, which shade by the interpolated normal and send rays
+ *     from the terminator-fixed point, primitive.h) the geometric cosine
+ *     decides, so no light leaks through the surface; whether light from
+ *     below their flat facet arrives is the shadow ray's to say.
  *  4. Russian roulette: survive with probability min(1, max(throughput)) and
  *     divide survivors' throughput by it, which keeps the estimate unbiased;
  *     from bounce WP_ROULETTE_DEPTH on (estimator.h), before it always survive.
@@ -49,7 +56,7 @@ static inline WP_ALWAYS_INLINE float wp_path_random(const WpPathRandom* r, wp_ui
 /* Step 1: the emitted radiance the path sees at this surface, if it counts. */
 static inline float3 wp_shade_emission(const WpMaterial* material, const WpSurface* surface,
                                        wp_uint path_types, wp_uint flags, float3 beta, float3 sum) {
-    if ((!WP_USE_NEE || (flags & WP_PATH_SPECULAR)) && surface->front_face &&
+    if ((!WP_USE_NEE || (flags & (WP_PATH_SPECULAR | WP_PATH_GLOSSY))) && surface->front_face &&
         WP_PATH_EMISSION_SELECTED(path_types, flags))
         sum += beta * material->emission.xyz;
     return sum;
@@ -68,6 +75,11 @@ static inline void wp_shade_next_event(const WpSceneView* scene, const WpMateria
         return;
     float3 contribution = beta * wp_bsdf_eval_pi(material, wo, light.direction, shading) *
                           light.irradiance * (1.0f / WP_PI);
+#if WP_HAS_GLOSSY
+    if (wp_bsdf_weighs_light(material))
+        contribution *=
+            wp_mis_power(light.pdf, wp_bsdf_pdf(material, wo, light.direction, shading));
+#endif
     if (wp_is_black(contribution))
         return;
     shadow->origin = origin;
@@ -93,7 +105,8 @@ static inline int wp_shade_roulette(const WpMaterial* material, const WpBsdfSamp
     /* The report's roulette: survive with the surface's albedo sigma, whatever
      * the path carries; eq. 2.10 divides survivors by it. Mirrors draw a
      * number of their own. */
-    float u_survive = scattered->specular ? wp_path_random(random, WP_DIM_ROULETTE) : u_bsdf;
+    float u_survive =
+        (scattered->flags & WP_BSDF_DIFFUSE) ? u_bsdf : wp_path_random(random, WP_DIM_ROULETTE);
     *survival = fmin(1.0f, wp_max_component(material->reflectance.xyz));
     *beta *= scattered->weight;
     return u_survive < *survival;
@@ -133,8 +146,9 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
     float3 direction = ray_direction[slot].xyz;
     WpSurface surface = wp_surface_at(&scene, primitive, ray_origin[slot].xyz, direction, t);
     if (surface.inside_solid) {
-        /* Inside a mirror sphere such a path would bounce until the depth
-         * cap; absorb it instead. */
+        /* No material transmits yet, so only an offset origin can be inside
+         * a sphere: inside a mirror sphere such a path would bounce until the
+         * depth cap; absorb it instead. */
         return WP_SHADED_ENDS;
     }
     WpMaterial material = materials[surface.material];
@@ -150,6 +164,17 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
     WpPathRandom random = {frame.seed, path_pixel[slot], path_sample[slot], depth};
 
     float3 beta_emission = beta;
+#if WP_HAS_GLOSSY && WP_HAS_LIGHTS && WP_USE_NEE
+    /* After a glossy bounce from mirror_vertex: weighed against the light
+     * sample there. Only emissive triangles are lights it samples. */
+    if ((flags & WP_PATH_GLOSSY) && surface.front_face &&
+        wp_primitive_kind(&scene, primitive) == WP_PRIMITIVE_TRIANGLE) {
+        float4 vertex = mirror_vertex[slot];
+        WpTriangle light = scene.triangles[primitive];
+        beta_emission *=
+            wp_mis_power(vertex.w, wp_light_pdf(&scene, &light, vertex.xyz, surface.position));
+    }
+#endif
 #if WP_MIRROR_NEE /* weighed against the mirrored light sample (mirror_light.h) */
     if (flags & (WP_PATH_PLANAR_MIRROR | WP_PATH_SPHERE_MIRROR))
         beta_emission *= wp_mirror_emission_weight(&scene, primitive, flags, mirror_vertex[slot],
@@ -161,6 +186,7 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
     if (wp_bsdf_is_black(&material))
         return WP_SHADED_ENDS;
 
+    /* Shadow rays and reflected rays leave by the side the ray came from. */
     float3 origin = wp_offset_ray_origin(spawn, normal, surface.scale);
 #if WP_HAS_LIGHTS && WP_USE_NEE
     if (!wp_bsdf_is_delta(&material)) {
@@ -184,22 +210,34 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
     float u1 = wp_path_random(&random, WP_DIM_BSDF_U);
     float u2 = wp_path_random(&random, WP_DIM_BSDF_V);
     WpBsdfSample scattered = wp_bsdf_sample(&material, direction, shading, u1, u2);
-#if WP_HAS_SHADING_NORMALS
-    /* Scattered by the shading normal into the true surface: absorbed. */
-    if (surface.smooth && !(dot(scattered.direction, normal) > 0.0f))
+    /* Nothing sampled, or a direction on the other side of the true surface
+     * than the sample's flags say (by the shading normal): absorbed. */
+    int transmitted = (scattered.flags & WP_BSDF_TRANSMISSION) != 0u;
+    float cos_geometric = dot(scattered.direction, normal);
+    if (scattered.flags == 0u || !(transmitted ? cos_geometric < 0.0f : cos_geometric > 0.0f))
         return WP_SHADED_ENDS;
-#endif
-#if WP_MIRROR_NEE /* what the emission weight at the next vertex needs */
-    if (!scattered.specular)
+    if (transmitted) /* the new ray leaves by the other side */
+        origin = wp_offset_ray_origin(surface.front_face ? surface.spawn_back : surface.spawn_front,
+                                      -normal, surface.scale);
+    int delta = wp_bsdf_sample_is_delta(&scattered);
+#if WP_MIRROR_NEE || WP_HAS_GLOSSY /* what the emission weight at the next vertex needs */
+    if (!delta)
         mirror_vertex[slot] = (float4)(surface.position, scattered.pdf);
-    flags = wp_mirror_flags_after(&scene, flags, primitive, &surface, scattered.specular);
 #endif
-    if (scattered.specular)
+#if WP_MIRROR_NEE
+    flags = wp_mirror_flags_after(&scene, flags, primitive, &surface,
+                                  material.kind == WP_MATERIAL_MIRROR);
+#endif
+    if (delta)
         flags |= WP_PATH_SPECULAR;
     else
         flags &= ~WP_PATH_SPECULAR;
+    if (scattered.flags & WP_BSDF_GLOSSY)
+        flags |= WP_PATH_GLOSSY;
+    else
+        flags &= ~WP_PATH_GLOSSY;
 #if WP_PATH_TYPES
-    flags = wp_path_flags_after(flags, scattered.specular);
+    flags = wp_path_flags_after(flags, delta);
 #endif
 
     float survival;

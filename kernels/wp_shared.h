@@ -33,16 +33,62 @@ typedef cl_float4 wp_float4;
 #define WP_ALWAYS_INLINE
 #endif
 
-/* Material kinds (WpMaterial.kind). */
-#define WP_MATERIAL_DIFFUSE 0u
-#define WP_MATERIAL_MIRROR 1u
-#define WP_MATERIAL_EMITTER 2u
+/* The material kinds, one row each: X(KIND, Name, name, value, bsdf, glossy).
+ * Everything that knows about kinds is generated from or checked against
+ * this table (docs/architecture.md, "Adding a material"):
+ *   WP_MATERIAL_KIND   the constant in WpMaterial.kind (below);
+ *   Name               MaterialKind::Name on the host (src/scene/scene.hpp);
+ *   name               the scene file's "type" (src/scene/load.cpp) and the
+ *                      feature's name (SceneFeatures::name, "wavepath info");
+ *   bsdf               1 for a kind that scatters: its header
+ *                      kernels/bsdf/name.h, its dispatch line (kernels/bsdf.h)
+ *                      and its feature switch WP_HAS_KIND (kernels/
+ *                      scene_features.h), which compiles the code in only for
+ *                      scenes that use it; 0 for a kind with no BSDF at all;
+ *   glossy             1 for a kind whose BSDF is neither Lambertian nor delta:
+ *                      next-event estimation there is weighed against BSDF
+ *                      sampling (kernels/shade.cl, WP_HAS_GLOSSY).
+ * Values are the order of the rows: they are stored in checkpoints' scene
+ * hashes, so a new kind goes at the end. WP_MATERIALS_WITH(X, a) hands every
+ * row to X with `a` first, for tables generated from this one (the host's
+ * feature rows, src/render/device_scene.hpp). */
+#define WP_MATERIALS_WITH(X, a)                                                                    \
+    X(a, DIFFUSE, Diffuse, diffuse, 0u, 1, 0)       /* Lambertian */                               \
+    X(a, MIRROR, Mirror, mirror, 1u, 1, 0)          /* perfect specular reflection */              \
+    X(a, EMITTER, Emitter, emitter, 2u, 0, 0)       /* emits, reflects nothing */                  \
+    X(a, CONDUCTOR, Conductor, conductor, 3u, 1, 0) /* smooth metal, Fresnel */                    \
+    X(a, ROUGHCONDUCTOR, RoughConductor, roughconductor, 4u, 1, 1) /* microfacet metal */
+#define WP_MATERIALS(X) WP_MATERIALS_WITH(WP_MATERIAL_ROW_OF, X)
+#define WP_MATERIAL_ROW_OF(X, ...) X(__VA_ARGS__)
+
+/* WP_IF(flag)(text): text when flag is 1, nothing when 0 (for the table's bsdf
+ * column). */
+#define WP_IF(flag) WP_IF_##flag
+#define WP_IF_0(...)
+#define WP_IF_1(...) __VA_ARGS__
+
+/* Material kinds (WpMaterial.kind): WP_MATERIAL_DIFFUSE, ... */
+#define WP_MATERIAL_ENUMERATOR(KIND, Name, name, value, bsdf, glossy) WP_MATERIAL_##KIND = value,
+enum { WP_MATERIALS(WP_MATERIAL_ENUMERATOR) WP_MATERIAL_KIND_COUNT };
+#undef WP_MATERIAL_ENUMERATOR
+
+/* What a sampled direction is (WpBsdfSample.flags, kernels/bsdf/interface.h):
+ * one side, times one kind of lobe. */
+#define WP_BSDF_REFLECTION 1u
+#define WP_BSDF_TRANSMISSION 2u
+#define WP_BSDF_DIFFUSE 4u
+#define WP_BSDF_GLOSSY 8u
+#define WP_BSDF_DELTA 16u /* next-event estimation cannot reach it */
+
+/* Microfacet distributions (WpMaterial.distribution), Mitsuba's names. */
+#define WP_MICROFACET_BECKMANN 0u
+#define WP_MICROFACET_GGX 1u
 
 /* Marks a ray that hit nothing (WpHit.primitive). */
 #define WP_NO_HIT 0xffffffffu
 
 /* Path flags (path_flags[]). */
-#define WP_PATH_SPECULAR 1u /* the last bounce was specular (or none yet): emitters count */
+#define WP_PATH_SPECULAR 1u /* the last bounce was delta (or none yet): emitters count */
 /* Bits 1-3 hold the path's history class (WP_PATH_TYPE_*, kernels/path_type.h),
  * kept only when the kernels are built with WP_PATH_TYPES. */
 #define WP_PATH_HISTORY_SHIFT 1u
@@ -55,6 +101,10 @@ typedef cl_float4 wp_float4;
  * WP_PATH_SPHERE_SHIFT on hold. Set only with WP_MIRROR_NEE and
  * WP_HAS_MIRROR_SPHERES. */
 #define WP_PATH_SPHERE_MIRROR 32u
+/* The last bounce was glossy (kernels/shade.cl): emission found now takes the
+ * multiple importance sampling weight against next-event estimation, with the
+ * BSDF density of that bounce in mirror_vertex.w. */
+#define WP_PATH_GLOSSY 64u
 #define WP_PATH_SPHERE_SHIFT 8u
 #define WP_PATH_SPHERE_BITS 0xffffff00u
 
@@ -143,10 +193,18 @@ typedef struct {
     wp_uint pad0, pad1, pad2;
 } WpSphere;
 
+/* A material: the parameters of every kind side by side; each BSDF reads its
+ * own (kernels/bsdf/KIND.h). */
 typedef struct {
-    wp_float4 reflectance; /* rgb in [0, 1] */
+    wp_float4 reflectance; /* rgb in [0, 1]; conductors: specular_reflectance */
     wp_float4 emission;    /* rgb radiance from the front face */
+    wp_float4 eta;         /* conductors: real part of the complex IOR, rgb */
+    wp_float4 k;           /* conductors: imaginary part (absorption), rgb */
     wp_uint kind;          /* WP_MATERIAL_* */
+    wp_uint distribution;  /* roughconductor: WP_MICROFACET_* */
+    wp_uint fresnel;       /* conductors: 1, the Fresnel term of eta and k; 0, F = 1 ("none") */
+    wp_float alpha_u;      /* roughconductor: roughness along the tangent, > 0 */
+    wp_float alpha_v;      /* ... and along the bitangent */
     wp_uint pad0, pad1, pad2;
 } WpMaterial;
 
@@ -294,7 +352,7 @@ typedef struct {
     X(shadow_direction, wp_float4, 1, 0, 0)                                                        \
     X(shadow_contribution, wp_float4, 1, 0, 0) /* rgb added if unblocked */                        \
     /* next-event estimation through a planar mirror (kernels/mirror_light.h): */                  \
-    X(mirror_vertex, wp_float4, 1, 0, 0)        /* last diffuse vertex (xyz), its BSDF pdf (w) */  \
+    X(mirror_vertex, wp_float4, 1, 0, 0) /* last non-delta vertex (xyz), its BSDF pdf (w) */       \
     X(mirror_shadow_origin, wp_float4, 1, 0, 0) /* leg 1: to the mirror (w: length) */             \
     X(mirror_shadow_direction, wp_float4, 1, 0, 0)                                                 \
     X(mirror_shadow_origin2, wp_float4, 1, 0, 0) /* leg 2: mirror to light (w: length) */          \

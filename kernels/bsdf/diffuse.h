@@ -34,7 +34,8 @@ static inline WpBsdfSample wp_diffuse_sample(const WpMaterial* m, float3 wo, flo
     s.weight = reflectance;
     s.pdf = fmax(dot(n, s.direction), 0.0f) * (1.0f / WP_PI);
 #endif
-    s.specular = 0;
+    s.flags = WP_BSDF_REFLECTION | WP_BSDF_DIFFUSE;
+    s.eta = 1.0f;
     return s;
 }
 

@@ -3,7 +3,9 @@
  *
  *   WpBsdfSample wp_KIND_sample(const WpMaterial* m, float3 wo, float3 n,
  *                               float u1, float u2)
- *       a direction to continue the path in, from two uniform numbers;
+ *       a direction to continue the path in, from two uniform numbers, with
+ *       the flags of the lobe it came from (flags 0: no direction, the path
+ *       is absorbed);
  *   float3 wp_KIND_eval_pi(const WpMaterial* m, float3 wo, float3 wi, float3 n)
  *       pi times the BSDF value f(wo, wi), without the cosine (0 for a
  *       delta BSDF, which no other direction can meet);
@@ -13,12 +15,17 @@
  *       1 for a delta BSDF (a mirror), which next-event estimation skips.
  *
  * Conventions: wo is the direction the ray travelled (towards the surface),
- * wi points away from it, and n is the unit geometric normal on the side the
- * ray came from; eval and pdf may assume that wi lies on n's side (next-event
- * estimation checks it with the cosine of its geometry term, at the surface
- * point, before it asks). eval returns pi f rather than f so that a Lambertian BSDF's
- * value is its reflectance exactly and the integrator applies the 1/pi once,
- * last (kernels/shade.cl); a new BSDF returns pi f too.
+ * wi points away from it, and n is the unit shading normal on the side the
+ * ray came from. Reflection leaves on n's side, transmission on the other;
+ * the integrator (kernels/shade.cl) picks the side the new ray leaves by, and
+ * its offset, from the sampled direction, and absorbs a sample whose
+ * direction the geometric normal puts on the other side than its flags say
+ * (no light leaks through shading normals). eval and pdf may assume that wi
+ * lies on n's side (next-event estimation checks it with the cosine of its
+ * geometry term, at the surface point, before it asks). eval returns pi f
+ * rather than f so that a Lambertian BSDF's value is its reflectance exactly
+ * and the integrator applies the 1/pi once, last (kernels/shade.cl); a new
+ * BSDF returns pi f too.
  */
 #ifndef WP_BSDF_INTERFACE_H
 #define WP_BSDF_INTERFACE_H
@@ -29,7 +36,23 @@ typedef struct {
     float3 direction; /* wi, unit */
     float3 weight;    /* f cos / pdf: the factor the path's throughput takes */
     float pdf;        /* solid-angle density of direction; 0 for a delta BSDF */
-    int specular;     /* a delta BSDF: next-event estimation cannot reach it */
+    wp_uint flags;    /* WP_BSDF_* (wp_shared.h): side and lobe; 0 when nothing was sampled */
+    float eta;        /* relative index of refraction across the surface (1 for reflection) */
 } WpBsdfSample;
+
+/* A sample that continues nothing: the path is absorbed. */
+static inline WpBsdfSample wp_bsdf_no_sample(void) {
+    WpBsdfSample s;
+    s.direction = (float3)(0.0f, 0.0f, 1.0f);
+    s.weight = (float3)(0.0f);
+    s.pdf = 0.0f;
+    s.flags = 0u;
+    s.eta = 1.0f;
+    return s;
+}
+
+static inline int wp_bsdf_sample_is_delta(const WpBsdfSample* s) {
+    return (s->flags & WP_BSDF_DELTA) != 0u;
+}
 
 #endif /* WP_BSDF_INTERFACE_H */

@@ -19,7 +19,8 @@ static inline WpBsdfSample wp_mirror_sample(const WpMaterial* m, float3 wo, floa
     s.direction = wp_reflect(wo, n);
     s.weight = m->reflectance.xyz;
     s.pdf = 0.0f;
-    s.specular = 1;
+    s.flags = WP_BSDF_REFLECTION | WP_BSDF_DELTA;
+    s.eta = 1.0f;
     return s;
 }
 

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstring>
 #include <string_view>
+#include <tuple>
+#include <type_traits>
 
 #include "cl/program.hpp"
 #include "cl/program_cache.hpp"
@@ -109,6 +111,12 @@ class Hasher {
         f64(v.y);
         f64(v.z);
     }
+    // A material field (Material::rendered_fields).
+    void field(double x) { f64(x); }
+    void field(const glm::dvec3& v) { vec(v); }
+    template <typename E>
+    requires std::is_enum_v<E>
+    void field(E e) { u64(static_cast<std::uint64_t>(e)); }
     std::uint64_t state = kFnvOffset;
 };
 
@@ -151,11 +159,10 @@ std::uint64_t scene_content_hash(const Scene& scene) {
     h.vec(c.up);
     h.f64(c.vertical_fov_degrees);
     h.u64(scene.materials.size());
-    for (const Material& m : scene.materials) {
-        h.u64(static_cast<std::uint64_t>(m.kind));
-        h.vec(m.reflectance);
-        h.vec(m.emission);
-    }
+    // Every value that changes how a material renders: a changed roughness or
+    // index of refraction must not resume silently.
+    for (const Material& m : scene.materials)
+        std::apply([&](const auto&... field) { (h.field(field), ...); }, m.rendered_fields());
     h.u64(scene.triangles.size());
     for (const Triangle& t : scene.triangles) {
         for (const glm::dvec3& v : t.v)

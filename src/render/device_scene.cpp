@@ -27,12 +27,6 @@ std::string flag(const char* name, bool on) {
     return std::string("-D ") + name + (on ? "=1" : "=0");
 }
 
-// The kernels' material constants (wp_shared.h) are the host's MaterialKind
-// values: flatten_scene copies the kind across as it is.
-static_assert(static_cast<wp_uint>(MaterialKind::Diffuse) == WP_MATERIAL_DIFFUSE);
-static_assert(static_cast<wp_uint>(MaterialKind::Mirror) == WP_MATERIAL_MIRROR);
-static_assert(static_cast<wp_uint>(MaterialKind::Emitter) == WP_MATERIAL_EMITTER);
-
 // Appends `word` to a space-separated list.
 void append_word(std::string& list, const std::string& word) {
     if (!list.empty())
@@ -295,8 +289,11 @@ SceneFeatures analyse_features(const Scene& scene, std::uint32_t max_fixed_count
     };
     f.shading_normals = std::any_of(scene.triangles.begin(), scene.triangles.end(),
                                     [](const Triangle& t) { return t.has_normals; });
-    f.diffuse = uses(MaterialKind::Diffuse);
-    f.mirror = uses(MaterialKind::Mirror);
+    // One feature per material kind with a BSDF: on when the scene uses it.
+#define WP_MATERIAL_FEATURE_USED(features, KIND, Name, name, value, bsdf, glossy)                  \
+    WP_IF(bsdf)(features.name = uses(MaterialKind::Name);)
+    WP_MATERIALS_WITH(WP_MATERIAL_FEATURE_USED, f)
+#undef WP_MATERIAL_FEATURE_USED
     const auto lights = static_cast<std::uint32_t>(
         std::count_if(scene.triangles.begin(), scene.triangles.end(), [&](const Triangle& t) {
             return scene.materials[t.material].is_emissive();
@@ -349,6 +346,14 @@ DeviceScene flatten_scene(const Scene& scene, bool hierarchy) {
         w.reflectance = to_float4(m.reflectance);
         w.emission = to_float4(m.emission);
         w.kind = static_cast<wp_uint>(m.kind);
+        w.eta = to_float4(m.eta);
+        w.k = to_float4(m.k);
+        // Material "none" (eta 0, k 1) reflects everything: F = 1 exactly,
+        // without the Fresnel formula's rounding.
+        w.fresnel = m.eta == glm::dvec3(0.0) && m.k == glm::dvec3(1.0) ? 0u : 1u;
+        w.distribution = static_cast<wp_uint>(m.distribution);
+        w.alpha_u = static_cast<float>(m.alpha_u);
+        w.alpha_v = static_cast<float>(m.alpha_v);
         out.materials.push_back(w);
     }
 

@@ -24,12 +24,16 @@ inline constexpr std::uint32_t kMinBvhPrimitives = kMaxFixedCountPrimitives + 1;
 // preprocessor switch of kernels/scene_features.h that compiles its code in
 // or out; SceneFeatures has a bool per row, and its build options and
 // description follow the rows (a new feature is a row here, its #ifndef in
-// scene_features.h, and its line in analyse_features).
+// scene_features.h, and its line in analyse_features). The material kinds'
+// rows come from WP_MATERIALS (kernels/wp_shared.h): one per kind with a
+// BSDF, named as the kind, set when the scene uses the kind.
+#define WP_MATERIAL_FEATURE_ROW(X, KIND, Name, name, value, bsdf, glossy)                          \
+    WP_IF(bsdf)(X(name, WP_HAS_##KIND))
+#define WP_MATERIAL_FEATURES(X) WP_MATERIALS_WITH(WP_MATERIAL_FEATURE_ROW, X)
 #define WP_SCENE_FEATURES(X)                                                                       \
     X(triangles, WP_HAS_TRIANGLES)                                                                 \
     X(spheres, WP_HAS_SPHERES)                                                                     \
-    X(diffuse, WP_HAS_DIFFUSE) /* material kinds in use */                                         \
-    X(mirror, WP_HAS_MIRROR)                                                                       \
+    WP_MATERIAL_FEATURES(X)                    /* material kinds in use */                         \
     X(shading_normals, WP_HAS_SHADING_NORMALS) /* triangles with vertex normals */                 \
     X(lights, WP_HAS_LIGHTS)                   /* emissive triangles for next-event estimation */  \
     X(planar_mirrors, WP_HAS_PLANAR_MIRRORS)   /* flat mirror triangles, and lights */             \

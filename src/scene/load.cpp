@@ -13,6 +13,7 @@
 #include <glm/geometric.hpp>
 
 #include "scene/json_reader.hpp"
+#include "scene/material.hpp"
 #include "scene/mesh.hpp"
 #include "scene/transform_reader.hpp"
 #include "scene/validate.hpp"
@@ -41,7 +42,7 @@ std::string fmt4(double x) {
 // ---------------------------------------------------------------------------
 // DOM -> Scene, validating every field.
 
-enum class Range { Coordinate, Reflectance, Radiance };
+enum class Range { Coordinate, Reflectance, Radiance, Index };
 
 // A json::Reader that knows scenes: the fields, their ranges and how they
 // become a wp::Scene. Mesh files are found relative to `folder`, the scene
@@ -76,6 +77,12 @@ class SceneReader : private json::Reader {
         case Range::Reflectance:
             if (x < 0.0 || x > 1.0)
                 fail(p, "reflectance must be in [0, 1], got " + number_text(x));
+            break;
+        case Range::Index: // a conductor's eta or k
+            if (x < 0.0)
+                fail(p, "must not be negative, got " + number_text(x));
+            if (x > scene_limits::max_index)
+                fail(p, "must be at most 1e4, got " + number_text(x));
             break;
         case Range::Radiance:
             if (x < 0.0)
@@ -184,32 +191,132 @@ class SceneReader : private json::Reader {
             const Ptr pm = p / name;
             expect_object(m, pm, "a material object");
             const std::string& type = expect_string(require(m, pm, "type"), pm / "type");
+            const std::optional<MaterialKind> kind = material_kind_from_name(type);
+            if (!kind)
+                fail(pm / "type", "unknown material type '" + shorten(type, 40) + "' (expected " +
+                                      material_kind_names() + ")");
             Material mat;
             mat.name = name;
-            if (type == "diffuse" || type == "mirror") {
-                mat.kind = type == "diffuse" ? MaterialKind::Diffuse : MaterialKind::Mirror;
-                check_keys(m, pm, {"type", "reflectance", "emission"});
-                mat.reflectance =
-                    vec3(require(m, pm, "reflectance"), pm / "reflectance", Range::Reflectance);
-                if (const auto it = m.find("emission"); it != m.end())
-                    mat.emission = vec3(*it, pm / "emission", Range::Radiance);
-            } else if (type == "emitter") {
-                mat.kind = MaterialKind::Emitter;
-                check_keys(m, pm, {"type", "radiance"});
-                mat.reflectance = glm::dvec3(0.0);
-                mat.emission = vec3(require(m, pm, "radiance"), pm / "radiance", Range::Radiance);
-                // one_line: the pointer holds the material's name as the file spells it.
-                if (!mat.is_emissive())
-                    scene_.warnings.push_back(
-                        one_line(pointer_text(pm / "radiance") +
-                                 ": emitter with zero radiance emits nothing"));
-            } else {
-                fail(pm / "type", "unknown material type '" + shorten(type, 40) +
-                                      "' (expected diffuse, mirror or emitter)");
-            }
+            mat.kind = *kind;
+            read_material(m, pm, mat);
             material_index_.emplace(name, static_cast<std::uint32_t>(scene_.materials.size()));
             scene_.materials.push_back(std::move(mat));
         }
+    }
+
+    // The parameters of one material of kind mat.kind, named as Mitsuba 3's
+    // plugins name them (docs/scene-format.md). Every kind of WP_MATERIALS has
+    // its case: the switch has no default, so the compiler names a missing one.
+    void read_material(const Json& m, const Ptr& pm, Material& mat) {
+        switch (mat.kind) {
+        case MaterialKind::Diffuse:
+        case MaterialKind::Mirror:
+            check_keys(m, pm, {"type", "reflectance", "emission"});
+            mat.reflectance =
+                vec3(require(m, pm, "reflectance"), pm / "reflectance", Range::Reflectance);
+            read_emission(m, pm, mat);
+            return;
+        case MaterialKind::Emitter:
+            check_keys(m, pm, {"type", "radiance"});
+            mat.reflectance = glm::dvec3(0.0);
+            mat.emission = vec3(require(m, pm, "radiance"), pm / "radiance", Range::Radiance);
+            // one_line: the pointer holds the material's name as the file spells it.
+            if (!mat.is_emissive())
+                scene_.warnings.push_back(one_line(pointer_text(pm / "radiance") +
+                                                   ": emitter with zero radiance emits nothing"));
+            return;
+        case MaterialKind::Conductor:
+            check_keys(m, pm, {"type", "material", "eta", "k", "specular_reflectance", "emission"});
+            read_conductor(m, pm, mat);
+            // Mitsuba's default, material "none" without eta and k: the perfect
+            // mirror, which is the mirror kind (and its next-event estimation).
+            if (mat.metal == "none" && m.find("eta") == m.end() && m.find("k") == m.end())
+                mat.kind = MaterialKind::Mirror;
+            return;
+        case MaterialKind::RoughConductor:
+            check_keys(m, pm,
+                       {"type", "material", "eta", "k", "specular_reflectance", "emission",
+                        "distribution", "alpha", "alpha_u", "alpha_v"});
+            read_conductor(m, pm, mat);
+            read_roughness(m, pm, mat);
+            return;
+        }
+        fail(pm / "type", "material kind without a reader"); // unreachable for valid kinds
+    }
+
+    void read_emission(const Json& m, const Ptr& pm, Material& mat) const {
+        if (const auto it = m.find("emission"); it != m.end())
+            mat.emission = vec3(*it, pm / "emission", Range::Radiance);
+    }
+
+    // Mitsuba's conductor parameters: a named metal ("material", default
+    // "none": eta 0, k 1, reflectance 1) or eta and k, never both, and
+    // specular_reflectance (default 1) on top.
+    void read_conductor(const Json& m, const Ptr& pm, Material& mat) const {
+        mat.metal = "none";
+        if (const auto it = m.find("material"); it != m.end()) {
+            mat.metal = expect_string(*it, pm / "material");
+            if (mat.metal != "none") {
+                const NamedMetal* metal = find_metal(mat.metal);
+                if (!metal) {
+                    std::string known = "none";
+                    for (const NamedMetal& n : named_metals())
+                        known += std::string(", ") + n.name;
+                    fail(pm / "material",
+                         "unknown metal '" + shorten(mat.metal, 40) + "' (expected " + known + ")");
+                }
+                if (m.find("eta") != m.end() || m.find("k") != m.end())
+                    fail(pm / "material", "give either a named material or eta and k, not both");
+                mat.eta = metal->eta;
+                mat.k = metal->k;
+            }
+        }
+        if (const auto it = m.find("eta"); it != m.end()) {
+            mat.eta = vec3(*it, pm / "eta", Range::Index);
+            mat.metal.clear();
+        }
+        if (const auto it = m.find("k"); it != m.end()) {
+            mat.k = vec3(*it, pm / "k", Range::Index);
+            mat.metal.clear();
+        }
+        mat.reflectance = glm::dvec3(1.0);
+        if (const auto it = m.find("specular_reflectance"); it != m.end())
+            mat.reflectance = vec3(*it, pm / "specular_reflectance", Range::Reflectance);
+        read_emission(m, pm, mat);
+    }
+
+    // Mitsuba's roughconductor roughness: "distribution" ("beckmann", the
+    // default, or "ggx") and "alpha" (default 0.1) or "alpha_u" and "alpha_v"
+    // together for an anisotropic surface.
+    void read_roughness(const Json& m, const Ptr& pm, Material& mat) const {
+        if (const auto it = m.find("distribution"); it != m.end()) {
+            const std::string& d = expect_string(*it, pm / "distribution");
+            if (d == "beckmann")
+                mat.distribution = MicrofacetDistribution::Beckmann;
+            else if (d == "ggx")
+                mat.distribution = MicrofacetDistribution::Ggx;
+            else
+                fail(pm / "distribution",
+                     "unknown distribution '" + shorten(d, 40) + "' (expected beckmann or ggx)");
+        }
+        const bool u = m.find("alpha_u") != m.end(), v = m.find("alpha_v") != m.end();
+        if (m.find("alpha") != m.end()) {
+            if (u || v)
+                fail(pm / "alpha", "give either alpha or alpha_u and alpha_v, not both");
+            mat.alpha_u = mat.alpha_v = roughness(m, pm, "alpha");
+        } else if (u != v) {
+            fail(pm / (u ? "alpha_v" : "alpha_u"), "alpha_u and alpha_v go together");
+        } else if (u) {
+            mat.alpha_u = roughness(m, pm, "alpha_u");
+            mat.alpha_v = roughness(m, pm, "alpha_v");
+        }
+    }
+
+    double roughness(const Json& m, const Ptr& pm, const char* key) const {
+        const double a = number(m.at(key), pm / key);
+        if (!(a > 0.0) || a > scene_limits::max_alpha)
+            fail(pm / key, "must be in (0, 4], got " + number_text(a));
+        return a;
     }
 
     std::uint32_t material_ref(const Json& shape, const Ptr& p) const {

@@ -146,6 +146,25 @@ std::string bsdf(const Material& m, std::size_t index) {
                 "        <string name=\"material\" value=\"none\"/>\n" + in + "        " +
                 rgb("specular_reflectance", m.reflectance) + "\n" + in + "    </bsdf>\n";
         break;
+    case MaterialKind::Conductor:
+    case MaterialKind::RoughConductor: {
+        // eta and k as the RGB values wavepath renders with (a named metal's
+        // too: Mitsuba's own spectral data would differ a little in colour).
+        const bool rough = m.kind == MaterialKind::RoughConductor;
+        inner = in + "    <bsdf type=\"" + std::string(material_kind_name(m.kind)) + "\">\n";
+        inner += in + "        " + rgb("eta", m.eta) + "\n";
+        inner += in + "        " + rgb("k", m.k) + "\n";
+        inner += in + "        " + rgb("specular_reflectance", m.reflectance) + "\n";
+        if (rough) {
+            inner += in + "        <string name=\"distribution\" value=\"" +
+                     (m.distribution == MicrofacetDistribution::Ggx ? "ggx" : "beckmann") +
+                     "\"/>\n";
+            inner += in + "        <float name=\"alpha_u\" value=\"" + number(m.alpha_u) + "\"/>\n";
+            inner += in + "        <float name=\"alpha_v\" value=\"" + number(m.alpha_v) + "\"/>\n";
+        }
+        inner += in + "    </bsdf>\n";
+        break;
+    }
     case MaterialKind::Emitter:
         // Reflects nothing, on either side: black, and one-sided will do.
         return in + xml_comment("material '" + m.name + "' (emitter: reflects nothing)") + "\n" +

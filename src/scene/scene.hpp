@@ -7,9 +7,12 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <glm/vec3.hpp>
+
+#include "wp_shared.h"
 
 namespace wp {
 
@@ -30,22 +33,53 @@ struct Camera {
     int height = 0;
 };
 
-enum class MaterialKind : std::uint32_t {
-    Diffuse = 0, // Lambertian: f = reflectance / pi
-    Mirror = 1,  // perfect specular reflection scaled by reflectance
-    Emitter = 2, // reflects nothing; emits `emission` from its front face
+// The material kinds: the rows of WP_MATERIALS (kernels/wp_shared.h), with
+// the kernels' values, so that flatten_scene copies a kind across as it is.
+#define WP_MATERIAL_KIND_ENUMERATOR(KIND, Name, name, value, bsdf, glossy) Name = value,
+enum class MaterialKind : std::uint32_t { WP_MATERIALS(WP_MATERIAL_KIND_ENUMERATOR) };
+#undef WP_MATERIAL_KIND_ENUMERATOR
+
+// The kind's name in scene files ("diffuse", "roughconductor", ...), or null
+// for a value that is no kind.
+const char* material_kind_name(MaterialKind kind);
+
+// Microfacet distributions, Mitsuba's "distribution" (WP_MICROFACET_*).
+enum class MicrofacetDistribution : std::uint32_t {
+    Beckmann = WP_MICROFACET_BECKMANN,
+    Ggx = WP_MICROFACET_GGX,
 };
 
 struct Material {
     std::string name;
     MaterialKind kind = MaterialKind::Diffuse;
-    glm::dvec3 reflectance{0.0}; // in [0, 1] per channel
+    // Diffuse: the reflectance; mirror and conductors: Mitsuba's
+    // specular_reflectance, a factor on the Fresnel term. In [0, 1] per channel.
+    glm::dvec3 reflectance{0.0};
     // Radiance emitted from the front face (the side the right-handed winding
     // normal points to). Any material kind may emit; only triangles may carry
     // an emissive material (spheres cannot be sampled as lights).
     glm::dvec3 emission{0.0};
+    // Conductors: the complex index of refraction eta + i k per channel.
+    // Mitsuba's material "none" is eta 0, k 1: reflectance 1 at every angle.
+    // `metal` names the table row the values came from ("Au", ...; empty when
+    // given as numbers), for messages and the export.
+    glm::dvec3 eta{0.0};
+    glm::dvec3 k{1.0};
+    std::string metal{};
+    // Rough conductors: the microfacet distribution and its roughness along
+    // the tangent (u) and bitangent (v); equal for an isotropic surface.
+    MicrofacetDistribution distribution = MicrofacetDistribution::Beckmann;
+    double alpha_u = 0.1;
+    double alpha_v = 0.1;
 
     bool is_emissive() const { return emission.x > 0.0 || emission.y > 0.0 || emission.z > 0.0; }
+
+    // Every value that changes how the material renders (not its name), for
+    // the checkpoint's scene hash (render/checkpoint.cpp); a static_assert checks
+    // at compile time that no member is left out (scene/material.cpp).
+    auto rendered_fields() const {
+        return std::tie(kind, reflectance, emission, eta, k, distribution, alpha_u, alpha_v);
+    }
 };
 
 // One triangle; its front face is the side of cross(v1 - v0, v2 - v0).

@@ -64,6 +64,14 @@ class Checker {
             fail(field, "must be in [" + fmt(lo) + ", " + fmt(hi) + "], got " + fmt(x));
     }
 
+    // In (0, hi].
+    void positive(double x, const std::string& field, double hi) const {
+        if (!std::isfinite(x))
+            fail(field, "must be finite, got " + fmt(x));
+        if (!(x > 0.0) || x > hi)
+            fail(field, "must be in (0, " + fmt(hi) + "], got " + fmt(x));
+    }
+
     void vec(const glm::dvec3& v, const std::string& field, double lo, double hi) const {
         for (int i = 0; i < 3; ++i)
             number(v[i], field + "[" + std::to_string(i) + "]", lo, hi);
@@ -100,13 +108,30 @@ class Checker {
         for (std::size_t i = 0; i < scene_.materials.size(); ++i) {
             const Material& m = scene_.materials[i];
             const std::string f = "materials[" + std::to_string(i) + "] ('" + m.name + "')";
-            if (m.kind != MaterialKind::Diffuse && m.kind != MaterialKind::Mirror &&
-                m.kind != MaterialKind::Emitter)
+            if (!material_kind_name(m.kind))
                 fail(f + ".kind", "unknown material kind");
             vec(m.reflectance, f + ".reflectance", 0.0, 1.0);
             if (m.kind == MaterialKind::Emitter && m.reflectance != glm::dvec3(0.0))
                 fail(f + ".reflectance", "must be 0 for an emitter");
             vec(m.emission, f + ".emission", 0.0, scene_limits::max_radiance);
+            // Every kind's own parameters (no default: a new kind must say).
+            switch (m.kind) {
+            case MaterialKind::Diffuse:
+            case MaterialKind::Mirror:
+            case MaterialKind::Emitter:
+                break;
+            case MaterialKind::RoughConductor:
+                if (m.distribution != MicrofacetDistribution::Beckmann &&
+                    m.distribution != MicrofacetDistribution::Ggx)
+                    fail(f + ".distribution", "unknown microfacet distribution");
+                positive(m.alpha_u, f + ".alpha_u", scene_limits::max_alpha);
+                positive(m.alpha_v, f + ".alpha_v", scene_limits::max_alpha);
+                [[fallthrough]];
+            case MaterialKind::Conductor:
+                vec(m.eta, f + ".eta", 0.0, scene_limits::max_index);
+                vec(m.k, f + ".k", 0.0, scene_limits::max_index);
+                break;
+            }
         }
 
         for (std::size_t i = 0; i < scene_.triangles.size(); ++i) {

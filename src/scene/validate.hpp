@@ -28,6 +28,12 @@ inline constexpr double min_scene_size = 1e-60;
 inline constexpr double max_distance_to_size = 536870912.0; // 2^29
 // Largest accepted emitted radiance per channel.
 inline constexpr double max_radiance = 1e30;
+// Largest conductor eta or k: the Fresnel term squares them twice in float32,
+// and measured metals stay below 100.
+inline constexpr double max_index = 1e4;
+// Largest microfacet roughness alpha (the kernels floor it at 1e-4, as
+// Mitsuba does); past 1 a surface is rougher than any measured one.
+inline constexpr double max_alpha = 4.0;
 // Largest image side in pixels.
 inline constexpr int max_resolution = 16384;
 // A triangle is zero-area when |cross(e1, e2)| <= this * (longest edge)^2.

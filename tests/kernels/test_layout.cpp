@@ -39,7 +39,13 @@ namespace {
     X(WpSphere, pad2)                                                                              \
     X(WpMaterial, reflectance)                                                                     \
     X(WpMaterial, emission)                                                                        \
+    X(WpMaterial, eta)                                                                             \
+    X(WpMaterial, k)                                                                               \
     X(WpMaterial, kind)                                                                            \
+    X(WpMaterial, distribution)                                                                    \
+    X(WpMaterial, fresnel)                                                                         \
+    X(WpMaterial, alpha_u)                                                                         \
+    X(WpMaterial, alpha_v)                                                                         \
     X(WpMaterial, pad0)                                                                            \
     X(WpMaterial, pad1)                                                                            \
     X(WpMaterial, pad2)                                                                            \

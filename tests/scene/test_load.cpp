@@ -158,3 +158,42 @@ TEST_CASE("loader: materials", "[scene][load]") {
     REQUIRE(s.warnings.size() == 1);
     CHECK(s.warnings[0] == "/materials/dark/radiance: emitter with zero radiance emits nothing");
 }
+
+TEST_CASE("loader: conductors read Mitsuba's parameters and defaults", "[scene][load]") {
+    const wp::Scene s = wp::parse_scene(R"({"camera": )" + kSceneCamera + R"(, "materials": {
+            "plain": {"type": "conductor"},
+            "gold": {"type": "conductor", "material": "Au", "specular_reflectance": [1, 0.5, 1]},
+            "given": {"type": "conductor", "eta": [1, 2, 3], "k": [4, 5, 6]},
+            "rough": {"type": "roughconductor"},
+            "brushed": {"type": "roughconductor", "material": "Al", "distribution": "ggx",
+                        "alpha_u": 0.05, "alpha_v": 0.3}},
+            "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "plain"}]})",
+                                        "test.json");
+    REQUIRE(s.materials.size() == 5);
+    const wp::Material& plain = s.materials[0];
+    // Material "none" without eta and k: the perfect mirror, the mirror kind.
+    CHECK(plain.kind == wp::MaterialKind::Mirror);
+    CHECK(plain.reflectance == glm::dvec3(1.0));
+    const wp::Material& gold = s.materials[1];
+    CHECK(gold.kind == wp::MaterialKind::Conductor);
+    CHECK(gold.metal == "Au");
+    CHECK(gold.eta.x == Approx(0.1431189557));
+    CHECK(gold.k.z == Approx(1.6032152899));
+    CHECK(gold.reflectance == glm::dvec3(1, 0.5, 1));
+    const wp::Material& given = s.materials[2];
+    CHECK(given.kind == wp::MaterialKind::Conductor);
+    CHECK(given.eta == glm::dvec3(1, 2, 3));
+    CHECK(given.k == glm::dvec3(4, 5, 6));
+    const wp::Material& rough = s.materials[3];
+    CHECK(rough.kind == wp::MaterialKind::RoughConductor);
+    CHECK(rough.eta == glm::dvec3(0.0)); // "none": eta 0, k 1
+    CHECK(rough.k == glm::dvec3(1.0));
+    CHECK(rough.distribution == wp::MicrofacetDistribution::Beckmann);
+    CHECK(rough.alpha_u == 0.1);
+    CHECK(rough.alpha_v == 0.1);
+    const wp::Material& brushed = s.materials[4];
+    CHECK(brushed.distribution == wp::MicrofacetDistribution::Ggx);
+    CHECK(brushed.alpha_u == 0.05);
+    CHECK(brushed.alpha_v == 0.3);
+    CHECK(brushed.metal == "Al");
+}

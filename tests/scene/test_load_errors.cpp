@@ -239,6 +239,44 @@ TEST_CASE("loader: every validation error names its field", "[scene][load][error
          with_materials(
              R"({"white": {"type": "diffuse", "reflectance": [1, 1, 1]}, "white": {"type": "mirror", "reflectance": [1, 1, 1]}})"),
          "/materials/white", "duplicate key 'white'"},
+        // conductors (Mitsuba's conductor and roughconductor parameters)
+        {"unknown conductor parameter",
+         with_materials(R"({"white": {"type": "roughconductor", "roughness": 0.1}})"),
+         "/materials/white/roughness", "unknown key 'roughness'"},
+        {"unknown metal", with_materials(R"({"white": {"type": "conductor", "material": "Xx"}})"),
+         "/materials/white/material", "unknown metal 'Xx'"},
+        {"named metal and eta",
+         with_materials(R"({"white": {"type": "conductor", "material": "Au", "eta": [1, 1, 1]}})"),
+         "/materials/white/material", "not both"},
+        {"alpha zero", with_materials(R"({"white": {"type": "roughconductor", "alpha": 0}})"),
+         "/materials/white/alpha", "must be in (0, 4], got 0"},
+        {"alpha negative",
+         with_materials(R"({"white": {"type": "roughconductor", "alpha_u": 0.1, "alpha_v": -1}})"),
+         "/materials/white/alpha_v", "must be in (0, 4]"},
+        {"alpha not finite",
+         with_materials(R"({"white": {"type": "roughconductor", "alpha": 1e999}})"),
+         "/materials/white/alpha", "out of range"},
+        {"alpha_u without alpha_v",
+         with_materials(R"({"white": {"type": "roughconductor", "alpha_u": 0.1}})"),
+         "/materials/white/alpha_v", "go together"},
+        {"alpha and alpha_u",
+         with_materials(
+             R"({"white": {"type": "roughconductor", "alpha": 0.1, "alpha_u": 0.1, "alpha_v": 0.2}})"),
+         "/materials/white/alpha", "not both"},
+        {"unknown distribution",
+         with_materials(R"({"white": {"type": "roughconductor", "distribution": "phong"}})"),
+         "/materials/white/distribution", "unknown distribution 'phong'"},
+        {"negative eta",
+         with_materials(R"({"white": {"type": "conductor", "eta": [1, -1, 1], "k": [1, 1, 1]}})"),
+         "/materials/white/eta/1", "must not be negative"},
+        {"k not finite",
+         with_materials(
+             R"({"white": {"type": "conductor", "eta": [1, 1, 1], "k": [1, 1, 1e999]}})"),
+         "/materials/white/k/2", "out of range"},
+        {"specular_reflectance above 1",
+         with_materials(
+             R"({"white": {"type": "roughconductor", "specular_reflectance": [1, 2, 1]}})"),
+         "/materials/white/specular_reflectance/1", "[0, 1], got 2"},
         {"material name with a slash is escaped",
          with_materials(R"({"a/b~c": {"type": "plastic"}})"), "/materials/a~1b~0c/type",
          "unknown material type"},
@@ -485,5 +523,22 @@ TEST_CASE("validate_scene: rejects bad hand-built scenes", "[scene][validate]") 
         wp::Scene bad = s;
         bad.materials[0].reflectance.x = 2.0;
         CHECK(message(bad).find("materials[0] ('white').reflectance[0]") != std::string::npos);
+    }
+    {
+        wp::Scene bad = s;
+        bad.materials[0].kind = static_cast<wp::MaterialKind>(99);
+        CHECK(message(bad).find("materials[0] ('white').kind: unknown material kind") !=
+              std::string::npos);
+    }
+    {
+        wp::Scene bad = s;
+        bad.materials[0].kind = wp::MaterialKind::RoughConductor;
+        bad.materials[0].alpha_v = 0.0;
+        CHECK(message(bad).find("materials[0] ('white').alpha_v: must be in (0, 4]") !=
+              std::string::npos);
+        bad.materials[0].alpha_v = 0.1;
+        bad.materials[0].k.y = std::nan("");
+        CHECK(message(bad).find("materials[0] ('white').k[1]: must be finite") !=
+              std::string::npos);
     }
 }

@@ -1,0 +1,42 @@
+/* The smooth conductor (Mitsuba 3's `conductor`): a delta BSDF that reflects
+ * about the normal with the Fresnel reflectance of its complex index of
+ * refraction eta + i k (per channel), times specular_reflectance. Like the
+ * mirror, no other direction meets it: eval and pdf are 0 and next-event
+ * estimation skips it. The mirror next-event estimation of
+ * kernels/mirror_light.h is for the `mirror` kind only (Mitsuba's conductor
+ * with material "none" loads as that kind, src/scene/load.cpp). */
+#ifndef WP_BSDF_CONDUCTOR_H
+#define WP_BSDF_CONDUCTOR_H
+
+#include "bsdf/fresnel.h"
+#include "bsdf/interface.h"
+#include "bsdf/mirror.h"
+
+static inline WpBsdfSample wp_conductor_sample(const WpMaterial* m, float3 wo, float3 n, float u1,
+                                               float u2) {
+    (void)u1;
+    (void)u2;
+    WpBsdfSample s;
+    s.direction = wp_reflect(wo, n);
+    s.weight = wp_conductor_reflectance(m, fmin(1.0f, fmax(0.0f, -dot(wo, n))));
+    s.pdf = 0.0f;
+    s.flags = WP_BSDF_REFLECTION | WP_BSDF_DELTA;
+    s.eta = 1.0f;
+    return s;
+}
+
+static inline float3 wp_conductor_eval_pi(const WpMaterial* m, float3 wo, float3 wi, float3 n) {
+    (void)m, (void)wo, (void)wi, (void)n;
+    return (float3)(0.0f);
+}
+
+static inline float wp_conductor_pdf(const WpMaterial* m, float3 wo, float3 wi, float3 n) {
+    (void)m, (void)wo, (void)wi, (void)n;
+    return 0.0f;
+}
+
+static inline int wp_conductor_is_delta(void) {
+    return 1;
+}
+
+#endif /* WP_BSDF_CONDUCTOR_H */

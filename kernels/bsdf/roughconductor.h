@@ -1,0 +1,81 @@
+/* The rough conductor (Mitsuba 3's `roughconductor`): a microfacet BRDF
+ * (Cook-Torrance; Walter et al., "Microfacet Models for Refraction through
+ * Rough Surfaces", EGSR 2007) with the conductor's complex Fresnel term,
+ *     f(v, l) = F(dot(v, h)) D(h) G1(v, h) G1(l, h) / (4 cos_v cos_l),
+ * h = normalize(v + l), v = -wo the direction towards the viewer. Sampled by
+ * the normals visible from v (bsdf/microfacet.h), so the weight f cos / pdf is
+ * F G1(l, h) and the density of l is D_v(h) / (4 dot(v, h)).
+ *
+ * The local frame is the shading normal n with the tangent and bitangent of
+ * wp_make_basis(n); alpha_u runs along that tangent. The surface record has no
+ * tangents yet (UV parameterisations come with textures), so the direction of
+ * an anisotropic highlight is fixed by the normal alone, not by the shape's
+ * parameterisation as in Mitsuba. Reflection only: a direction below the
+ * shading hemisphere, seen or sampled, carries nothing. */
+#ifndef WP_BSDF_ROUGHCONDUCTOR_H
+#define WP_BSDF_ROUGHCONDUCTOR_H
+
+#include "bsdf/fresnel.h"
+#include "bsdf/interface.h"
+#include "bsdf/microfacet.h"
+
+/* w in the frame (t, b, n). */
+static inline float3 wp_to_local(float3 w, float3 n) {
+    float3 t, b;
+    wp_make_basis(n, &t, &b);
+    return (float3)(dot(w, t), dot(w, b), dot(w, n));
+}
+
+static inline WpBsdfSample wp_roughconductor_sample(const WpMaterial* m, float3 wo, float3 n,
+                                                    float u1, float u2) {
+    float3 t, b;
+    wp_make_basis(n, &t, &b);
+    float3 v = (float3)(-dot(wo, t), -dot(wo, b), -dot(wo, n));
+    if (!(v.z > 0.0f))
+        return wp_bsdf_no_sample();
+    WpMicrofacet d = wp_microfacet_of(m);
+    float3 h = wp_microfacet_sample_visible(&d, v, u1, u2);
+    float v_dot_h = dot(v, h);
+    float3 l = 2.0f * v_dot_h * h - v;
+    float pdf_h = wp_microfacet_pdf_visible(&d, v, h);
+    if (!(l.z > 0.0f && v_dot_h > 0.0f && pdf_h > 0.0f))
+        return wp_bsdf_no_sample();
+    WpBsdfSample s;
+    s.direction = normalize(l.x * t + l.y * b + l.z * n);
+    s.weight = wp_conductor_reflectance(m, fmin(1.0f, v_dot_h)) * wp_microfacet_g1(&d, l, h);
+    s.pdf = pdf_h / (4.0f * v_dot_h);
+    s.flags = WP_BSDF_REFLECTION | WP_BSDF_GLOSSY;
+    s.eta = 1.0f;
+    return s;
+}
+
+static inline float3 wp_roughconductor_eval_pi(const WpMaterial* m, float3 wo, float3 wi,
+                                               float3 n) {
+    float3 v = -wp_to_local(wo, n), l = wp_to_local(wi, n);
+    if (!(v.z > 0.0f && l.z > 0.0f))
+        return (float3)(0.0f);
+    float3 h = normalize(v + l);
+    WpMicrofacet d = wp_microfacet_of(m);
+    float g = wp_microfacet_g1(&d, v, h) * wp_microfacet_g1(&d, l, h);
+    float v_dot_h = fmin(1.0f, fmax(0.0f, dot(v, h)));
+    return wp_conductor_reflectance(m, v_dot_h) *
+           (WP_PI * wp_microfacet_d(&d, h) * g / (4.0f * v.z * l.z));
+}
+
+static inline float wp_roughconductor_pdf(const WpMaterial* m, float3 wo, float3 wi, float3 n) {
+    float3 v = -wp_to_local(wo, n), l = wp_to_local(wi, n);
+    if (!(v.z > 0.0f && l.z > 0.0f))
+        return 0.0f;
+    float3 h = normalize(v + l);
+    float v_dot_h = dot(v, h);
+    if (!(v_dot_h > 0.0f))
+        return 0.0f;
+    WpMicrofacet d = wp_microfacet_of(m);
+    return wp_microfacet_pdf_visible(&d, v, h) / (4.0f * v_dot_h);
+}
+
+static inline int wp_roughconductor_is_delta(void) {
+    return 0;
+}
+
+#endif /* WP_BSDF_ROUGHCONDUCTOR_H */

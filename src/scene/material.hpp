@@ -1,0 +1,33 @@
+// The material table on the host: kind names, named metals, and the
+// parameters each kind reads from a scene file.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "scene/scene.hpp"
+
+namespace wp {
+
+// The kind named `name` in a scene file ("diffuse", "roughconductor", ...).
+std::optional<MaterialKind> material_kind_from_name(std::string_view name);
+
+// Every kind's name, comma-separated, for messages.
+std::string material_kind_names();
+
+// A conductor's complex index of refraction, per RGB channel.
+struct NamedMetal {
+    const char* name; // Mitsuba's name: "Au", "Ag", ...
+    glm::dvec3 eta;
+    glm::dvec3 k;
+};
+
+// The named metals wavepath knows, and the one of that name (nullptr when none).
+const std::vector<NamedMetal>& named_metals();
+const NamedMetal* find_metal(std::string_view name);
+
+} // namespace wp

@@ -1,0 +1,548 @@
+// The BSDFs of kernels/bsdf/ on the device, against host references in double
+// precision: eval and pdf, reciprocity, the chi-square goodness of fit of
+// sample() against pdf() over the sphere of directions (as Mitsuba's and
+// pbrt's test suites do it), and the white furnace. One test program, built
+// once, serves every case.
+#include "rng.h"
+#include "support/kernel_test_util.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <complex>
+#include <cstdint>
+#include <numeric>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace wp::test;
+
+namespace {
+
+const char* const kBsdfSource = R"CL(
+#include "bsdf.h"
+#include "rng.h"
+
+/* eval_pi (rgb) and pdf (w) of count direction pairs. */
+__kernel void bsdf_eval(__global const WpMaterial* material, float4 n, uint count,
+                        __global const float4* wo, __global const float4* wi,
+                        __global float4* out) {
+    uint i = get_global_id(0);
+    if (i >= count) return;
+    WpMaterial m = *material;
+    float3 f = wp_bsdf_eval_pi(&m, wo[i].xyz, wi[i].xyz, n.xyz);
+    out[i] = (float4)(f, wp_bsdf_pdf(&m, wo[i].xyz, wi[i].xyz, n.xyz));
+}
+
+/* count samples for one incident direction: direction and pdf (w), weight and
+ * flags (w). */
+__kernel void bsdf_sample(__global const WpMaterial* material, float4 n, float4 wo, uint seed,
+                          uint count, __global float4* direction, __global float4* weight) {
+    uint i = get_global_id(0);
+    if (i >= count) return;
+    WpMaterial m = *material;
+    float u1 = wp_random(seed, i, 0u, 0u, WP_DIM_BSDF_U);
+    float u2 = wp_random(seed, i, 0u, 0u, WP_DIM_BSDF_V);
+    WpBsdfSample s = wp_bsdf_sample(&m, wo.xyz, n.xyz, u1, u2);
+    direction[i] = (float4)(s.direction, s.pdf);
+    weight[i] = (float4)(s.weight, (float)s.flags);
+}
+)CL";
+
+// Independent numbers: the chi-square test assumes independent samples.
+const cl::Program& bsdf_program() {
+    return program(kBsdfSource, "bsdf_test.cl", "-D WP_SAMPLER=0");
+}
+
+constexpr double kPi = 3.14159265358979323846;
+
+// ---- the host reference, in double precision ---------------------------------
+
+struct Rough {
+    bool ggx = true;
+    double alpha_u = 0.2, alpha_v = 0.2;
+};
+
+// Mitsuba's microfacet.h, as kernels/bsdf/microfacet.h implements it.
+double ref_d(const Rough& r, const D3& m) {
+    if (!(m.z > 0.0))
+        return 0.0;
+    const double x = m.x / r.alpha_u, y = m.y / r.alpha_v, z2 = m.z * m.z;
+    const double area = kPi * r.alpha_u * r.alpha_v;
+    if (r.ggx) {
+        const double s = x * x + y * y + z2;
+        return 1.0 / (area * s * s);
+    }
+    return std::exp(-(x * x + y * y) / z2) / (area * z2 * z2);
+}
+
+double ref_g1(const Rough& r, const D3& v, const D3& m) {
+    if (!(glm::dot(v, m) * v.z > 0.0))
+        return 0.0;
+    const double xy = r.alpha_u * r.alpha_u * v.x * v.x + r.alpha_v * r.alpha_v * v.y * v.y;
+    if (xy == 0.0)
+        return 1.0;
+    const double t2 = xy / (v.z * v.z);
+    if (r.ggx)
+        return 2.0 / (1.0 + std::sqrt(1.0 + t2));
+    const double a = 1.0 / std::sqrt(t2);
+    if (a >= 1.6)
+        return 1.0;
+    return (3.535 * a + 2.181 * a * a) / (1.0 + 2.276 * a + 2.577 * a * a);
+}
+
+// The conductor's Fresnel reflectance for complex index eta + i k: the
+// textbook form |r_s|^2, |r_p|^2 of complex amplitudes, independent of the
+// kernels' real-arithmetic rearrangement.
+double ref_fresnel(double cos_i, double eta, double k) {
+    using C = std::complex<double>;
+    const C n(eta, k);
+    const double sin2 = 1.0 - cos_i * cos_i;
+    const C cos_t = std::sqrt(C(1.0) - sin2 / (n * n));
+    const C rs = (cos_i - n * cos_t) / (cos_i + n * cos_t);
+    const C rp = (n * cos_i - cos_t) / (n * cos_i + cos_t);
+    return 0.5 * (std::norm(rs) + std::norm(rp));
+}
+
+struct Conductor {
+    Rough rough;
+    D3 eta{0.0}, k{1.0};
+    bool fresnel = true;
+    D3 specular{1.0};
+};
+
+D3 ref_f(const Conductor& c, double cos_i) {
+    if (!c.fresnel)
+        return c.specular;
+    return c.specular * D3(ref_fresnel(cos_i, c.eta.x, c.k.x), ref_fresnel(cos_i, c.eta.y, c.k.y),
+                           ref_fresnel(cos_i, c.eta.z, c.k.z));
+}
+
+// pi f(v, l) and the density of l, local frame, v towards the viewer.
+D3 ref_eval_pi(const Conductor& c, const D3& v, const D3& l) {
+    if (!(v.z > 0.0 && l.z > 0.0))
+        return D3(0.0);
+    const D3 h = glm::normalize(v + l);
+    const double g = ref_g1(c.rough, v, h) * ref_g1(c.rough, l, h);
+    return ref_f(c, glm::dot(v, h)) * (kPi * ref_d(c.rough, h) * g / (4.0 * v.z * l.z));
+}
+
+double ref_pdf(const Conductor& c, const D3& v, const D3& l) {
+    if (!(v.z > 0.0 && l.z > 0.0))
+        return 0.0;
+    const D3 h = glm::normalize(v + l);
+    const double vh = glm::dot(v, h);
+    if (!(vh > 0.0))
+        return 0.0;
+    return ref_d(c.rough, h) * ref_g1(c.rough, v, h) * vh / v.z / (4.0 * vh);
+}
+
+WpMaterial device_material(const Conductor& c, wp_uint kind = WP_MATERIAL_ROUGHCONDUCTOR) {
+    WpMaterial m{};
+    m.kind = kind;
+    m.reflectance = to_float4(c.specular);
+    m.eta = to_float4(c.eta);
+    m.k = to_float4(c.k);
+    m.fresnel = c.fresnel ? 1u : 0u;
+    m.distribution = c.rough.ggx ? WP_MICROFACET_GGX : WP_MICROFACET_BECKMANN;
+    m.alpha_u = static_cast<float>(c.rough.alpha_u);
+    m.alpha_v = static_cast<float>(c.rough.alpha_v);
+    return m;
+}
+
+// The kernels' frame around n (kernels/sampling.h, wp_make_basis), in double.
+void make_basis(const D3& n, D3& t, D3& b) {
+    const double sign = std::copysign(1.0, n.z);
+    const double a = -1.0 / (sign + n.z);
+    const double c = n.x * n.y * a;
+    t = D3(1.0 + sign * n.x * n.x * a, sign * c, -sign * n.x);
+    b = D3(c, sign + n.y * n.y * a, -n.y);
+}
+
+D3 to_world(const D3& local, const D3& n) {
+    D3 t, b;
+    make_basis(n, t, b);
+    return local.x * t + local.y * b + local.z * n;
+}
+
+D3 direction(double cos_theta, double phi) {
+    const double s = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
+    return D3(s * std::cos(phi), s * std::sin(phi), cos_theta);
+}
+
+std::string describe(const Conductor& c) {
+    std::ostringstream s;
+    s << (c.rough.ggx ? "ggx" : "beckmann") << " alpha " << c.rough.alpha_u << "/"
+      << c.rough.alpha_v << (c.fresnel ? "" : " (no Fresnel)") << " eta " << c.eta.x << ","
+      << c.eta.y << "," << c.eta.z << " k " << c.k.x << "," << c.k.y << "," << c.k.z;
+    return s.str();
+}
+
+// ---- the device side ----------------------------------------------------------
+
+std::vector<cl_float4> run_eval(const WpMaterial& m, const D3& n, const std::vector<cl_float4>& wo,
+                                const std::vector<cl_float4>& wi) {
+    cl::Kernel kernel(bsdf_program(), "bsdf_eval");
+    cl::Buffer material = upload(std::vector<WpMaterial>{m});
+    // Named: a buffer must outlive the launch that reads it.
+    cl::Buffer wo_buffer = upload(wo), wi_buffer = upload(wi);
+    cl::Buffer out = upload(std::vector<cl_float4>(wo.size()));
+    set_args(kernel, material, to_float4(n), static_cast<cl_uint>(wo.size()), wo_buffer, wi_buffer,
+             out);
+    launch(kernel, wo.size());
+    return download<cl_float4>(out, wo.size());
+}
+
+struct Samples {
+    std::vector<cl_float4> direction; // xyz, pdf in w
+    std::vector<cl_float4> weight;    // rgb, flags in w
+};
+
+Samples run_sample(const WpMaterial& m, const D3& n, const D3& wo, cl_uint seed,
+                   std::size_t count) {
+    cl::Kernel kernel(bsdf_program(), "bsdf_sample");
+    cl::Buffer material = upload(std::vector<WpMaterial>{m});
+    cl::Buffer direction = upload(std::vector<cl_float4>(count));
+    cl::Buffer weight = upload(std::vector<cl_float4>(count));
+    set_args(kernel, material, to_float4(n), to_float4(wo), seed, static_cast<cl_uint>(count),
+             direction, weight);
+    launch(kernel, count);
+    return {download<cl_float4>(direction, count), download<cl_float4>(weight, count)};
+}
+
+// ---- statistics ------------------------------------------------------------------
+
+// The regularised upper incomplete gamma function Q(a, x) (series below
+// a + 1, Lentz's continued fraction above), for chi-square p-values.
+double gamma_q(double a, double x) {
+    if (x <= 0.0)
+        return 1.0;
+    const double log_prefactor = a * std::log(x) - x - std::lgamma(a);
+    if (x < a + 1.0) {
+        double term = 1.0 / a, sum = term;
+        for (int n = 1; n < 1000 && std::fabs(term) > 1e-16 * std::fabs(sum); ++n) {
+            term *= x / (a + n);
+            sum += term;
+        }
+        return 1.0 - sum * std::exp(log_prefactor);
+    }
+    const double tiny = 1e-300;
+    double b = x + 1.0 - a, c = 1.0 / tiny, d = 1.0 / b, h = d;
+    for (int i = 1; i < 1000; ++i) {
+        const double an = -i * (i - a);
+        b += 2.0;
+        d = an * d + b;
+        d = std::fabs(d) < tiny ? tiny : d;
+        c = b + an / c;
+        c = std::fabs(c) < tiny ? tiny : c;
+        d = 1.0 / d;
+        const double delta = d * c;
+        h *= delta;
+        if (std::fabs(delta - 1.0) < 1e-16)
+            break;
+    }
+    return std::exp(log_prefactor) * h;
+}
+
+// The chi-square test's outcome.
+struct ChiSquare {
+    double statistic = 0.0;
+    std::size_t dof = 0;
+    double p_value = 0.0;
+    std::size_t outside = 0; // samples in bins of zero expectation
+};
+
+// Pearson's test of observed against expected counts, bins of expectation
+// below 5 pooled into one (Mitsuba's ChiSquareTest does the same).
+ChiSquare chi_square(const std::vector<double>& observed, const std::vector<double>& expected) {
+    ChiSquare out;
+    std::vector<std::size_t> order(observed.size());
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t a, std::size_t b) { return expected[a] < expected[b]; });
+    double pooled_observed = 0.0, pooled_expected = 0.0;
+    std::size_t bins = 0;
+    for (std::size_t i : order) {
+        if (expected[i] == 0.0) {
+            out.outside += static_cast<std::size_t>(observed[i]);
+            continue;
+        }
+        if (expected[i] < 5.0 || (pooled_expected > 0.0 && pooled_expected < 5.0)) {
+            pooled_observed += observed[i];
+            pooled_expected += expected[i];
+            continue;
+        }
+        out.statistic += (observed[i] - expected[i]) * (observed[i] - expected[i]) / expected[i];
+        ++bins;
+    }
+    if (pooled_expected > 0.0) {
+        out.statistic += (pooled_observed - pooled_expected) * (pooled_observed - pooled_expected) /
+                         pooled_expected;
+        ++bins;
+    }
+    out.dof = bins - 1;
+    out.p_value = gamma_q(0.5 * double(out.dof), 0.5 * out.statistic);
+    return out;
+}
+
+// The histogram of sampled directions (local frame) and the expected counts
+// from the reference pdf, integrated over each bin by Simpson's rule in
+// (cos theta, phi), over the whole sphere.
+constexpr int kCosBins = 32, kPhiBins = 32;
+
+std::vector<double> expected_counts(const Conductor& c, const D3& v, std::size_t samples) {
+    constexpr int kSteps = 16; // Simpson intervals per bin and axis (even)
+    std::vector<double> out(kCosBins * kPhiBins);
+    const double dc = 2.0 / kCosBins, dp = 2.0 * kPi / kPhiBins;
+    for (int i = 0; i < kCosBins; ++i)
+        for (int j = 0; j < kPhiBins; ++j) {
+            double sum = 0.0;
+            for (int a = 0; a <= kSteps; ++a) {
+                const double wa = (a == 0 || a == kSteps) ? 1.0 : (a % 2 ? 4.0 : 2.0);
+                const double cos_theta = -1.0 + dc * (i + double(a) / kSteps);
+                for (int b = 0; b <= kSteps; ++b) {
+                    const double wb = (b == 0 || b == kSteps) ? 1.0 : (b % 2 ? 4.0 : 2.0);
+                    const double phi = dp * (j + double(b) / kSteps);
+                    sum += wa * wb * ref_pdf(c, v, direction(cos_theta, phi));
+                }
+            }
+            out[i * kPhiBins + j] =
+                sum * (dc / kSteps / 3.0) * (dp / kSteps / 3.0) * double(samples);
+        }
+    return out;
+}
+
+std::vector<double> observed_counts(const Samples& s) {
+    std::vector<double> out(kCosBins * kPhiBins);
+    for (std::size_t i = 0; i < s.direction.size(); ++i) {
+        if (s.weight[i].s[3] == 0.0f)
+            continue; // no direction
+        const D3 d = glm::normalize(from_float4(s.direction[i]));
+        const int ci = std::clamp(int((d.z + 1.0) * 0.5 * kCosBins), 0, kCosBins - 1);
+        double phi = std::atan2(d.y, d.x);
+        if (phi < 0.0)
+            phi += 2.0 * kPi;
+        const int pj = std::clamp(int(phi / (2.0 * kPi) * kPhiBins), 0, kPhiBins - 1);
+        out[ci * kPhiBins + pj] += 1.0;
+    }
+    return out;
+}
+
+const D3 kUp(0.0, 0.0, 1.0);
+
+std::vector<Conductor> chi_square_materials() {
+    std::vector<Conductor> out;
+    for (bool ggx : {true, false})
+        for (auto [au, av] : {std::pair{0.2, 0.2}, std::pair{0.6, 0.6}, std::pair{0.15, 0.5}}) {
+            Conductor c;
+            c.rough = Rough{ggx, au, av};
+            c.eta = D3(0.2004376970, 0.9240334304, 1.1022119527); // Cu
+            c.k = D3(3.9129485033, 2.4528477015, 2.1421879552);
+            out.push_back(c);
+        }
+    return out;
+}
+
+} // namespace
+
+TEST_CASE("roughconductor: eval and pdf match the double-precision reference", "[cl][bsdf]") {
+    const D3 normals[] = {kUp, glm::normalize(D3(0.3, -0.5, 0.8))};
+    std::vector<Conductor> materials = chi_square_materials();
+    Conductor lossless;
+    lossless.rough = Rough{true, 0.05, 0.05};
+    lossless.fresnel = false;
+    materials.push_back(lossless);
+    Conductor gold;
+    gold.rough = Rough{false, 0.4, 0.1};
+    gold.eta = D3(0.1431189557, 0.3749570432, 1.4424785571);
+    gold.k = D3(3.9831604247, 2.3857207478, 1.6032152899);
+    gold.specular = D3(0.9, 0.8, 0.7);
+    materials.push_back(gold);
+
+    // Direction pairs on a grid over both hemispheres (those below carry 0).
+    std::vector<D3> v_local, l_local;
+    for (double cv : {1.0, 0.9, 0.6, 0.3, 0.05, -0.4})
+        for (double pv : {0.0, 1.1})
+            for (double cl : {0.95, 0.7, 0.4, 0.1, -0.2})
+                for (double pl : {0.0, 0.9, 2.5, 3.14, 4.4}) {
+                    v_local.push_back(direction(cv, pv));
+                    l_local.push_back(direction(cl, pl));
+                }
+    for (const D3& n : normals)
+        for (const Conductor& c : materials) {
+            INFO(describe(c) << ", normal " << n.x << " " << n.y << " " << n.z);
+            std::vector<cl_float4> wo, wi;
+            std::vector<D3> v_exact, l_exact; // the float directions, as the device has them
+            for (std::size_t i = 0; i < v_local.size(); ++i) {
+                wo.push_back(to_float4(-to_world(v_local[i], n)));
+                wi.push_back(to_float4(to_world(l_local[i], n)));
+            }
+            const std::vector<cl_float4> got = run_eval(device_material(c), n, wo, wi);
+            D3 t, b;
+            make_basis(from_float4(to_float4(n)), t, b);
+            const D3 nf = from_float4(to_float4(n));
+            std::size_t nonzero = 0;
+            for (std::size_t i = 0; i < got.size(); ++i) {
+                const D3 vw = -from_float4(wo[i]), lw = from_float4(wi[i]);
+                const D3 v(glm::dot(vw, t), glm::dot(vw, b), glm::dot(vw, nf));
+                const D3 l(glm::dot(lw, t), glm::dot(lw, b), glm::dot(lw, nf));
+                const D3 f = ref_eval_pi(c, v, l);
+                const double pdf = ref_pdf(c, v, l);
+                INFO("v " << v.x << " " << v.y << " " << v.z << ", l " << l.x << " " << l.y << " "
+                          << l.z);
+                // Relative 1e-3 of the value: float arithmetic on D's steep
+                // exponent and powers; an absolute floor for near-zero lobes.
+                for (int ch = 0; ch < 3; ++ch)
+                    CHECK(std::fabs(got[i].s[ch] - f[ch]) <= 1e-3 * f[ch] + 1e-6);
+                CHECK(std::fabs(got[i].s[3] - pdf) <= 1e-3 * pdf + 1e-6);
+                nonzero += pdf > 1e-3 ? 1 : 0;
+            }
+            CHECK(nonzero > got.size() / 10); // the grid meets the lobes
+        }
+}
+
+TEST_CASE("roughconductor: eval is reciprocal", "[cl][bsdf]") {
+    for (const Conductor& c : chi_square_materials()) {
+        INFO(describe(c));
+        std::vector<cl_float4> a, b;
+        for (double cv : {0.95, 0.6, 0.2})
+            for (double cl : {0.9, 0.5, 0.15})
+                for (double p : {0.0, 0.7, 2.0, 3.0, 5.5}) {
+                    a.push_back(to_float4(-direction(cv, 0.3)));
+                    b.push_back(to_float4(direction(cl, p)));
+                }
+        std::vector<cl_float4> b_in, a_out; // the same pairs, the other way round
+        for (std::size_t i = 0; i < a.size(); ++i) {
+            b_in.push_back(to_float4(-from_float4(b[i])));
+            a_out.push_back(to_float4(-from_float4(a[i])));
+        }
+        const auto forward = run_eval(device_material(c), kUp, a, b);
+        const auto backward = run_eval(device_material(c), kUp, b_in, a_out);
+        for (std::size_t i = 0; i < a.size(); ++i)
+            for (int ch = 0; ch < 3; ++ch)
+                CHECK(std::fabs(forward[i].s[ch] - backward[i].s[ch]) <=
+                      1e-4 * std::fabs(forward[i].s[ch]) + 1e-7);
+    }
+}
+
+TEST_CASE("roughconductor: sample() follows pdf() (chi-square)", "[cl][bsdf][statistical]") {
+    // 2^18 samples per case: a pdf off by 2 % over a tenth of the sphere
+    // (bins of expectation ~2600) shows as a chi-square excess of ~1 per such
+    // bin, about 100 bins, far past the 1 % level with 500 degrees of freedom.
+    constexpr std::size_t kSamples = 1u << 18;
+    const double incident_degrees[] = {0.0, 40.0, 75.0};
+    const std::vector<Conductor> materials = chi_square_materials();
+    const double significance = 0.01 / double(materials.size() * std::size(incident_degrees));
+    cl_uint seed = 11;
+    double lowest_p = 1.0;
+    for (const Conductor& c : materials)
+        for (double degrees : incident_degrees) {
+            const double theta = degrees * kPi / 180.0;
+            const D3 v = D3(std::sin(theta) * std::cos(0.4), std::sin(theta) * std::sin(0.4),
+                            std::cos(theta));
+            const D3 v_float = glm::normalize(from_float4(to_float4(v)));
+            const Samples s = run_sample(device_material(c), kUp, -v, seed++, kSamples);
+            const ChiSquare result =
+                chi_square(observed_counts(s), expected_counts(c, v_float, kSamples));
+            INFO(describe(c) << ", incidence " << degrees << " degrees: chi-square "
+                             << result.statistic << ", " << result.dof << " dof, p "
+                             << result.p_value);
+            CHECK(result.outside == 0);
+            CHECK(result.p_value > significance);
+            lowest_p = std::min(lowest_p, result.p_value);
+        }
+    INFO("lowest p-value " << lowest_p);
+    CHECK(lowest_p > significance);
+}
+
+TEST_CASE("roughconductor: sample weights are eval cos / pdf, pdf is pdf()", "[cl][bsdf]") {
+    for (const Conductor& c : chi_square_materials()) {
+        INFO(describe(c));
+        const D3 v = glm::normalize(from_float4(to_float4(glm::normalize(D3(0.4, 0.1, 0.8)))));
+        const Samples s = run_sample(device_material(c), kUp, -v, 3, 4096);
+        std::size_t valid = 0;
+        for (std::size_t i = 0; i < s.direction.size(); ++i) {
+            if (s.weight[i].s[3] == 0.0f)
+                continue;
+            ++valid;
+            const D3 l = from_float4(s.direction[i]);
+            const double pdf = ref_pdf(c, v, l);
+            const D3 expected = ref_eval_pi(c, v, l) / kPi * l.z / pdf;
+            INFO("l " << l.x << " " << l.y << " " << l.z);
+            CHECK(std::fabs(s.direction[i].s[3] - pdf) <= 2e-3 * pdf + 1e-6);
+            for (int ch = 0; ch < 3; ++ch)
+                CHECK(std::fabs(s.weight[i].s[ch] - expected[ch]) <= 2e-3 * expected[ch] + 1e-6);
+            CHECK(cl_uint(s.weight[i].s[3]) == (WP_BSDF_REFLECTION | WP_BSDF_GLOSSY));
+        }
+        CHECK(valid > 2000); // the rest leave below the horizon (up to a quarter at alpha 0.6)
+    }
+}
+
+TEST_CASE("roughconductor: white furnace", "[cl][bsdf][statistical]") {
+    // The directional albedo is the mean weight over samples. It may never
+    // exceed 1; for a lossless conductor (no Fresnel term, or eta 0 and k 1
+    // through the Fresnel formula) of small roughness it is 1 within noise
+    // and the single-scattering loss (G1 < 1, below 1e-3 at alpha 0.01).
+    constexpr std::size_t kSamples = 1u << 16;
+    cl_uint seed = 101;
+    for (bool ggx : {true, false})
+        for (double alpha : {0.01, 0.3, 1.0})
+            for (int lossless = 0; lossless < 3; ++lossless)
+                for (double degrees : {0.0, 30.0, 60.0, 85.0}) {
+                    Conductor c;
+                    c.rough = Rough{ggx, alpha, alpha};
+                    if (lossless == 0)
+                        c.fresnel = false;
+                    else if (lossless == 2) { // Al, which absorbs
+                        c.eta = D3(1.6574599595, 0.8803689579, 0.5212287346);
+                        c.k = D3(9.2238691996, 6.2695232477, 4.8370012281);
+                    }
+                    const double theta = degrees * kPi / 180.0;
+                    const D3 v(std::sin(theta), 0.0, std::cos(theta));
+                    const Samples s = run_sample(device_material(c), kUp, -v, seed++, kSamples);
+                    std::array<double, 3> sum{}, sum_squares{};
+                    for (const cl_float4& w : s.weight)
+                        for (int ch = 0; ch < 3; ++ch) {
+                            sum[ch] += w.s[ch];
+                            sum_squares[ch] += double(w.s[ch]) * w.s[ch];
+                        }
+                    for (int ch = 0; ch < 3; ++ch) {
+                        const double mean = sum[ch] / kSamples;
+                        const double sigma = std::sqrt(
+                            std::max(0.0, sum_squares[ch] / kSamples - mean * mean) / kSamples);
+                        INFO(describe(c) << ", incidence " << degrees << ": albedo[" << ch << "] "
+                                         << mean << " +- " << sigma);
+                        CHECK(mean <= 1.0 + 5.0 * sigma + 1e-6);
+                        if (lossless < 2 && alpha <= 0.01 && degrees <= 60.0)
+                            CHECK(std::fabs(mean - 1.0) <= 5.0 * sigma + 1e-3);
+                    }
+                }
+}
+
+TEST_CASE("conductor: a delta reflection with the Fresnel reflectance", "[cl][bsdf]") {
+    Conductor gold;
+    gold.eta = D3(0.1431189557, 0.3749570432, 1.4424785571);
+    gold.k = D3(3.9831604247, 2.3857207478, 1.6032152899);
+    gold.specular = D3(1.0, 0.5, 0.25);
+    const WpMaterial m = device_material(gold, WP_MATERIAL_CONDUCTOR);
+    for (double degrees : {0.0, 45.0, 80.0, 89.0}) {
+        const double theta = degrees * kPi / 180.0;
+        const D3 v(std::sin(theta), 0.0, std::cos(theta));
+        const Samples s = run_sample(m, kUp, -v, 1, 1);
+        const D3 d = from_float4(s.direction[0]);
+        const D3 f = ref_f(gold, std::cos(theta));
+        INFO("incidence " << degrees);
+        CHECK(std::fabs(d.x + v.x) < 1e-6);
+        CHECK(std::fabs(d.z - v.z) < 1e-6);
+        CHECK(s.direction[0].s[3] == 0.0f);
+        CHECK(cl_uint(s.weight[0].s[3]) == (WP_BSDF_REFLECTION | WP_BSDF_DELTA));
+        for (int ch = 0; ch < 3; ++ch)
+            CHECK(std::fabs(s.weight[0].s[ch] - f[ch]) <= 1e-5 + 1e-4 * f[ch]);
+    }
+    // eval and pdf: no direction meets a delta BSDF.
+    const auto got =
+        run_eval(m, kUp, {to_float4(-direction(0.8, 0.0))}, {to_float4(direction(0.8, kPi))});
+    CHECK(got[0].s[0] == 0.0f);
+    CHECK(got[0].s[3] == 0.0f);
+}
