@@ -30,6 +30,15 @@ static inline int wp_bsdf_is_black(const WpMaterial* m) {
 #define WP_BSDF_TRY(KIND, name, bsdf, call)                                                        \
     WP_IF(bsdf)(if (WP_HAS_##KIND && m->kind == WP_MATERIAL_##KIND) return wp_##name##_##call;)
 
+/* The same for a function that writes its result through a pointer (C has no
+ * `return` of a void expression). */
+#define WP_BSDF_TRY_WRITE(KIND, name, bsdf, call)                                                  \
+    WP_IF(bsdf)                                                                                    \
+    (if (WP_HAS_##KIND && m->kind == WP_MATERIAL_##KIND) {                                         \
+        wp_##name##_##call;                                                                        \
+        return;                                                                                    \
+    })
+
 /* 1 for a delta BSDF: light can reach it only along its sampled direction. */
 #define WP_BSDF_IS_DELTA_ROW(KIND, Name, name, value, bsdf, glossy)                                \
     WP_BSDF_TRY(KIND, name, bsdf, is_delta())
@@ -39,11 +48,11 @@ static inline int wp_bsdf_is_delta(const WpMaterial* m) {
 }
 
 #define WP_BSDF_SAMPLE_ROW(KIND, Name, name, value, bsdf, glossy)                                  \
-    WP_BSDF_TRY(KIND, name, bsdf, sample(m, wo, n, u1, u2))
-static inline WpBsdfSample wp_bsdf_sample(const WpMaterial* m, float3 wo, float3 n, float u1,
-                                          float u2) {
+    WP_BSDF_TRY_WRITE(KIND, name, bsdf, sample(m, wo, n, u1, u2, s))
+static inline void wp_bsdf_sample(const WpMaterial* m, float3 wo, float3 n, float u1, float u2,
+                                  WpBsdfSample* s) {
     WP_MATERIALS(WP_BSDF_SAMPLE_ROW)
-    return wp_diffuse_sample(m, wo, n, u1, u2);
+    wp_diffuse_sample(m, wo, n, u1, u2, s);
 }
 
 #define WP_BSDF_EVAL_ROW(KIND, Name, name, value, bsdf, glossy)                                    \

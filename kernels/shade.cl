@@ -209,7 +209,8 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
 
     float u1 = wp_path_random(&random, WP_DIM_BSDF_U);
     float u2 = wp_path_random(&random, WP_DIM_BSDF_V);
-    WpBsdfSample scattered = wp_bsdf_sample(&material, direction, shading, u1, u2);
+    WpBsdfSample scattered;
+    wp_bsdf_sample(&material, direction, shading, u1, u2, &scattered);
     /* Nothing sampled, or a direction on the other side of the true surface
      * than the sample's flags say (by the shading normal): absorbed. */
     int transmitted = (scattered.flags & WP_BSDF_TRANSMISSION) != 0u;

@@ -12,8 +12,8 @@
 #include "bsdf/interface.h"
 #include "bsdf/mirror.h"
 
-static inline WpBsdfSample wp_conductor_sample(const WpMaterial* m, float3 wo, float3 n, float u1,
-                                               float u2) {
+static inline void wp_conductor_sample(const WpMaterial* m, float3 wo, float3 n, float u1, float u2,
+                                       WpBsdfSample* out) {
     (void)u1;
     (void)u2;
     WpBsdfSample s;
@@ -22,7 +22,7 @@ static inline WpBsdfSample wp_conductor_sample(const WpMaterial* m, float3 wo, f
     s.pdf = 0.0f;
     s.flags = WP_BSDF_REFLECTION | WP_BSDF_DELTA;
     s.eta = 1.0f;
-    return s;
+    *out = s;
 }
 
 static inline float3 wp_conductor_eval_pi(const WpMaterial* m, float3 wo, float3 wi, float3 n) {

@@ -18,8 +18,8 @@
 #include "estimator.h"
 #include "sampling.h"
 
-static inline WpBsdfSample wp_diffuse_sample(const WpMaterial* m, float3 wo, float3 n, float u1,
-                                             float u2) {
+static inline void wp_diffuse_sample(const WpMaterial* m, float3 wo, float3 n, float u1, float u2,
+                                     WpBsdfSample* out) {
     (void)wo;
     WpBsdfSample s;
     float3 reflectance = m->reflectance.xyz;
@@ -36,7 +36,7 @@ static inline WpBsdfSample wp_diffuse_sample(const WpMaterial* m, float3 wo, flo
 #endif
     s.flags = WP_BSDF_REFLECTION | WP_BSDF_DIFFUSE;
     s.eta = 1.0f;
-    return s;
+    *out = s;
 }
 
 static inline float3 wp_diffuse_eval_pi(const WpMaterial* m, float3 wo, float3 wi, float3 n) {

@@ -1,11 +1,14 @@
 /* What every BSDF provides (one header per material kind in kernels/bsdf/,
  * dispatched by material kind in kernels/bsdf.h):
  *
- *   WpBsdfSample wp_KIND_sample(const WpMaterial* m, float3 wo, float3 n,
- *                               float u1, float u2)
+ *   void wp_KIND_sample(const WpMaterial* m, float3 wo, float3 n, float u1,
+ *                       float u2, WpBsdfSample* s)
  *       a direction to continue the path in, from two uniform numbers, with
  *       the flags of the lobe it came from (flags 0: no direction, the path
- *       is absorbed);
+ *       is absorbed), written to *s. (Written through a pointer, not
+ *       returned: a struct returned by value is an sret argument, and
+ *       inlining one makes LLVM emit llvm.experimental.noalias.scope.decl,
+ *       which Oclgrind 21.10 cannot run.)
  *   float3 wp_KIND_eval_pi(const WpMaterial* m, float3 wo, float3 wi, float3 n)
  *       pi times the BSDF value f(wo, wi), without the cosine (0 for a
  *       delta BSDF, which no other direction can meet);
@@ -41,14 +44,12 @@ typedef struct {
 } WpBsdfSample;
 
 /* A sample that continues nothing: the path is absorbed. */
-static inline WpBsdfSample wp_bsdf_no_sample(void) {
-    WpBsdfSample s;
-    s.direction = (float3)(0.0f, 0.0f, 1.0f);
-    s.weight = (float3)(0.0f);
-    s.pdf = 0.0f;
-    s.flags = 0u;
-    s.eta = 1.0f;
-    return s;
+static inline void wp_bsdf_no_sample(WpBsdfSample* s) {
+    s->direction = (float3)(0.0f, 0.0f, 1.0f);
+    s->weight = (float3)(0.0f);
+    s->pdf = 0.0f;
+    s->flags = 0u;
+    s->eta = 1.0f;
 }
 
 static inline int wp_bsdf_sample_is_delta(const WpBsdfSample* s) {

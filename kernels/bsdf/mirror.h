@@ -11,8 +11,8 @@ static inline float3 wp_reflect(float3 d, float3 n) {
     return d - 2.0f * dot(d, n) * n;
 }
 
-static inline WpBsdfSample wp_mirror_sample(const WpMaterial* m, float3 wo, float3 n, float u1,
-                                            float u2) {
+static inline void wp_mirror_sample(const WpMaterial* m, float3 wo, float3 n, float u1, float u2,
+                                    WpBsdfSample* out) {
     (void)u1;
     (void)u2;
     WpBsdfSample s;
@@ -21,7 +21,7 @@ static inline WpBsdfSample wp_mirror_sample(const WpMaterial* m, float3 wo, floa
     s.pdf = 0.0f;
     s.flags = WP_BSDF_REFLECTION | WP_BSDF_DELTA;
     s.eta = 1.0f;
-    return s;
+    *out = s;
 }
 
 static inline float3 wp_mirror_eval_pi(const WpMaterial* m, float3 wo, float3 wi, float3 n) {

@@ -26,27 +26,31 @@ static inline float3 wp_to_local(float3 w, float3 n) {
     return (float3)(dot(w, t), dot(w, b), dot(w, n));
 }
 
-static inline WpBsdfSample wp_roughconductor_sample(const WpMaterial* m, float3 wo, float3 n,
-                                                    float u1, float u2) {
+static inline void wp_roughconductor_sample(const WpMaterial* m, float3 wo, float3 n, float u1,
+                                            float u2, WpBsdfSample* out) {
     float3 t, b;
     wp_make_basis(n, &t, &b);
     float3 v = (float3)(-dot(wo, t), -dot(wo, b), -dot(wo, n));
-    if (!(v.z > 0.0f))
-        return wp_bsdf_no_sample();
+    if (!(v.z > 0.0f)) {
+        wp_bsdf_no_sample(out);
+        return;
+    }
     WpMicrofacet d = wp_microfacet_of(m);
     float3 h = wp_microfacet_sample_visible(&d, v, u1, u2);
     float v_dot_h = dot(v, h);
     float3 l = 2.0f * v_dot_h * h - v;
     float pdf_h = wp_microfacet_pdf_visible(&d, v, h);
-    if (!(l.z > 0.0f && v_dot_h > 0.0f && pdf_h > 0.0f))
-        return wp_bsdf_no_sample();
+    if (!(l.z > 0.0f && v_dot_h > 0.0f && pdf_h > 0.0f)) {
+        wp_bsdf_no_sample(out);
+        return;
+    }
     WpBsdfSample s;
     s.direction = normalize(l.x * t + l.y * b + l.z * n);
     s.weight = wp_conductor_reflectance(m, fmin(1.0f, v_dot_h)) * wp_microfacet_g1(&d, l, h);
     s.pdf = pdf_h / (4.0f * v_dot_h);
     s.flags = WP_BSDF_REFLECTION | WP_BSDF_GLOSSY;
     s.eta = 1.0f;
-    return s;
+    *out = s;
 }
 
 static inline float3 wp_roughconductor_eval_pi(const WpMaterial* m, float3 wo, float3 wi,

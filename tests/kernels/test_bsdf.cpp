@@ -44,7 +44,8 @@ __kernel void bsdf_sample(__global const WpMaterial* material, float4 n, float4 
     WpMaterial m = *material;
     float u1 = wp_random(seed, i, 0u, 0u, WP_DIM_BSDF_U);
     float u2 = wp_random(seed, i, 0u, 0u, WP_DIM_BSDF_V);
-    WpBsdfSample s = wp_bsdf_sample(&m, wo.xyz, n.xyz, u1, u2);
+    WpBsdfSample s;
+    wp_bsdf_sample(&m, wo.xyz, n.xyz, u1, u2, &s);
     direction[i] = (float4)(s.direction, s.pdf);
     weight[i] = (float4)(s.weight, (float)s.flags);
 }
