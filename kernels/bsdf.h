@@ -13,9 +13,11 @@
 #define WP_BSDF_H
 
 #include "bsdf/conductor.h"
+#include "bsdf/dielectric.h"
 #include "bsdf/diffuse.h"
 #include "bsdf/mirror.h"
 #include "bsdf/roughconductor.h"
+#include "bsdf/thindielectric.h"
 #include "scene_features.h"
 
 /* 1 if the material scatters no light at all (its path ends). */
@@ -47,26 +49,37 @@ static inline int wp_bsdf_is_delta(const WpMaterial* m) {
     return wp_diffuse_is_delta();
 }
 
+/* 1 for a BSDF that can send light through the surface: a path may meet its
+ * surface from inside a solid. */
+#define WP_BSDF_TRANSMITS_ROW(KIND, Name, name, value, bsdf, glossy)                               \
+    WP_BSDF_TRY(KIND, name, bsdf, transmits())
+static inline int wp_bsdf_transmits(const WpMaterial* m) {
+    WP_MATERIALS(WP_BSDF_TRANSMITS_ROW)
+    return wp_diffuse_transmits();
+}
+
 #define WP_BSDF_SAMPLE_ROW(KIND, Name, name, value, bsdf, glossy)                                  \
-    WP_BSDF_TRY_WRITE(KIND, name, bsdf, sample(m, wo, n, u1, u2, s))
-static inline void wp_bsdf_sample(const WpMaterial* m, float3 wo, float3 n, float u1, float u2,
-                                  WpBsdfSample* s) {
+    WP_BSDF_TRY_WRITE(KIND, name, bsdf, sample(m, wo, p, u1, u2, s))
+static inline void wp_bsdf_sample(const WpMaterial* m, float3 wo, const WpShadingPoint* p, float u1,
+                                  float u2, WpBsdfSample* s) {
     WP_MATERIALS(WP_BSDF_SAMPLE_ROW)
-    wp_diffuse_sample(m, wo, n, u1, u2, s);
+    wp_diffuse_sample(m, wo, p, u1, u2, s);
 }
 
 #define WP_BSDF_EVAL_ROW(KIND, Name, name, value, bsdf, glossy)                                    \
-    WP_BSDF_TRY(KIND, name, bsdf, eval_pi(m, wo, wi, n))
-static inline float3 wp_bsdf_eval_pi(const WpMaterial* m, float3 wo, float3 wi, float3 n) {
+    WP_BSDF_TRY(KIND, name, bsdf, eval_pi(m, wo, wi, p))
+static inline float3 wp_bsdf_eval_pi(const WpMaterial* m, float3 wo, float3 wi,
+                                     const WpShadingPoint* p) {
     WP_MATERIALS(WP_BSDF_EVAL_ROW)
-    return wp_diffuse_eval_pi(m, wo, wi, n);
+    return wp_diffuse_eval_pi(m, wo, wi, p);
 }
 
 #define WP_BSDF_PDF_ROW(KIND, Name, name, value, bsdf, glossy)                                     \
-    WP_BSDF_TRY(KIND, name, bsdf, pdf(m, wo, wi, n))
-static inline float wp_bsdf_pdf(const WpMaterial* m, float3 wo, float3 wi, float3 n) {
+    WP_BSDF_TRY(KIND, name, bsdf, pdf(m, wo, wi, p))
+static inline float wp_bsdf_pdf(const WpMaterial* m, float3 wo, float3 wi,
+                                const WpShadingPoint* p) {
     WP_MATERIALS(WP_BSDF_PDF_ROW)
-    return wp_diffuse_pdf(m, wo, wi, n);
+    return wp_diffuse_pdf(m, wo, wi, p);
 }
 
 /* Whether the program has a glossy kind (the glossy column of WP_MATERIALS):

@@ -242,17 +242,18 @@ static inline int wp_sphere_mirror_point(float3 c, float r, float3 x, float3 y, 
 }
 
 /* The mirrored light sample's contribution once the mirror point is known:
- * x (ray direction `wo`, shading normal on the lit side `shading`) sees the
+ * x (ray direction `wo`, shading point `point`) sees the
  * light point y with emission `emission` by way of m, direction `wi`, at
  * density `p_mirror`; leg 1 runs from `origin` to m (stopping short of it by
  * the margin of a primitive of scale `mirror_scale`), leg 2 from `start2`
  * (off the mirror on x's side) to y on `light`. 1 and *out when it carries
  * light. */
-static inline int wp_mirror_shadow_ray(const WpMaterial* material, float3 wo, float3 shading,
-                                       float3 origin, float3 beta, float3 m, float mirror_scale,
-                                       float3 start2, float3 y, const WpTriangle* light, float3 wi,
-                                       float cos_surface, float p_mirror, float3 emission,
-                                       float3 reflectance, WpMirrorShadow* out) {
+static inline int wp_mirror_shadow_ray(const WpMaterial* material, float3 wo,
+                                       const WpShadingPoint* point, float3 origin, float3 beta,
+                                       float3 m, float mirror_scale, float3 start2, float3 y,
+                                       const WpTriangle* light, float3 wi, float cos_surface,
+                                       float p_mirror, float3 emission, float3 reflectance,
+                                       WpMirrorShadow* out) {
     float3 leg1 = m - origin;
     float length1 = length(leg1);
     float test1 = length1 - wp_shadow_end_margin(m, mirror_scale, length1);
@@ -261,9 +262,9 @@ static inline int wp_mirror_shadow_ray(const WpMaterial* material, float3 wo, fl
     float test2 = length2 - wp_shadow_end_margin(y, wp_triangle_scale(light), length2);
     if (!(test1 > 0.0f && test2 > 0.0f))
         return 0;
-    float p_bsdf = wp_bsdf_pdf(material, wo, wi, shading);
+    float p_bsdf = wp_bsdf_pdf(material, wo, wi, point);
     float weight = wp_mis_power(p_mirror, p_bsdf);
-    float3 contribution = beta * wp_bsdf_eval_pi(material, wo, wi, shading) * (1.0f / WP_PI) *
+    float3 contribution = beta * wp_bsdf_eval_pi(material, wo, wi, point) * (1.0f / WP_PI) *
                           emission * reflectance * (cos_surface * weight / p_mirror);
     if (wp_is_black(contribution))
         return 0;
@@ -277,10 +278,11 @@ static inline int wp_mirror_shadow_ray(const WpMaterial* material, float3 wo, fl
 
 /* Through planar mirror `group` (the arguments as wp_mirror_next_event's). */
 static inline int wp_planar_mirror_next_event(const WpSceneView* scene, const WpMaterial* material,
-                                              const WpSurface* surface, float3 wo, float3 shading,
-                                              float3 origin, float3 beta,
-                                              const WpMirrorGroup* group, const WpTriangle* light,
-                                              float3 y, WpMirrorShadow* out) {
+                                              const WpSurface* surface, float3 wo,
+                                              const WpShadingPoint* point, float3 origin,
+                                              float3 beta, const WpMirrorGroup* group,
+                                              const WpTriangle* light, float3 y,
+                                              WpMirrorShadow* out) {
     float3 x = surface->position;
     float3 m;
     wp_uint k;
@@ -293,7 +295,7 @@ static inline int wp_planar_mirror_next_event(const WpSceneView* scene, const Wp
     float3 wi = to_image / distance;
     float3 light_normal = normalize(wp_triangle_normal(light));
     float3 image_normal = light_normal - (2.0f * dot(light_normal, n)) * n;
-    float cos_surface = dot(shading, wi);
+    float cos_surface = dot(point->n, wi);
     float cos_light = -dot(image_normal, wi);
     if (!(cos_surface > 0.0f && cos_light > 0.0f))
         return 0;
@@ -303,7 +305,7 @@ static inline int wp_planar_mirror_next_event(const WpSceneView* scene, const Wp
     float3 side = dot(n, x) > group->plane.w ? n : -n;
     float3 start2 = wp_offset_ray_origin(m, side, mirror_scale);
     return wp_mirror_shadow_ray(
-        material, wo, shading, origin, beta, m, mirror_scale, start2, y, light, wi, cos_surface,
+        material, wo, point, origin, beta, m, mirror_scale, start2, y, light, wi, cos_surface,
         wp_mirror_light_pdf(scene, distance, cos_light),
         scene->materials[wp_triangle_material(light)].emission.xyz,
         scene->materials[wp_triangle_material(&mirror)].reflectance.xyz, out);
@@ -312,10 +314,10 @@ static inline int wp_planar_mirror_next_event(const WpSceneView* scene, const Wp
 #if WP_HAS_MIRROR_SPHERES
 /* Through mirror sphere `sphere` (the arguments as wp_mirror_next_event's). */
 static inline int wp_sphere_mirror_next_event(const WpSceneView* scene, const WpMaterial* material,
-                                              const WpSurface* surface, float3 wo, float3 shading,
-                                              float3 origin, float3 beta, WpSphere sphere,
-                                              const WpTriangle* light, float3 y,
-                                              WpMirrorShadow* out) {
+                                              const WpSurface* surface, float3 wo,
+                                              const WpShadingPoint* point, float3 origin,
+                                              float3 beta, WpSphere sphere, const WpTriangle* light,
+                                              float3 y, WpMirrorShadow* out) {
     float3 c = sphere.center_radius.xyz;
     float r = sphere.center_radius.w;
     float3 x = surface->position;
@@ -329,14 +331,14 @@ static inline int wp_sphere_mirror_next_event(const WpSceneView* scene, const Wp
     float3 to_light = y - m;
     float d2 = length(to_light);
     float3 light_normal = normalize(wp_triangle_normal(light));
-    float cos_surface = dot(shading, wi);
+    float cos_surface = dot(point->n, wi);
     float cos_mirror = -dot(n, wi);
     float cos_light = -dot(light_normal, to_light / d2);
     if (!(cos_surface > 0.0f && cos_mirror > 0.0f && cos_light > 0.0f))
         return 0;
     float mirror_scale = wp_sphere_scale(sphere.center_radius);
     float3 start2 = wp_offset_ray_origin(m, n, mirror_scale);
-    return wp_mirror_shadow_ray(material, wo, shading, origin, beta, m, mirror_scale, start2, y,
+    return wp_mirror_shadow_ray(material, wo, point, origin, beta, m, mirror_scale, start2, y,
                                 light, wi, cos_surface,
                                 wp_sphere_mirror_light_pdf(scene, d1, d2, cos_mirror, r, cos_light),
                                 scene->materials[wp_triangle_material(light)].emission.xyz,
@@ -345,12 +347,12 @@ static inline int wp_sphere_mirror_next_event(const WpSceneView* scene, const Wp
 #endif
 
 /* The mirrored light sample at the diffuse surface point `surface` (ray
- * direction `wo`, shading normal on the lit side `shading`, shadow rays
+ * direction `wo`, shading point `point` (bsdf/interface.h), shadow rays
  * from `origin`): 1 and *out when it carries light. */
 static inline int wp_mirror_next_event(const WpSceneView* scene, const WpMaterial* material,
-                                       const WpSurface* surface, float3 wo, float3 shading,
-                                       float3 origin, float3 beta, float u_pick, float u, float v,
-                                       WpMirrorShadow* out) {
+                                       const WpSurface* surface, float3 wo,
+                                       const WpShadingPoint* point, float3 origin, float3 beta,
+                                       float u_pick, float u, float v, WpMirrorShadow* out) {
     wp_uint mirrors = wp_mirror_count(scene);
     if (mirrors == 0u || scene->light_count == 0u)
         return 0;
@@ -364,11 +366,11 @@ static inline int wp_mirror_next_event(const WpSceneView* scene, const WpMateria
 #if WP_HAS_MIRROR_SPHERES
     if (g >= scene->mirror_group_count)
         return wp_sphere_mirror_next_event(
-            scene, material, surface, wo, shading, origin, beta,
+            scene, material, surface, wo, point, origin, beta,
             scene->spheres[scene->mirror_spheres[g - scene->mirror_group_count]], &light, y, out);
 #endif
     WpMirrorGroup group = scene->mirror_groups[g];
-    return wp_planar_mirror_next_event(scene, material, surface, wo, shading, origin, beta, &group,
+    return wp_planar_mirror_next_event(scene, material, surface, wo, point, origin, beta, &group,
                                        &light, y, out);
 }
 

@@ -66,19 +66,18 @@ static inline float3 wp_shade_emission(const WpMaterial* material, const WpSurfa
  * pick, with the contribution it carries if unblocked, into *shadow (the
  * shade kernel queues it, a fused kernel traces it at once). */
 static inline void wp_shade_next_event(const WpSceneView* scene, const WpMaterial* material,
-                                       const WpSurface* surface, float3 wo, float3 normal,
-                                       float3 shading, float3 origin, float3 beta, float u_pick,
-                                       float u, float v, WpShadowRay* shadow) {
+                                       const WpSurface* surface, float3 wo,
+                                       const WpShadingPoint* point, float3 origin, float3 beta,
+                                       float u_pick, float u, float v, WpShadowRay* shadow) {
 #if WP_HAS_LIGHTS && WP_USE_NEE
     WpLightSample light;
-    if (!wp_sample_light(scene, surface->position, origin, shading, u_pick, u, v, &light))
+    if (!wp_sample_light(scene, surface->position, origin, point->n, u_pick, u, v, &light))
         return;
-    float3 contribution = beta * wp_bsdf_eval_pi(material, wo, light.direction, shading) *
+    float3 contribution = beta * wp_bsdf_eval_pi(material, wo, light.direction, point) *
                           light.irradiance * (1.0f / WP_PI);
 #if WP_HAS_GLOSSY
     if (wp_bsdf_weighs_light(material))
-        contribution *=
-            wp_mis_power(light.pdf, wp_bsdf_pdf(material, wo, light.direction, shading));
+        contribution *= wp_mis_power(light.pdf, wp_bsdf_pdf(material, wo, light.direction, point));
 #endif
     if (wp_is_black(contribution))
         return;
@@ -88,7 +87,7 @@ static inline void wp_shade_next_event(const WpSceneView* scene, const WpMateria
     shadow->contribution = contribution;
     shadow->made = 1;
 #else
-    (void)scene, (void)material, (void)surface, (void)wo, (void)normal, (void)shading;
+    (void)scene, (void)material, (void)surface, (void)wo, (void)point;
     (void)origin, (void)beta;
     (void)u_pick, (void)u, (void)v, (void)shadow;
 #endif
@@ -145,18 +144,21 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
     WpSceneView scene = WP_SCENE_VIEW();
     float3 direction = ray_direction[slot].xyz;
     WpSurface surface = wp_surface_at(&scene, primitive, ray_origin[slot].xyz, direction, t);
-    if (surface.inside_solid) {
-        /* No material transmits yet, so only an offset origin can be inside
-         * a sphere: inside a mirror sphere such a path would bounce until the
-         * depth cap; absorb it instead. */
+    WpMaterial material = materials[surface.material];
+    if (surface.inside_solid && !wp_bsdf_transmits(&material)) {
+        /* Into a solid that transmits nothing only an offset origin can get:
+         * inside a mirror sphere such a path would bounce until the depth
+         * cap; absorb it instead. */
         return WP_SHADED_ENDS;
     }
-    WpMaterial material = materials[surface.material];
     /* The geometric and the shading normal on the side the ray came from, and
      * where rays leave by that side. */
     float3 normal = surface.front_face ? surface.normal : -surface.normal;
-    float3 shading = surface.front_face ? surface.shading_normal : -surface.shading_normal;
     float3 spawn = surface.front_face ? surface.spawn_front : surface.spawn_back;
+    /* What the BSDF sees of the surface (bsdf/interface.h). */
+    WpShadingPoint point;
+    point.n = surface.front_face ? surface.shading_normal : -surface.shading_normal;
+    point.front_face = surface.front_face;
 
     float3 beta = throughput[slot].xyz;
     wp_uint depth = path_depth[slot];
@@ -196,12 +198,12 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
         float u_light = wp_path_random(&random, WP_DIM_LIGHT_U);
         float v_light = wp_path_random(&random, WP_DIM_LIGHT_V);
         if (WP_PATH_NEXT_EVENT_SELECTED(frame.path_types, flags))
-            wp_shade_next_event(&scene, &material, &surface, direction, normal, shading, origin,
-                                beta, u_pick, u_light, v_light, shadow);
+            wp_shade_next_event(&scene, &material, &surface, direction, &point, origin, beta,
+                                u_pick, u_light, v_light, shadow);
 #if WP_MIRROR_NEE
         shadow->mirror_made =
             WP_MIRROR_NEXT_EVENT_SELECTED(frame.path_types, flags) &&
-            wp_mirror_next_event(&scene, &material, &surface, direction, shading, origin, beta,
+            wp_mirror_next_event(&scene, &material, &surface, direction, &point, origin, beta,
                                  u_pick, u_light, v_light, &shadow->mirror);
 #endif
     }
@@ -210,7 +212,7 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
     float u1 = wp_path_random(&random, WP_DIM_BSDF_U);
     float u2 = wp_path_random(&random, WP_DIM_BSDF_V);
     WpBsdfSample scattered;
-    wp_bsdf_sample(&material, direction, shading, u1, u2, &scattered);
+    wp_bsdf_sample(&material, direction, &point, u1, u2, &scattered);
     /* Nothing sampled, or a direction on the other side of the true surface
      * than the sample's flags say (by the shading normal): absorbed. */
     int transmitted = (scattered.flags & WP_BSDF_TRANSMISSION) != 0u;

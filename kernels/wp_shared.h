@@ -57,7 +57,9 @@ typedef cl_float4 wp_float4;
     X(a, MIRROR, Mirror, mirror, 1u, 1, 0)          /* perfect specular reflection */              \
     X(a, EMITTER, Emitter, emitter, 2u, 0, 0)       /* emits, reflects nothing */                  \
     X(a, CONDUCTOR, Conductor, conductor, 3u, 1, 0) /* smooth metal, Fresnel */                    \
-    X(a, ROUGHCONDUCTOR, RoughConductor, roughconductor, 4u, 1, 1) /* microfacet metal */
+    X(a, ROUGHCONDUCTOR, RoughConductor, roughconductor, 4u, 1, 1) /* microfacet metal */          \
+    X(a, DIELECTRIC, Dielectric, dielectric, 5u, 1, 0)             /* smooth glass, water */       \
+    X(a, THINDIELECTRIC, ThinDielectric, thindielectric, 6u, 1, 0) /* a pane of no thickness */
 #define WP_MATERIALS(X) WP_MATERIALS_WITH(WP_MATERIAL_ROW_OF, X)
 #define WP_MATERIAL_ROW_OF(X, ...) X(__VA_ARGS__)
 
@@ -196,15 +198,19 @@ typedef struct {
 /* A material: the parameters of every kind side by side; each BSDF reads its
  * own (kernels/bsdf/KIND.h). */
 typedef struct {
-    wp_float4 reflectance; /* rgb in [0, 1]; conductors: specular_reflectance */
-    wp_float4 emission;    /* rgb radiance from the front face */
-    wp_float4 eta;         /* conductors: real part of the complex IOR, rgb */
-    wp_float4 k;           /* conductors: imaginary part (absorption), rgb */
-    wp_uint kind;          /* WP_MATERIAL_* */
-    wp_uint distribution;  /* roughconductor: WP_MICROFACET_* */
-    wp_uint fresnel;       /* conductors: 1, the Fresnel term of eta and k; 0, F = 1 ("none") */
-    wp_float alpha_u;      /* roughconductor: roughness along the tangent, > 0 */
-    wp_float alpha_v;      /* ... and along the bitangent */
+    /* rgb in [0, 1]; conductors and dielectrics: specular_reflectance */
+    wp_float4 reflectance;
+    wp_float4 emission; /* rgb radiance from the front face */
+    /* conductors: the real part of the complex IOR, rgb; dielectrics:
+     * int_ior / ext_ior in every channel */
+    wp_float4 eta;
+    wp_float4 k;             /* conductors: imaginary part (absorption), rgb */
+    wp_float4 transmittance; /* dielectrics: specular_transmittance, rgb in [0, 1] */
+    wp_uint kind;            /* WP_MATERIAL_* */
+    wp_uint distribution;    /* roughconductor: WP_MICROFACET_* */
+    wp_uint fresnel;         /* conductors: 1, the Fresnel term of eta and k; 0, F = 1 ("none") */
+    wp_float alpha_u;        /* roughconductor: roughness along the tangent, > 0 */
+    wp_float alpha_v;        /* ... and along the bitangent */
     wp_uint pad0, pad1, pad2;
 } WpMaterial;
 

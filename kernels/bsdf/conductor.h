@@ -12,8 +12,9 @@
 #include "bsdf/interface.h"
 #include "bsdf/mirror.h"
 
-static inline void wp_conductor_sample(const WpMaterial* m, float3 wo, float3 n, float u1, float u2,
-                                       WpBsdfSample* out) {
+static inline void wp_conductor_sample(const WpMaterial* m, float3 wo, const WpShadingPoint* point,
+                                       float u1, float u2, WpBsdfSample* out) {
+    float3 n = point->n;
     (void)u1;
     (void)u2;
     WpBsdfSample s;
@@ -25,18 +26,24 @@ static inline void wp_conductor_sample(const WpMaterial* m, float3 wo, float3 n,
     *out = s;
 }
 
-static inline float3 wp_conductor_eval_pi(const WpMaterial* m, float3 wo, float3 wi, float3 n) {
-    (void)m, (void)wo, (void)wi, (void)n;
+static inline float3 wp_conductor_eval_pi(const WpMaterial* m, float3 wo, float3 wi,
+                                          const WpShadingPoint* point) {
+    (void)m, (void)wo, (void)wi, (void)point;
     return (float3)(0.0f);
 }
 
-static inline float wp_conductor_pdf(const WpMaterial* m, float3 wo, float3 wi, float3 n) {
-    (void)m, (void)wo, (void)wi, (void)n;
+static inline float wp_conductor_pdf(const WpMaterial* m, float3 wo, float3 wi,
+                                     const WpShadingPoint* point) {
+    (void)m, (void)wo, (void)wi, (void)point;
     return 0.0f;
 }
 
 static inline int wp_conductor_is_delta(void) {
     return 1;
+}
+
+static inline int wp_conductor_transmits(void) {
+    return 0;
 }
 
 #endif /* WP_BSDF_CONDUCTOR_H */

@@ -18,8 +18,9 @@
 #include "estimator.h"
 #include "sampling.h"
 
-static inline void wp_diffuse_sample(const WpMaterial* m, float3 wo, float3 n, float u1, float u2,
-                                     WpBsdfSample* out) {
+static inline void wp_diffuse_sample(const WpMaterial* m, float3 wo, const WpShadingPoint* point,
+                                     float u1, float u2, WpBsdfSample* out) {
+    float3 n = point->n;
     (void)wo;
     WpBsdfSample s;
     float3 reflectance = m->reflectance.xyz;
@@ -39,14 +40,17 @@ static inline void wp_diffuse_sample(const WpMaterial* m, float3 wo, float3 n, f
     *out = s;
 }
 
-static inline float3 wp_diffuse_eval_pi(const WpMaterial* m, float3 wo, float3 wi, float3 n) {
+static inline float3 wp_diffuse_eval_pi(const WpMaterial* m, float3 wo, float3 wi,
+                                        const WpShadingPoint* point) {
+    (void)point;
     (void)wo;
     (void)wi;
-    (void)n;
     return m->reflectance.xyz;
 }
 
-static inline float wp_diffuse_pdf(const WpMaterial* m, float3 wo, float3 wi, float3 n) {
+static inline float wp_diffuse_pdf(const WpMaterial* m, float3 wo, float3 wi,
+                                   const WpShadingPoint* point) {
+    float3 n = point->n;
     (void)m;
     (void)wo;
     float cos_theta = dot(n, wi);
@@ -62,6 +66,10 @@ static inline float wp_diffuse_pdf(const WpMaterial* m, float3 wo, float3 wi, fl
 
 /* Not a delta BSDF: next-event estimation applies. */
 static inline int wp_diffuse_is_delta(void) {
+    return 0;
+}
+
+static inline int wp_diffuse_transmits(void) {
     return 0;
 }
 

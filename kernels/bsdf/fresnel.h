@@ -1,4 +1,4 @@
-/* Fresnel reflectance of a conductor. */
+/* Fresnel reflectance of a conductor and of a dielectric interface. */
 #ifndef WP_BSDF_FRESNEL_H
 #define WP_BSDF_FRESNEL_H
 
@@ -25,6 +25,26 @@ static inline float3 wp_fresnel_conductor(float cos_theta, float3 eta, float3 k)
     float3 r = 0.5f * (rs + rp);
     /* 0 / 0 only for a vanishing interface at grazing incidence: nothing reflects. */
     return select((float3)(0.0f), clamp(r, 0.0f, 1.0f), isfinite(r));
+}
+
+/* The unpolarised reflectance of a dielectric interface for light arriving at
+ * incidence cosine cos_i (in [0, 1], on the side it comes from) where the
+ * index of refraction relative to that side is eta (n_other / n_this, > 0):
+ * Mitsuba 3's fresnel (render/fresnel.h), without its sign conventions.
+ * *cos_t is the cosine of the refracted direction on the other side (>= 0; 0
+ * under total internal reflection, where R = 1). eta = 1 is no interface (R
+ * = 0 exactly, also at grazing incidence); cos_i = 0 reflects everything. */
+static inline float wp_fresnel_dielectric(float cos_i, float eta, float* cos_t) {
+    float inv_eta = 1.0f / eta;
+    float cos_t2 = 1.0f - (1.0f - cos_i * cos_i) * (inv_eta * inv_eta);
+    *cos_t = sqrt(fmax(cos_t2, 0.0f));
+    if (eta == 1.0f)
+        return 0.0f;
+    if (!(cos_i > 0.0f) || !(cos_t2 > 0.0f))
+        return 1.0f;
+    float a_s = (cos_i - eta * *cos_t) / (cos_i + eta * *cos_t);
+    float a_p = (*cos_t - eta * cos_i) / (*cos_t + eta * cos_i);
+    return clamp(0.5f * (a_s * a_s + a_p * a_p), 0.0f, 1.0f);
 }
 
 /* A conductor material's Fresnel term at incidence cosine cos_theta, times its

@@ -1,25 +1,31 @@
 /* What every BSDF provides (one header per material kind in kernels/bsdf/,
  * dispatched by material kind in kernels/bsdf.h):
  *
- *   void wp_KIND_sample(const WpMaterial* m, float3 wo, float3 n, float u1,
- *                       float u2, WpBsdfSample* s)
+ *   void wp_KIND_sample(const WpMaterial* m, float3 wo, const WpShadingPoint* p,
+ *                       float u1, float u2, WpBsdfSample* s)
  *       a direction to continue the path in, from two uniform numbers, with
  *       the flags of the lobe it came from (flags 0: no direction, the path
  *       is absorbed), written to *s. (Written through a pointer, not
  *       returned: a struct returned by value is an sret argument, and
  *       inlining one makes LLVM emit llvm.experimental.noalias.scope.decl,
  *       which Oclgrind 21.10 cannot run.)
- *   float3 wp_KIND_eval_pi(const WpMaterial* m, float3 wo, float3 wi, float3 n)
+ *   float3 wp_KIND_eval_pi(const WpMaterial* m, float3 wo, float3 wi,
+ *                          const WpShadingPoint* p)
  *       pi times the BSDF value f(wo, wi), without the cosine (0 for a
  *       delta BSDF, which no other direction can meet);
- *   float wp_KIND_pdf(const WpMaterial* m, float3 wo, float3 wi, float3 n)
+ *   float wp_KIND_pdf(const WpMaterial* m, float3 wo, float3 wi, const WpShadingPoint* p)
  *       the solid-angle density with which sample() picks wi (0 for a delta);
  *   int wp_KIND_is_delta(void)
- *       1 for a delta BSDF (a mirror), which next-event estimation skips.
+ *       1 for a delta BSDF (a mirror), which next-event estimation skips;
+ *   int wp_KIND_transmits(void)
+ *       1 for a BSDF that can send light through the surface (a dielectric),
+ *       whose surface a path may meet from inside a solid.
  *
  * Conventions: wo is the direction the ray travelled (towards the surface),
- * wi points away from it, and n is the unit shading normal on the side the
- * ray came from. Reflection leaves on n's side, transmission on the other;
+ * wi points away from it, and n = p->n is the unit shading normal on the side
+ * the ray came from; p->front_face says which side that is (the primitive's
+ * front: outside a solid), which tells a dielectric whether the ray enters or
+ * leaves. Reflection leaves on n's side, transmission on the other;
  * the integrator (kernels/shade.cl) picks the side the new ray leaves by, and
  * its offset, from the sampled direction, and absorbs a sample whose
  * direction the geometric normal puts on the other side than its flags say
@@ -34,6 +40,12 @@
 #define WP_BSDF_INTERFACE_H
 
 #include "wp_shared.h"
+
+/* What a BSDF sees of the surface point: the surface record. */
+typedef struct {
+    float3 n;       /* unit shading normal, on the side the ray came from */
+    int front_face; /* the ray came from the primitive's front side */
+} WpShadingPoint;
 
 typedef struct {
     float3 direction; /* wi, unit */

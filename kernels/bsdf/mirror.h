@@ -11,8 +11,9 @@ static inline float3 wp_reflect(float3 d, float3 n) {
     return d - 2.0f * dot(d, n) * n;
 }
 
-static inline void wp_mirror_sample(const WpMaterial* m, float3 wo, float3 n, float u1, float u2,
-                                    WpBsdfSample* out) {
+static inline void wp_mirror_sample(const WpMaterial* m, float3 wo, const WpShadingPoint* point,
+                                    float u1, float u2, WpBsdfSample* out) {
+    float3 n = point->n;
     (void)u1;
     (void)u2;
     WpBsdfSample s;
@@ -24,25 +25,31 @@ static inline void wp_mirror_sample(const WpMaterial* m, float3 wo, float3 n, fl
     *out = s;
 }
 
-static inline float3 wp_mirror_eval_pi(const WpMaterial* m, float3 wo, float3 wi, float3 n) {
+static inline float3 wp_mirror_eval_pi(const WpMaterial* m, float3 wo, float3 wi,
+                                       const WpShadingPoint* point) {
+    (void)point;
     (void)m;
     (void)wo;
     (void)wi;
-    (void)n;
     return (float3)(0.0f);
 }
 
-static inline float wp_mirror_pdf(const WpMaterial* m, float3 wo, float3 wi, float3 n) {
+static inline float wp_mirror_pdf(const WpMaterial* m, float3 wo, float3 wi,
+                                  const WpShadingPoint* point) {
+    (void)point;
     (void)m;
     (void)wo;
     (void)wi;
-    (void)n;
     return 0.0f;
 }
 
 /* A delta BSDF: next-event estimation cannot reach it. */
 static inline int wp_mirror_is_delta(void) {
     return 1;
+}
+
+static inline int wp_mirror_transmits(void) {
+    return 0;
 }
 
 #endif /* WP_BSDF_MIRROR_H */

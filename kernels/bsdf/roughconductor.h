@@ -26,8 +26,10 @@ static inline float3 wp_to_local(float3 w, float3 n) {
     return (float3)(dot(w, t), dot(w, b), dot(w, n));
 }
 
-static inline void wp_roughconductor_sample(const WpMaterial* m, float3 wo, float3 n, float u1,
-                                            float u2, WpBsdfSample* out) {
+static inline void wp_roughconductor_sample(const WpMaterial* m, float3 wo,
+                                            const WpShadingPoint* point, float u1, float u2,
+                                            WpBsdfSample* out) {
+    float3 n = point->n;
     float3 t, b;
     wp_make_basis(n, &t, &b);
     float3 v = (float3)(-dot(wo, t), -dot(wo, b), -dot(wo, n));
@@ -54,7 +56,8 @@ static inline void wp_roughconductor_sample(const WpMaterial* m, float3 wo, floa
 }
 
 static inline float3 wp_roughconductor_eval_pi(const WpMaterial* m, float3 wo, float3 wi,
-                                               float3 n) {
+                                               const WpShadingPoint* point) {
+    float3 n = point->n;
     float3 v = -wp_to_local(wo, n), l = wp_to_local(wi, n);
     if (!(v.z > 0.0f && l.z > 0.0f))
         return (float3)(0.0f);
@@ -66,7 +69,9 @@ static inline float3 wp_roughconductor_eval_pi(const WpMaterial* m, float3 wo, f
            (WP_PI * wp_microfacet_d(&d, h) * g / (4.0f * v.z * l.z));
 }
 
-static inline float wp_roughconductor_pdf(const WpMaterial* m, float3 wo, float3 wi, float3 n) {
+static inline float wp_roughconductor_pdf(const WpMaterial* m, float3 wo, float3 wi,
+                                          const WpShadingPoint* point) {
+    float3 n = point->n;
     float3 v = -wp_to_local(wo, n), l = wp_to_local(wi, n);
     if (!(v.z > 0.0f && l.z > 0.0f))
         return 0.0f;
@@ -79,6 +84,10 @@ static inline float wp_roughconductor_pdf(const WpMaterial* m, float3 wo, float3
 }
 
 static inline int wp_roughconductor_is_delta(void) {
+    return 0;
+}
+
+static inline int wp_roughconductor_transmits(void) {
     return 0;
 }
 

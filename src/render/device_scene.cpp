@@ -354,6 +354,9 @@ DeviceScene flatten_scene(const Scene& scene, bool hierarchy) {
         w.distribution = static_cast<wp_uint>(m.distribution);
         w.alpha_u = static_cast<float>(m.alpha_u);
         w.alpha_v = static_cast<float>(m.alpha_v);
+        w.transmittance = to_float4(m.transmittance);
+        if (m.kind == MaterialKind::Dielectric || m.kind == MaterialKind::ThinDielectric)
+            w.eta = to_float4(glm::dvec3(m.int_ior / m.ext_ior));
         out.materials.push_back(w);
     }
 

@@ -240,6 +240,13 @@ class SceneReader : private json::Reader {
             read_conductor(m, pm, mat);
             read_roughness(m, pm, mat);
             return;
+        case MaterialKind::Dielectric:
+        case MaterialKind::ThinDielectric:
+            check_keys(m, pm,
+                       {"type", "int_ior", "ext_ior", "specular_reflectance",
+                        "specular_transmittance", "emission"});
+            read_dielectric(m, pm, mat);
+            return;
         }
         fail(pm / "type", "material kind without a reader"); // unreachable for valid kinds
     }
@@ -283,6 +290,39 @@ class SceneReader : private json::Reader {
         if (const auto it = m.find("specular_reflectance"); it != m.end())
             mat.reflectance = vec3(*it, pm / "specular_reflectance", Range::Reflectance);
         read_emission(m, pm, mat);
+    }
+
+    // Mitsuba's dielectric parameters: int_ior and ext_ior, each a number or
+    // a name of Mitsuba's table (defaults "bk7" and "air"), and
+    // specular_reflectance and specular_transmittance (default 1).
+    void read_dielectric(const Json& m, const Ptr& pm, Material& mat) const {
+        if (const auto it = m.find("int_ior"); it != m.end())
+            mat.int_ior = ior(*it, pm / "int_ior");
+        if (const auto it = m.find("ext_ior"); it != m.end())
+            mat.ext_ior = ior(*it, pm / "ext_ior");
+        mat.reflectance = glm::dvec3(1.0);
+        if (const auto it = m.find("specular_reflectance"); it != m.end())
+            mat.reflectance = vec3(*it, pm / "specular_reflectance", Range::Reflectance);
+        if (const auto it = m.find("specular_transmittance"); it != m.end())
+            mat.transmittance = vec3(*it, pm / "specular_transmittance", Range::Reflectance);
+        read_emission(m, pm, mat);
+    }
+
+    double ior(const Json& value, const Ptr& p) const {
+        if (value.is_string()) {
+            const std::string& name = value.get_ref<const std::string&>();
+            if (const NamedIor* named = find_ior(name))
+                return named->ior;
+            std::string known;
+            for (const NamedIor& n : named_iors())
+                known += (known.empty() ? "" : ", ") + std::string(n.name);
+            fail(p, "unknown index of refraction '" + shorten(name, 40) +
+                        "' (expected a number or " + known + ")");
+        }
+        const double v = number(value, p);
+        if (!(v > 0.0) || v > scene_limits::max_index)
+            fail(p, "must be in (0, 1e4], got " + number_text(v));
+        return v;
     }
 
     // Mitsuba's roughconductor roughness: "distribution" ("beckmann", the

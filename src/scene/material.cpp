@@ -76,6 +76,30 @@ const NamedMetal* find_metal(std::string_view name) {
     return nullptr;
 }
 
+const std::vector<NamedIor>& named_iors() {
+    // Mitsuba 3's table (include/mitsuba/render/ior.h), with its source:
+    // mostly Hecht, "Optics", 4th edition, measured between 0 and 20 degrees
+    // Celsius at about 589 nm.
+    static const std::vector<NamedIor> iors = {
+        {"vacuum", 1.0},      {"helium", 1.000036},        {"hydrogen", 1.000132},
+        {"air", 1.000277},    {"carbon dioxide", 1.00045}, {"water", 1.3330},
+        {"acetone", 1.36},    {"ethanol", 1.361},          {"carbon tetrachloride", 1.461},
+        {"glycerol", 1.4729}, {"benzene", 1.501},          {"silicone oil", 1.52045},
+        {"bromine", 1.661},   {"water ice", 1.31},         {"fused quartz", 1.458},
+        {"pyrex", 1.470},     {"acrylic glass", 1.49},     {"polypropylene", 1.49},
+        {"bk7", 1.5046},      {"sodium chloride", 1.544},  {"amber", 1.55},
+        {"pet", 1.5750},      {"diamond", 2.419},
+    };
+    return iors;
+}
+
+const NamedIor* find_ior(std::string_view name) {
+    for (const NamedIor& i : named_iors())
+        if (name == i.name)
+            return &i;
+    return nullptr;
+}
+
 // Material::rendered_fields() must name every member but `name` and `metal`
 // (which only label values that are hashed): count the aggregate's members by
 // the longest brace initialiser that compiles.

@@ -30,4 +30,14 @@ struct NamedMetal {
 const std::vector<NamedMetal>& named_metals();
 const NamedMetal* find_metal(std::string_view name);
 
+// A dielectric's index of refraction by Mitsuba's name ("bk7", "water", ...).
+struct NamedIor {
+    const char* name;
+    double ior;
+};
+
+// The named indices of refraction, and the one of that name (nullptr when none).
+const std::vector<NamedIor>& named_iors();
+const NamedIor* find_ior(std::string_view name);
+
 } // namespace wp

@@ -165,6 +165,16 @@ std::string bsdf(const Material& m, std::size_t index) {
         inner += in + "    </bsdf>\n";
         break;
     }
+    case MaterialKind::Dielectric:
+    case MaterialKind::ThinDielectric:
+        // Not twosided: a dielectric has two sides of its own (Mitsuba refuses
+        // to wrap a BSDF that transmits), the front one outside.
+        return in + xml_comment("material '" + m.name + "'") + "\n" + in + "<bsdf type=\"" +
+               material_kind_name(m.kind) + "\" id=\"" + material_id(index) + "\">\n" + in +
+               "    <float name=\"int_ior\" value=\"" + number(m.int_ior) + "\"/>\n" + in +
+               "    <float name=\"ext_ior\" value=\"" + number(m.ext_ior) + "\"/>\n" + in + "    " +
+               rgb("specular_reflectance", m.reflectance) + "\n" + in + "    " +
+               rgb("specular_transmittance", m.transmittance) + "\n" + in + "</bsdf>\n";
     case MaterialKind::Emitter:
         // Reflects nothing, on either side: black, and one-sided will do.
         return in + xml_comment("material '" + m.name + "' (emitter: reflects nothing)") + "\n" +

@@ -52,7 +52,7 @@ enum class MicrofacetDistribution : std::uint32_t {
 struct Material {
     std::string name;
     MaterialKind kind = MaterialKind::Diffuse;
-    // Diffuse: the reflectance; mirror and conductors: Mitsuba's
+    // Diffuse: the reflectance; mirror, conductors and dielectrics: Mitsuba's
     // specular_reflectance, a factor on the Fresnel term. In [0, 1] per channel.
     glm::dvec3 reflectance{0.0};
     // Radiance emitted from the front face (the side the right-handed winding
@@ -71,6 +71,13 @@ struct Material {
     MicrofacetDistribution distribution = MicrofacetDistribution::Beckmann;
     double alpha_u = 0.1;
     double alpha_v = 0.1;
+    // Dielectrics: the indices of refraction inside and outside (Mitsuba's
+    // int_ior and ext_ior, defaults BK7 glass and air; the outside is the
+    // front side), and specular_transmittance, a factor on the refracted
+    // light in [0, 1] per channel.
+    double int_ior = 1.5046;
+    double ext_ior = 1.000277;
+    glm::dvec3 transmittance{1.0};
 
     bool is_emissive() const { return emission.x > 0.0 || emission.y > 0.0 || emission.z > 0.0; }
 
@@ -78,7 +85,8 @@ struct Material {
     // the checkpoint's scene hash (render/checkpoint.cpp); a static_assert checks
     // at compile time that no member is left out (scene/material.cpp).
     auto rendered_fields() const {
-        return std::tie(kind, reflectance, emission, eta, k, distribution, alpha_u, alpha_v);
+        return std::tie(kind, reflectance, emission, eta, k, distribution, alpha_u, alpha_v,
+                        int_ior, ext_ior, transmittance);
     }
 };
 

@@ -131,6 +131,12 @@ class Checker {
                 vec(m.eta, f + ".eta", 0.0, scene_limits::max_index);
                 vec(m.k, f + ".k", 0.0, scene_limits::max_index);
                 break;
+            case MaterialKind::Dielectric:
+            case MaterialKind::ThinDielectric:
+                positive(m.int_ior, f + ".int_ior", scene_limits::max_index);
+                positive(m.ext_ior, f + ".ext_ior", scene_limits::max_index);
+                vec(m.transmittance, f + ".transmittance", 0.0, 1.0);
+                break;
             }
         }
 

@@ -24,6 +24,15 @@ const char* const kBsdfSource = R"CL(
 #include "bsdf.h"
 #include "rng.h"
 
+/* n.xyz the shading normal on the ray's side; n.w 0 when the ray came from
+ * the front side, 1 from the back (inside a solid). */
+WpShadingPoint shading_point(float4 n) {
+    WpShadingPoint p;
+    p.n = n.xyz;
+    p.front_face = n.w == 0.0f;
+    return p;
+}
+
 /* eval_pi (rgb) and pdf (w) of count direction pairs. */
 __kernel void bsdf_eval(__global const WpMaterial* material, float4 n, uint count,
                         __global const float4* wo, __global const float4* wi,
@@ -31,8 +40,9 @@ __kernel void bsdf_eval(__global const WpMaterial* material, float4 n, uint coun
     uint i = get_global_id(0);
     if (i >= count) return;
     WpMaterial m = *material;
-    float3 f = wp_bsdf_eval_pi(&m, wo[i].xyz, wi[i].xyz, n.xyz);
-    out[i] = (float4)(f, wp_bsdf_pdf(&m, wo[i].xyz, wi[i].xyz, n.xyz));
+    WpShadingPoint p = shading_point(n);
+    float3 f = wp_bsdf_eval_pi(&m, wo[i].xyz, wi[i].xyz, &p);
+    out[i] = (float4)(f, wp_bsdf_pdf(&m, wo[i].xyz, wi[i].xyz, &p));
 }
 
 /* count samples for one incident direction: direction and pdf (w), weight and
@@ -45,7 +55,8 @@ __kernel void bsdf_sample(__global const WpMaterial* material, float4 n, float4 
     float u1 = wp_random(seed, i, 0u, 0u, WP_DIM_BSDF_U);
     float u2 = wp_random(seed, i, 0u, 0u, WP_DIM_BSDF_V);
     WpBsdfSample s;
-    wp_bsdf_sample(&m, wo.xyz, n.xyz, u1, u2, &s);
+    WpShadingPoint p = shading_point(n);
+    wp_bsdf_sample(&m, wo.xyz, &p, u1, u2, &s);
     direction[i] = (float4)(s.direction, s.pdf);
     weight[i] = (float4)(s.weight, (float)s.flags);
 }
@@ -200,14 +211,18 @@ struct Samples {
     std::vector<cl_float4> weight;    // rgb, flags in w
 };
 
-Samples run_sample(const WpMaterial& m, const D3& n, const D3& wo, cl_uint seed,
-                   std::size_t count) {
+// `count` samples for the ray direction wo at shading normal n (on the ray's
+// side), which arrived from the primitive's back side when `from_back`.
+Samples run_sample(const WpMaterial& m, const D3& n, const D3& wo, cl_uint seed, std::size_t count,
+                   bool from_back = false) {
     cl::Kernel kernel(bsdf_program(), "bsdf_sample");
     cl::Buffer material = upload(std::vector<WpMaterial>{m});
     cl::Buffer direction = upload(std::vector<cl_float4>(count));
     cl::Buffer weight = upload(std::vector<cl_float4>(count));
-    set_args(kernel, material, to_float4(n), to_float4(wo), seed, static_cast<cl_uint>(count),
-             direction, weight);
+    cl_float4 normal = to_float4(n);
+    normal.s[3] = from_back ? 1.0f : 0.0f;
+    set_args(kernel, material, normal, to_float4(wo), seed, static_cast<cl_uint>(count), direction,
+             weight);
     launch(kernel, count);
     return {download<cl_float4>(direction, count), download<cl_float4>(weight, count)};
 }
@@ -546,4 +561,143 @@ TEST_CASE("conductor: a delta reflection with the Fresnel reflectance", "[cl][bs
         run_eval(m, kUp, {to_float4(-direction(0.8, 0.0))}, {to_float4(direction(0.8, kPi))});
     CHECK(got[0].s[0] == 0.0f);
     CHECK(got[0].s[3] == 0.0f);
+}
+
+// ---- dielectrics --------------------------------------------------------------
+
+// The reflectance of a dielectric interface, unpolarised, for incidence angle
+// theta_i where eta = n_far / n_near, by Fresnel's sine and tangent laws
+// (Hecht, "Optics", eq. 4.42-4.43): another form than the kernels' amplitude
+// ratios of cosines. 1 beyond the critical angle.
+double ref_fresnel_dielectric(double theta_i, double eta) {
+    if (theta_i == 0.0)
+        return ((eta - 1.0) / (eta + 1.0)) * ((eta - 1.0) / (eta + 1.0));
+    const double sin_t = std::sin(theta_i) / eta;
+    if (sin_t >= 1.0)
+        return 1.0;
+    const double theta_t = std::asin(sin_t);
+    const double rs = std::sin(theta_i - theta_t) / std::sin(theta_i + theta_t);
+    const double rp = std::tan(theta_i - theta_t) / std::tan(theta_i + theta_t);
+    return 0.5 * (rs * rs + rp * rp);
+}
+
+WpMaterial dielectric_material(wp_uint kind, double eta, const D3& reflectance,
+                               const D3& transmittance) {
+    WpMaterial m{};
+    m.kind = kind;
+    m.eta = to_float4(D3(eta));
+    m.reflectance = to_float4(reflectance);
+    m.transmittance = to_float4(transmittance);
+    return m;
+}
+
+// Counts a dielectric's samples: the share that reflect within 5 sigma of
+// `reflect_probability` (exactly all or none when it is 1 or 0), each
+// reflection the mirror direction with weight `reflectance`, each
+// transmission `transmitted` (unit, up to float rounding) with weight
+// `transmittance` x `factor`.
+void check_lobes(const Samples& s, const D3& wo, const D3& n, double reflect_probability,
+                 const D3& transmitted, const D3& reflectance, const D3& transmittance,
+                 double factor) {
+    const std::size_t count = s.direction.size();
+    std::size_t reflected = 0, wrong_direction = 0, wrong_weight = 0, wrong_flags = 0;
+    const D3 mirror = wo - 2.0 * glm::dot(wo, n) * n;
+    for (std::size_t i = 0; i < count; ++i) {
+        const auto flags = static_cast<cl_uint>(s.weight[i].s[3]);
+        const bool reflection = flags == (WP_BSDF_REFLECTION | WP_BSDF_DELTA);
+        if (!reflection && flags != (WP_BSDF_TRANSMISSION | WP_BSDF_DELTA)) {
+            ++wrong_flags;
+            continue;
+        }
+        reflected += reflection ? 1 : 0;
+        const D3 expected = reflection ? mirror : transmitted;
+        if (glm::length(from_float4(s.direction[i]) - expected) > 2e-6)
+            ++wrong_direction;
+        for (int c = 0; c < 3; ++c) {
+            const double w = reflection ? reflectance[c] : transmittance[c] * factor;
+            if (std::fabs(s.weight[i].s[c] - w) > 1e-6 * std::max(1.0, w))
+                ++wrong_weight;
+        }
+        if (s.direction[i].s[3] != 0.0f) // a delta BSDF's density is 0
+            ++wrong_flags;
+    }
+    CHECK(wrong_flags == 0);
+    CHECK(wrong_direction == 0);
+    CHECK(wrong_weight == 0);
+    const double share = static_cast<double>(reflected) / static_cast<double>(count);
+    INFO("reflected " << share << ", Fresnel " << reflect_probability);
+    if (reflect_probability == 0.0 || reflect_probability == 1.0)
+        CHECK(share == reflect_probability);
+    else
+        CHECK(std::fabs(share - reflect_probability) <=
+              5.0 * std::sqrt(reflect_probability * (1.0 - reflect_probability) /
+                              static_cast<double>(count)));
+}
+
+TEST_CASE("dielectric: reflects with the Fresnel probability, refracts by Snell's law, and "
+          "carries radiance across the interface",
+          "[cl][bsdf][statistical]") {
+    // BK7, water and diamond against air, entered from outside (the front)
+    // and left from inside (the back, where total internal reflection sets
+    // in beyond the critical angle); a tilted normal too.
+    constexpr std::size_t kCount = 20000;
+    const D3 reflectance(1.0, 0.5, 0.25), transmittance(0.9, 0.8, 0.7);
+    cl_uint seed = 300;
+    for (double ior : {1.5046, 1.3330, 2.419})
+        for (bool from_back : {false, true})
+            for (const D3& n : {kUp, glm::normalize(D3(0.2, 0.4, -0.9))})
+                for (double degrees : {0.0, 20.0, 40.0, 60.0, 80.0, 89.0}) {
+                    const double theta = degrees * kPi / 180.0;
+                    const D3 v = to_world(D3(std::sin(theta), 0.0, std::cos(theta)), n);
+                    const double eta = from_back ? 1.0 / ior : ior; // n_far / n_near
+                    const double r = ref_fresnel_dielectric(theta, eta);
+                    // Snell: the tangential part over eta, the rest below the surface.
+                    const D3 tangential = (-v + std::cos(theta) * n) / eta;
+                    const double sin2_t = glm::dot(tangential, tangential);
+                    const D3 refracted = tangential - std::sqrt(std::max(0.0, 1.0 - sin2_t)) * n;
+                    const WpMaterial m = dielectric_material(WP_MATERIAL_DIELECTRIC, ior,
+                                                             reflectance, transmittance);
+                    INFO("ior " << ior << (from_back ? " from inside" : " from outside")
+                                << ", normal " << n.z << ", incidence " << degrees);
+                    check_lobes(run_sample(m, n, -v, seed++, kCount, from_back), -v, n, r,
+                                refracted, reflectance, transmittance, 1.0 / (eta * eta));
+                }
+}
+
+TEST_CASE("dielectric: an index of 1 is no interface", "[cl][bsdf]") {
+    // Every sample passes straight on with the transmittance: no reflection,
+    // no bending, no solid-angle factor, even at grazing incidence.
+    const D3 transmittance(0.9, 0.8, 0.7);
+    for (bool from_back : {false, true})
+        for (double degrees : {0.0, 45.0, 89.9}) {
+            const double theta = degrees * kPi / 180.0;
+            const D3 v(std::sin(theta), 0.0, std::cos(theta));
+            const WpMaterial m =
+                dielectric_material(WP_MATERIAL_DIELECTRIC, 1.0, D3(1.0), transmittance);
+            INFO((from_back ? "from inside" : "from outside") << ", incidence " << degrees);
+            check_lobes(run_sample(m, kUp, -v, 7, 2000, from_back), -v, kUp, 0.0, -v, D3(1.0),
+                        transmittance, 1.0);
+        }
+}
+
+TEST_CASE("thindielectric: reflects 2R / (1 + R) and passes the rest straight through",
+          "[cl][bsdf][statistical]") {
+    // The pane's two interfaces and every internal bounce between them; the
+    // same from both sides, and no bending.
+    constexpr std::size_t kCount = 20000;
+    const D3 reflectance(1.0, 0.5, 0.25), transmittance(0.9, 0.8, 0.7);
+    cl_uint seed = 500;
+    for (double ior : {1.5046, 1.7, 4.0})
+        for (bool from_back : {false, true})
+            for (double degrees : {0.0, 45.0, 75.0, 89.0}) {
+                const double theta = degrees * kPi / 180.0;
+                const D3 v(std::sin(theta), 0.0, std::cos(theta));
+                const double r = ref_fresnel_dielectric(theta, ior);
+                const WpMaterial m = dielectric_material(WP_MATERIAL_THINDIELECTRIC, ior,
+                                                         reflectance, transmittance);
+                INFO("ior " << ior << (from_back ? " from the back" : " from the front")
+                            << ", incidence " << degrees);
+                check_lobes(run_sample(m, kUp, -v, seed++, kCount, from_back), -v, kUp,
+                            2.0 * r / (1.0 + r), -v, reflectance, transmittance, 1.0);
+            }
 }

@@ -41,6 +41,7 @@ namespace {
     X(WpMaterial, emission)                                                                        \
     X(WpMaterial, eta)                                                                             \
     X(WpMaterial, k)                                                                               \
+    X(WpMaterial, transmittance)                                                                   \
     X(WpMaterial, kind)                                                                            \
     X(WpMaterial, distribution)                                                                    \
     X(WpMaterial, fresnel)                                                                         \

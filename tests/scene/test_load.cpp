@@ -197,3 +197,31 @@ TEST_CASE("loader: conductors read Mitsuba's parameters and defaults", "[scene][
     CHECK(brushed.alpha_v == 0.3);
     CHECK(brushed.metal == "Al");
 }
+
+TEST_CASE("loader: dielectrics read Mitsuba's parameters, defaults and named indices",
+          "[scene][load]") {
+    const wp::Scene s = wp::parse_scene(R"({"camera": )" + kSceneCamera + R"(, "materials": {
+            "plain": {"type": "dielectric"},
+            "water": {"type": "dielectric", "int_ior": "water", "ext_ior": 1.1,
+                      "specular_transmittance": [0.5, 0.6, 0.7]},
+            "pane": {"type": "thindielectric", "int_ior": "diamond", "ext_ior": "vacuum",
+                     "specular_reflectance": [0.2, 0.3, 0.4]}},
+            "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "plain"}]})",
+                                        "test.json");
+    REQUIRE(s.materials.size() == 3);
+    const wp::Material& plain = s.materials[0];
+    CHECK(plain.kind == wp::MaterialKind::Dielectric);
+    CHECK(plain.int_ior == 1.5046); // Mitsuba's defaults: BK7 in air
+    CHECK(plain.ext_ior == 1.000277);
+    CHECK(plain.reflectance == glm::dvec3(1.0));
+    CHECK(plain.transmittance == glm::dvec3(1.0));
+    const wp::Material& water = s.materials[1];
+    CHECK(water.int_ior == 1.3330);
+    CHECK(water.ext_ior == 1.1);
+    CHECK(water.transmittance == glm::dvec3(0.5, 0.6, 0.7));
+    const wp::Material& pane = s.materials[2];
+    CHECK(pane.kind == wp::MaterialKind::ThinDielectric);
+    CHECK(pane.int_ior == 2.419);
+    CHECK(pane.ext_ior == 1.0);
+    CHECK(pane.reflectance == glm::dvec3(0.2, 0.3, 0.4));
+}
