@@ -5,6 +5,7 @@ a grid of blocks, each with its standard error, for comparing against
 wavepath (tests/app/test_cli_export.cpp, docs/mitsuba-export.md).
 
     python3 tools/mitsuba_render.py SCENE.xml [--seeds K] [--spp N] [--blocks B] [--out IMG.exr]
+                                    [--error-out ERR.exr]
     python3 tools/mitsuba_render.py --images A.exr B.exr ... [--blocks B]
 
 The second form prints the same statistics over images already rendered
@@ -24,7 +25,9 @@ variation of the image itself, only noise. The blocks tell images apart
 that have the same mean but not the same picture (one upside down).
 
 Uses the scalar_rgb variant: wavepath's colours are RGB, and it needs no
-LLVM or CUDA (and no numpy). Exit status 2 with one line on stderr when
+LLVM or CUDA (and no numpy). `--out` writes the mean of the renders, and
+`--error-out` each pixel's standard error of that mean (from the K renders,
+as above): the two images of a committed reference (tools/mitsuba-references.sh). Exit status 2 with one line on stderr when
 mitsuba cannot be imported, 1 when the scene does not load.
 """
 import argparse
@@ -80,6 +83,7 @@ def main():
                         help="samples per pixel of each render (default: the scene's sampler)")
     parser.add_argument("--blocks", type=int, default=2, help="blocks per side of the grid")
     parser.add_argument("--out", help="also write the mean image (.exr)")
+    parser.add_argument("--error-out", help="also write each pixel's standard error (.exr)")
     args = parser.parse_args()
     if (args.scene is None) == (args.images is None):
         parser.error("give either a scene or --images")
@@ -117,12 +121,15 @@ def main():
     start = time.monotonic()
     estimates = []  # per render: the regions' means
     total = None  # the renders' images summed, value by value
+    squares = None  # and their squares
     for seed in range(args.seeds):
         image = mi.render(scene, seed=seed, spp=args.spp)
         height, width, channels = image.shape
         values = list(image.array)  # row-major, row 0 at the top
         estimates.append(region_means(values, width, height, channels, args.blocks))
         total = values if total is None else [a + b for a, b in zip(total, values)]
+        square = [v * v for v in values]
+        squares = square if squares is None else [a + b for a, b in zip(squares, square)]
     seconds = time.monotonic() - start
 
     print_statistics(estimates, args.blocks)
@@ -131,6 +138,11 @@ def main():
     if args.out:
         average = mi.TensorXf([v / args.seeds for v in total], shape=(height, width, channels))
         mi.Bitmap(average).write(args.out)
+    if args.error_out:
+        k = args.seeds
+        # The sample variance of the K values, over K: the variance of their mean.
+        error = [math.sqrt(max(0.0, (q - s * s / k) / (k - 1) / k)) for s, q in zip(total, squares)]
+        mi.Bitmap(mi.TensorXf(error, shape=(height, width, channels))).write(args.error_out)
     return 0
 
 

@@ -1,0 +1,91 @@
+// wavepath against Mitsuba 3, end to end: each scene tests/data/mitsuba/NAME.json
+// has a reference NAME.exr that Mitsuba 3 rendered from wavepath's own export
+// of the scene, with NAME-error.exr the standard error of each of its pixels
+// (tools/mitsuba-references.sh made both; tests/data/mitsuba/README.md has the
+// command and the figures). The two renderers share no code: an image mean or
+// block mean more than 5 combined standard errors apart is a disagreement in
+// what a material, a light or the camera computes. Mitsuba is never needed
+// here.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <string>
+
+#include "image/exr.hpp"
+#include "scene/load.hpp"
+#include "support/render_helpers.hpp"
+
+using namespace wp;
+using namespace wp::test;
+
+namespace {
+
+const std::string kDir = std::string(WAVEPATH_SOURCE_DIR) + "/tests/data/mitsuba/";
+
+// The mean of a region of an image of means, and its standard error from the
+// per-pixel variances of the mean (pixels are independent in both renderers).
+MeanWithError region_mean(const Image& mean, const Image& variance, int x0, int y0, int x1, int y1,
+                          int c) {
+    double sum = 0.0, var = 0.0;
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) {
+            sum += mean.pixel(x, y)[c];
+            var += variance.pixel(x, y)[c];
+        }
+    const double n = static_cast<double>(x1 - x0) * (y1 - y0);
+    return {sum / n, std::sqrt(var) / n};
+}
+
+Image squared(Image image) {
+    for (float& v : image.rgb)
+        v *= v;
+    return image;
+}
+
+// Renders NAME.json at `spp` and compares the image mean and every kBlock x
+// kBlock block mean, per channel, with Mitsuba's.
+void check_agreement(const std::string& name, std::uint32_t spp) {
+    const Scene scene = load_scene(kDir + name + ".json");
+    const Image reference = read_exr(kDir + name + ".exr");
+    const Image reference_variance = squared(read_exr(kDir + name + "-error.exr"));
+    REQUIRE(reference.width == scene.camera.width);
+    REQUIRE(reference.height == scene.camera.height);
+
+    const Rendered ours = render(scene, spp, 11);
+    CHECK(ours.stats.nonfinite_samples == 0);
+    const Image mean = ours.film.mean(), variance = ours.film.variance_of_mean();
+
+    constexpr int kBlock = 8;
+    const int width = scene.camera.width, height = scene.camera.height;
+    int regions = 0, far = 0;
+    double worst = 0.0;
+    for (int c = 0; c < 3; ++c) {
+        const MeanWithError a = region_mean(mean, variance, 0, 0, width, height, c);
+        const MeanWithError b = region_mean(reference, reference_variance, 0, 0, width, height, c);
+        INFO(name << " channel " << c << ": wavepath " << a.mean << " +- " << a.standard_error
+                  << ", Mitsuba 3 " << b.mean << " +- " << b.standard_error);
+        CHECK(sigmas_apart(a, b) < 5.0);
+        for (int y = 0; y + kBlock <= height; y += kBlock)
+            for (int x = 0; x + kBlock <= width; x += kBlock) {
+                const double z = sigmas_apart(
+                    region_mean(mean, variance, x, y, x + kBlock, y + kBlock, c),
+                    region_mean(reference, reference_variance, x, y, x + kBlock, y + kBlock, c));
+                ++regions;
+                far += z > 5.0 ? 1 : 0;
+                worst = std::max(worst, z);
+            }
+    }
+    INFO(name << ": " << far << " of " << regions << " block means more than 5 sigma apart (the "
+              << "farthest " << worst << " sigma)");
+    CHECK(far == 0);
+}
+
+} // namespace
+
+TEST_CASE("Mitsuba 3 agreement: rough and smooth conductors", "[render][materials][statistical]") {
+    check_agreement("metals", 1024);
+}
+
+TEST_CASE("Mitsuba 3 agreement: smooth and thin dielectrics", "[render][materials][statistical]") {
+    check_agreement("glass", 1024);
+}
