@@ -16,6 +16,7 @@
 #include "bsdf/dielectric.h"
 #include "bsdf/diffuse.h"
 #include "bsdf/mirror.h"
+#include "bsdf/plastic.h"
 #include "bsdf/roughconductor.h"
 #include "bsdf/thindielectric.h"
 #include "scene_features.h"

@@ -102,10 +102,11 @@ static inline int wp_shade_roulette(const WpMaterial* material, const WpBsdfSamp
                                     float* survival) {
 #if WP_DIFFUSE_SAMPLING == WP_DIFFUSE_REPORT
     /* The report's roulette: survive with the surface's albedo sigma, whatever
-     * the path carries; eq. 2.10 divides survivors by it. Mirrors draw a
-     * number of their own. */
+     * the path carries; eq. 2.10 divides survivors by it. Only the diffuse
+     * BSDF folds it into its sample (bsdf/diffuse.h); every other kind draws
+     * a number of its own. */
     float u_survive =
-        (scattered->flags & WP_BSDF_DIFFUSE) ? u_bsdf : wp_path_random(random, WP_DIM_ROULETTE);
+        material->kind == WP_MATERIAL_DIFFUSE ? u_bsdf : wp_path_random(random, WP_DIM_ROULETTE);
     *survival = fmin(1.0f, wp_max_component(material->reflectance.xyz));
     *beta *= scattered->weight;
     return u_survive < *survival;

@@ -59,7 +59,8 @@ typedef cl_float4 wp_float4;
     X(a, CONDUCTOR, Conductor, conductor, 3u, 1, 0) /* smooth metal, Fresnel */                    \
     X(a, ROUGHCONDUCTOR, RoughConductor, roughconductor, 4u, 1, 1) /* microfacet metal */          \
     X(a, DIELECTRIC, Dielectric, dielectric, 5u, 1, 0)             /* smooth glass, water */       \
-    X(a, THINDIELECTRIC, ThinDielectric, thindielectric, 6u, 1, 0) /* a pane of no thickness */
+    X(a, THINDIELECTRIC, ThinDielectric, thindielectric, 6u, 1, 0) /* a pane of no thickness */    \
+    X(a, PLASTIC, Plastic, plastic, 7u, 1, 0)                      /* diffuse under a coating */
 #define WP_MATERIALS(X) WP_MATERIALS_WITH(WP_MATERIAL_ROW_OF, X)
 #define WP_MATERIAL_ROW_OF(X, ...) X(__VA_ARGS__)
 
@@ -198,20 +199,24 @@ typedef struct {
 /* A material: the parameters of every kind side by side; each BSDF reads its
  * own (kernels/bsdf/KIND.h). */
 typedef struct {
-    /* rgb in [0, 1]; conductors and dielectrics: specular_reflectance */
+    /* rgb in [0, 1]; conductors and dielectrics: specular_reflectance;
+     * plastic: diffuse_reflectance */
     wp_float4 reflectance;
     wp_float4 emission; /* rgb radiance from the front face */
-    /* conductors: the real part of the complex IOR, rgb; dielectrics:
-     * int_ior / ext_ior in every channel */
+    /* conductors: the real part of the complex IOR, rgb; dielectrics and
+     * plastic: int_ior / ext_ior in every channel */
     wp_float4 eta;
-    wp_float4 k;             /* conductors: imaginary part (absorption), rgb */
-    wp_float4 transmittance; /* dielectrics: specular_transmittance, rgb in [0, 1] */
-    wp_uint kind;            /* WP_MATERIAL_* */
-    wp_uint distribution;    /* roughconductor: WP_MICROFACET_* */
-    wp_uint fresnel;         /* conductors: 1, the Fresnel term of eta and k; 0, F = 1 ("none") */
-    wp_float alpha_u;        /* roughconductor: roughness along the tangent, > 0 */
-    wp_float alpha_v;        /* ... and along the bitangent */
-    wp_uint pad0, pad1, pad2;
+    wp_float4 k;              /* conductors: imaginary part (absorption), rgb */
+    wp_float4 transmittance;  /* dielectrics: specular_transmittance, rgb in [0, 1] */
+    wp_float4 specular;       /* plastic: the coating's specular_reflectance, rgb in [0, 1] */
+    wp_uint kind;             /* WP_MATERIAL_* */
+    wp_uint distribution;     /* roughconductor: WP_MICROFACET_* */
+    wp_uint fresnel;          /* conductors: 1, the Fresnel term of eta and k; 0, F = 1 ("none") */
+    wp_float alpha_u;         /* roughconductor: roughness along the tangent, > 0 */
+    wp_float alpha_v;         /* ... and along the bitangent */
+    wp_float fdr_int;         /* plastic: the coating's diffuse Fresnel reflectance from inside */
+    wp_float specular_weight; /* plastic: the share of samples steered to the coating */
+    wp_uint nonlinear;        /* plastic: Mitsuba's `nonlinear` */
 } WpMaterial;
 
 /* One emissive triangle, chosen with probability proportional to its area:

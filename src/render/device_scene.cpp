@@ -9,6 +9,7 @@
 #include "render/float_range.hpp"
 #include "render/planar_mirrors.hpp"
 #include "render/shadow_occluders.hpp"
+#include "scene/material.hpp"
 
 namespace wp {
 
@@ -355,8 +356,20 @@ DeviceScene flatten_scene(const Scene& scene, bool hierarchy) {
         w.alpha_u = static_cast<float>(m.alpha_u);
         w.alpha_v = static_cast<float>(m.alpha_v);
         w.transmittance = to_float4(m.transmittance);
-        if (m.kind == MaterialKind::Dielectric || m.kind == MaterialKind::ThinDielectric)
+        w.specular = to_float4(m.specular);
+        if (m.kind == MaterialKind::Dielectric || m.kind == MaterialKind::ThinDielectric ||
+            m.kind == MaterialKind::Plastic)
             w.eta = to_float4(glm::dvec3(m.int_ior / m.ext_ior));
+        if (m.kind == MaterialKind::Plastic) {
+            const double eta = m.int_ior / m.ext_ior;
+            w.fdr_int = static_cast<float>(fresnel_diffuse_reflectance(1.0 / eta));
+            // Mitsuba's specular_sampling_weight: the coating's share of the
+            // mean reflectances (it steers sampling only, never the estimate).
+            const double s = (m.specular.x + m.specular.y + m.specular.z) / 3.0;
+            const double d = (m.reflectance.x + m.reflectance.y + m.reflectance.z) / 3.0;
+            w.specular_weight = static_cast<float>(s + d > 0.0 ? s / (s + d) : 0.5);
+            w.nonlinear = m.nonlinear ? 1u : 0u;
+        }
         out.materials.push_back(w);
     }
 

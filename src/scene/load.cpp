@@ -240,6 +240,12 @@ class SceneReader : private json::Reader {
             read_conductor(m, pm, mat);
             read_roughness(m, pm, mat);
             return;
+        case MaterialKind::Plastic:
+            check_keys(m, pm,
+                       {"type", "int_ior", "ext_ior", "diffuse_reflectance", "specular_reflectance",
+                        "nonlinear", "emission"});
+            read_plastic(m, pm, mat);
+            return;
         case MaterialKind::Dielectric:
         case MaterialKind::ThinDielectric:
             check_keys(m, pm,
@@ -305,6 +311,28 @@ class SceneReader : private json::Reader {
             mat.reflectance = vec3(*it, pm / "specular_reflectance", Range::Reflectance);
         if (const auto it = m.find("specular_transmittance"); it != m.end())
             mat.transmittance = vec3(*it, pm / "specular_transmittance", Range::Reflectance);
+        read_emission(m, pm, mat);
+    }
+
+    // Mitsuba's plastic parameters: int_ior and ext_ior (defaults
+    // "polypropylene" and "air"), diffuse_reflectance (default 0.5),
+    // specular_reflectance (default 1) and nonlinear (default false).
+    void read_plastic(const Json& m, const Ptr& pm, Material& mat) const {
+        mat.int_ior = 1.49;
+        if (const auto it = m.find("int_ior"); it != m.end())
+            mat.int_ior = ior(*it, pm / "int_ior");
+        if (const auto it = m.find("ext_ior"); it != m.end())
+            mat.ext_ior = ior(*it, pm / "ext_ior");
+        mat.reflectance = glm::dvec3(0.5);
+        if (const auto it = m.find("diffuse_reflectance"); it != m.end())
+            mat.reflectance = vec3(*it, pm / "diffuse_reflectance", Range::Reflectance);
+        if (const auto it = m.find("specular_reflectance"); it != m.end())
+            mat.specular = vec3(*it, pm / "specular_reflectance", Range::Reflectance);
+        if (const auto it = m.find("nonlinear"); it != m.end()) {
+            if (!it->is_boolean())
+                fail(pm / "nonlinear", "expected true or false, got " + describe(*it));
+            mat.nonlinear = it->get<bool>();
+        }
         read_emission(m, pm, mat);
     }
 

@@ -93,6 +93,14 @@ const std::vector<NamedIor>& named_iors() {
     return iors;
 }
 
+double fresnel_diffuse_reflectance(double eta) {
+    const double inv = 1.0 / eta;
+    if (eta < 1.0)
+        return 0.0636 * inv + eta * (eta * -1.4399 + 0.7099) + 0.6681;
+    return 0.919317 +
+           inv * (-3.4793 + inv * (6.75335 + inv * (-7.80989 + inv * (4.98554 + inv * -1.36881))));
+}
+
 const NamedIor* find_ior(std::string_view name) {
     for (const NamedIor& i : named_iors())
         if (name == i.name)

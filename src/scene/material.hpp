@@ -36,6 +36,12 @@ struct NamedIor {
     double ior;
 };
 
+// The diffuse Fresnel reflectance of a dielectric interface of relative
+// index eta: the share of light arriving uniformly over the hemisphere (by
+// cosine) that the interface reflects. Mitsuba 3's fits (render/fresnel.h):
+// Egan and Hilgeman (1973) below 1, d'Eon and Irving (2011) above.
+double fresnel_diffuse_reflectance(double eta);
+
 // The named indices of refraction, and the one of that name (nullptr when none).
 const std::vector<NamedIor>& named_iors();
 const NamedIor* find_ior(std::string_view name);

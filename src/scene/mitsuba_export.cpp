@@ -165,6 +165,16 @@ std::string bsdf(const Material& m, std::size_t index) {
         inner += in + "    </bsdf>\n";
         break;
     }
+    case MaterialKind::Plastic:
+        inner = in + "    <bsdf type=\"plastic\">\n";
+        inner += in + "        <float name=\"int_ior\" value=\"" + number(m.int_ior) + "\"/>\n";
+        inner += in + "        <float name=\"ext_ior\" value=\"" + number(m.ext_ior) + "\"/>\n";
+        inner += in + "        " + rgb("diffuse_reflectance", m.reflectance) + "\n";
+        inner += in + "        " + rgb("specular_reflectance", m.specular) + "\n";
+        inner += in + "        <boolean name=\"nonlinear\" value=\"" +
+                 (m.nonlinear ? "true" : "false") + "\"/>\n";
+        inner += in + "    </bsdf>\n";
+        break;
     case MaterialKind::Dielectric:
     case MaterialKind::ThinDielectric:
         // Not twosided: a dielectric has two sides of its own (Mitsuba refuses

@@ -53,7 +53,8 @@ struct Material {
     std::string name;
     MaterialKind kind = MaterialKind::Diffuse;
     // Diffuse: the reflectance; mirror, conductors and dielectrics: Mitsuba's
-    // specular_reflectance, a factor on the Fresnel term. In [0, 1] per channel.
+    // specular_reflectance, a factor on the Fresnel term; plastic: its
+    // diffuse_reflectance. In [0, 1] per channel.
     glm::dvec3 reflectance{0.0};
     // Radiance emitted from the front face (the side the right-handed winding
     // normal points to). Any material kind may emit; only triangles may carry
@@ -78,6 +79,11 @@ struct Material {
     double int_ior = 1.5046;
     double ext_ior = 1.000277;
     glm::dvec3 transmittance{1.0};
+    // Plastic: the coating's specular_reflectance in [0, 1] per channel, and
+    // Mitsuba's `nonlinear` (light the coating reflects back into the base
+    // scatters there again, saturating colours).
+    glm::dvec3 specular{1.0};
+    bool nonlinear = false;
 
     bool is_emissive() const { return emission.x > 0.0 || emission.y > 0.0 || emission.z > 0.0; }
 
@@ -86,7 +92,7 @@ struct Material {
     // at compile time that no member is left out (scene/material.cpp).
     auto rendered_fields() const {
         return std::tie(kind, reflectance, emission, eta, k, distribution, alpha_u, alpha_v,
-                        int_ior, ext_ior, transmittance);
+                        int_ior, ext_ior, transmittance, specular, nonlinear);
     }
 };
 

@@ -131,6 +131,9 @@ class Checker {
                 vec(m.eta, f + ".eta", 0.0, scene_limits::max_index);
                 vec(m.k, f + ".k", 0.0, scene_limits::max_index);
                 break;
+            case MaterialKind::Plastic:
+                vec(m.specular, f + ".specular", 0.0, 1.0);
+                [[fallthrough]];
             case MaterialKind::Dielectric:
             case MaterialKind::ThinDielectric:
                 positive(m.int_ior, f + ".int_ior", scene_limits::max_index);

@@ -42,14 +42,15 @@ namespace {
     X(WpMaterial, eta)                                                                             \
     X(WpMaterial, k)                                                                               \
     X(WpMaterial, transmittance)                                                                   \
+    X(WpMaterial, specular)                                                                        \
     X(WpMaterial, kind)                                                                            \
     X(WpMaterial, distribution)                                                                    \
     X(WpMaterial, fresnel)                                                                         \
     X(WpMaterial, alpha_u)                                                                         \
     X(WpMaterial, alpha_v)                                                                         \
-    X(WpMaterial, pad0)                                                                            \
-    X(WpMaterial, pad1)                                                                            \
-    X(WpMaterial, pad2)                                                                            \
+    X(WpMaterial, fdr_int)                                                                         \
+    X(WpMaterial, specular_weight)                                                                 \
+    X(WpMaterial, nonlinear)                                                                       \
     X(WpBvhNode, lower_x)                                                                          \
     X(WpBvhNode, upper_x)                                                                          \
     X(WpBvhNode, lower_y)                                                                          \

@@ -131,7 +131,7 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
     CHECK(analyse_features(hexroom()).build_options() ==
           "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 -D "
           "WP_HAS_CONDUCTOR=0 -D WP_HAS_ROUGHCONDUCTOR=0 -D WP_HAS_DIELECTRIC=0 -D "
-          "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_SHADING_NORMALS=0 "
+          "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_PLASTIC=0 -D WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D "
           "WP_TRIANGLE_COUNT=26 -D "
           "WP_SPHERE_COUNT=2 -D WP_LIGHT_COUNT=2 -D "
@@ -140,7 +140,7 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
     CHECK(analyse_features(triangles_only()).build_options() ==
           "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=0 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 -D "
           "WP_HAS_CONDUCTOR=0 -D WP_HAS_ROUGHCONDUCTOR=0 -D WP_HAS_DIELECTRIC=0 -D "
-          "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_SHADING_NORMALS=0 "
+          "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_PLASTIC=0 -D WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=0 -D "
           "WP_TRIANGLE_COUNT=26 -D "
           "WP_SPHERE_COUNT=0 -D WP_LIGHT_COUNT=2 -D "
@@ -149,7 +149,7 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
     CHECK(analyse_features(spheres_only()).build_options() ==
           "-D WP_HAS_TRIANGLES=0 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 -D "
           "WP_HAS_CONDUCTOR=0 -D WP_HAS_ROUGHCONDUCTOR=0 -D WP_HAS_DIELECTRIC=0 -D "
-          "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_SHADING_NORMALS=0 "
+          "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_PLASTIC=0 -D WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=0 -D WP_HAS_PLANAR_MIRRORS=0 -D WP_HAS_MIRROR_SPHERES=0 -D "
           "WP_TRIANGLE_COUNT=0 -D "
           "WP_SPHERE_COUNT=4 -D WP_LIGHT_COUNT=0 -D "
@@ -157,7 +157,7 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
     CHECK(analyse_features(no_mirror()).build_options() ==
           "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=0 -D "
           "WP_HAS_CONDUCTOR=0 -D WP_HAS_ROUGHCONDUCTOR=0 -D WP_HAS_DIELECTRIC=0 -D "
-          "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_SHADING_NORMALS=0 "
+          "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_PLASTIC=0 -D WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=0 -D WP_HAS_MIRROR_SPHERES=0 -D "
           "WP_TRIANGLE_COUNT=26 -D "
           "WP_SPHERE_COUNT=2 -D WP_LIGHT_COUNT=2 -D "
@@ -166,7 +166,7 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
     CHECK(analyse_features(no_light()).build_options() ==
           "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 -D "
           "WP_HAS_CONDUCTOR=0 -D WP_HAS_ROUGHCONDUCTOR=0 -D WP_HAS_DIELECTRIC=0 -D "
-          "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_SHADING_NORMALS=0 "
+          "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_PLASTIC=0 -D WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=0 -D WP_HAS_PLANAR_MIRRORS=0 -D WP_HAS_MIRROR_SPHERES=0 -D "
           "WP_TRIANGLE_COUNT=24 -D "
           "WP_SPHERE_COUNT=2 -D WP_LIGHT_COUNT=0 -D "
@@ -177,21 +177,21 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
         analyse_features(large()).build_options() ==
         "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 -D "
         "WP_HAS_CONDUCTOR=0 -D WP_HAS_ROUGHCONDUCTOR=0 -D WP_HAS_DIELECTRIC=0 -D "
-        "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_SHADING_NORMALS=0 "
+        "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_PLASTIC=0 -D WP_HAS_SHADING_NORMALS=0 "
         "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D WP_USE_BVH=1");
     // The general kernels: every feature, runtime counts, the scene's hierarchy.
     CHECK(
         SceneFeatures::general_for(analyse_features(large())).build_options() ==
         "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 -D "
         "WP_HAS_CONDUCTOR=1 -D WP_HAS_ROUGHCONDUCTOR=1 -D WP_HAS_DIELECTRIC=1 -D "
-        "WP_HAS_THINDIELECTRIC=1 -D WP_HAS_SHADING_NORMALS=1 "
+        "WP_HAS_THINDIELECTRIC=1 -D WP_HAS_PLASTIC=1 -D WP_HAS_SHADING_NORMALS=1 "
         "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D WP_USE_BVH=1");
     CHECK(SceneFeatures::general_for(analyse_features(hexroom())).build_options() ==
           SceneFeatures::all().build_options());
     CHECK(SceneFeatures::all().build_options() ==
           "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 -D "
           "WP_HAS_CONDUCTOR=1 -D WP_HAS_ROUGHCONDUCTOR=1 -D WP_HAS_DIELECTRIC=1 -D "
-          "WP_HAS_THINDIELECTRIC=1 -D WP_HAS_SHADING_NORMALS=1 "
+          "WP_HAS_THINDIELECTRIC=1 -D WP_HAS_PLASTIC=1 -D WP_HAS_SHADING_NORMALS=1 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1");
 }
 
@@ -218,7 +218,7 @@ TEST_CASE("features: describe() names the features and the compiled-in counts") 
           "triangles spheres diffuse mirror lights planar_mirrors mirror_spheres; bvh");
     CHECK(SceneFeatures::all().describe() ==
           "triangles spheres diffuse mirror conductor roughconductor dielectric thindielectric "
-          "shading_normals lights "
+          "plastic shading_normals lights "
           "planar_mirrors mirror_spheres");
 }
 

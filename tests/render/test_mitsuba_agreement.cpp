@@ -89,3 +89,7 @@ TEST_CASE("Mitsuba 3 agreement: rough and smooth conductors", "[render][material
 TEST_CASE("Mitsuba 3 agreement: smooth and thin dielectrics", "[render][materials][statistical]") {
     check_agreement("glass", 1024);
 }
+
+TEST_CASE("Mitsuba 3 agreement: plastic, linear and nonlinear", "[render][materials][statistical]") {
+    check_agreement("plastic", 1024);
+}

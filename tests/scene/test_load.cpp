@@ -225,3 +225,26 @@ TEST_CASE("loader: dielectrics read Mitsuba's parameters, defaults and named ind
     CHECK(pane.ext_ior == 1.0);
     CHECK(pane.reflectance == glm::dvec3(0.2, 0.3, 0.4));
 }
+
+TEST_CASE("loader: plastic reads Mitsuba's parameters and defaults", "[scene][load]") {
+    const wp::Scene s = wp::parse_scene(R"({"camera": )" + kSceneCamera + R"(, "materials": {
+            "plain": {"type": "plastic"},
+            "varnish": {"type": "plastic", "diffuse_reflectance": [0.4, 0.2, 0.1],
+                        "specular_reflectance": [0.9, 0.9, 0.8], "int_ior": "acrylic glass",
+                        "nonlinear": true}},
+            "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "plain"}]})",
+                                        "test.json");
+    REQUIRE(s.materials.size() == 2);
+    const wp::Material& plain = s.materials[0];
+    CHECK(plain.kind == wp::MaterialKind::Plastic);
+    CHECK(plain.int_ior == 1.49); // polypropylene, Mitsuba's default
+    CHECK(plain.ext_ior == 1.000277);
+    CHECK(plain.reflectance == glm::dvec3(0.5));
+    CHECK(plain.specular == glm::dvec3(1.0));
+    CHECK_FALSE(plain.nonlinear);
+    const wp::Material& varnish = s.materials[1];
+    CHECK(varnish.reflectance == glm::dvec3(0.4, 0.2, 0.1));
+    CHECK(varnish.specular == glm::dvec3(0.9, 0.9, 0.8));
+    CHECK(varnish.int_ior == 1.49);
+    CHECK(varnish.nonlinear);
+}

@@ -296,12 +296,21 @@ TEST_CASE("loader: every validation error names its field", "[scene][load][error
         {"index of refraction not a number or name",
          with_materials(R"({"white": {"type": "dielectric", "int_ior": [1.5]}})"),
          "/materials/white/int_ior", "expected a number"},
+        {"plastic nonlinear not a boolean",
+         with_materials(R"({"white": {"type": "plastic", "nonlinear": 1}})"),
+         "/materials/white/nonlinear", "expected true or false"},
+        {"plastic with a dielectric's key",
+         with_materials(R"({"white": {"type": "plastic", "specular_transmittance": [1, 1, 1]}})"),
+         "/materials/white/specular_transmittance", "unknown key"},
+        {"plastic diffuse_reflectance above 1",
+         with_materials(R"({"white": {"type": "plastic", "diffuse_reflectance": [2, 1, 1]}})"),
+         "/materials/white/diffuse_reflectance/0", "[0, 1], got 2"},
         {"specular_transmittance above 1",
          with_materials(
              R"({"white": {"type": "dielectric", "specular_transmittance": [1, 1, 1.5]}})"),
          "/materials/white/specular_transmittance/2", "[0, 1], got 1.5"},
         {"material name with a slash is escaped",
-         with_materials(R"({"a/b~c": {"type": "plastic"}})"), "/materials/a~1b~0c/type",
+         with_materials(R"({"a/b~c": {"type": "velvet"}})"), "/materials/a~1b~0c/type",
          "unknown material type"},
 
         // shapes
