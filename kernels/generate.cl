@@ -10,10 +10,13 @@
  * regeneration, the slots whose paths just finished (launch.from_finished),
  * so the ray queue stays full while long paths drain.
  *
- * Each ray goes through a uniformly jittered point of its pixel (a one-pixel
- * box filter) and starts with throughput 1, radiance 0, depth 0, and the
- * specular flag set so that an emitter seen directly counts.
+ * Each ray goes through a point of its pixel drawn from the pixel filter (a
+ * uniform one for the one-pixel box), from the eye or, with a thin lens, from
+ * a point of the aperture (camera.h), and starts with throughput 1, radiance
+ * 0, depth 0, and the specular flag set so that an emitter seen directly
+ * counts.
  */
+#include "camera.h"
 #include "rng.h"
 #include "stage.h"
 
@@ -34,13 +37,21 @@ static inline int wp_generate_path(WP_STAGE_PARAMETERS, wp_uint slot) {
     float jx = wp_random(frame.seed, pixel, sample, 0u, WP_DIM_JITTER_X);
     float jy = wp_random(frame.seed, pixel, sample, 0u, WP_DIM_JITTER_Y);
     /* Film coordinates in [-1, 1]: x to the right, y up (row 0 is the top). */
-    float sx = 2.0f * ((float)x + jx) / (float)frame.width - 1.0f;
-    float sy = 1.0f - 2.0f * ((float)y + jy) / (float)frame.height;
-    float3 direction = normalize(frame.camera.forward.xyz + sx * frame.camera.right.xyz +
-                                 sy * frame.camera.up.xyz);
+    float sx = 2.0f * wp_filter_position(&frame.camera, x, jx) / (float)frame.width - 1.0f;
+    float sy = 1.0f - 2.0f * wp_filter_position(&frame.camera, y, jy) / (float)frame.height;
+    float3 origin = frame.camera.eye.xyz;
+    float3 direction =
+        frame.camera.forward.xyz + sx * frame.camera.right.xyz + sy * frame.camera.up.xyz;
+#if WP_HAS_LENS
+    if (frame.camera.lens_up.w > 0.0f)
+        wp_thin_lens(&frame.camera,
+                     wp_random(frame.seed, pixel, sample, WP_LENS_BOUNCE, WP_DIM_LENS_U),
+                     wp_random(frame.seed, pixel, sample, WP_LENS_BOUNCE, WP_DIM_LENS_V), &origin,
+                     &direction);
+#endif
 
-    ray_origin[slot] = (float4)(frame.camera.eye.xyz, 0.0f);
-    ray_direction[slot] = (float4)(direction, 0.0f);
+    ray_origin[slot] = (float4)(origin, 0.0f);
+    ray_direction[slot] = (float4)(normalize(direction), 0.0f);
     throughput[slot] = (float4)(1.0f, 1.0f, 1.0f, 0.0f);
     radiance[slot] = (float4)(0.0f);
     path_pixel[slot] = pixel;

@@ -34,6 +34,16 @@
 #define WP_DIM_ROULETTE 7u
 #define WP_DIMS_PER_BOUNCE 8u
 
+/* The thin lens's point on the aperture (kernels/camera.h). The camera ray
+ * has no dimension of its own left at bounce 0 (the first hit samples its
+ * light, BSDF and roulette there), and only generate ever jitters, so the
+ * lens takes the jitter pair of bounce 1, which nothing else reads: with the
+ * Sobol sampler the pair is stratified like the pixel's, and images without a
+ * lens draw exactly the numbers they did. */
+#define WP_LENS_BOUNCE 1u
+#define WP_DIM_LENS_U WP_DIM_JITTER_X
+#define WP_DIM_LENS_V WP_DIM_JITTER_Y
+
 static inline wp_uint wp_mix32(wp_uint x) {
     x ^= x >> 16;
     x *= 0x7feb352du;

@@ -2,6 +2,12 @@
 #ifndef WP_SAMPLING_H
 #define WP_SAMPLING_H
 
+/* First: its FP_CONTRACT OFF must precede this file's arithmetic, whichever
+ * header a stage includes first (without it, a stage that included this one
+ * first let the compiler fuse the polynomials below into FMAs, and every
+ * image with a diffuse bounce changed). */
+#include "wp_shared.h"
+
 #define WP_PI 3.14159265358979323846f
 
 /* An orthonormal basis around unit n, without branches on n's direction
@@ -54,6 +60,28 @@ static inline float3 wp_sample_cosine_hemisphere(float3 n, float u1, float u2) {
     float3 t, b;
     wp_make_basis(n, &t, &b);
     return normalize(t * (r * cos_phi) + b * (r * sin_phi) + n * z);
+}
+
+/* A uniform point of the unit disk by Shirley and Chiu's concentric map
+ * ("A Low Distortion Map Between Disk and Square", 1997): each square ring
+ * [-r, r]^2 minus [-r', r']^2 goes to the annulus between r' and r, so
+ * stratified (u1, u2) stay stratified on the disk and neighbouring numbers
+ * stay neighbours (the thin lens's aperture, camera.h). pdf 1 / pi. The
+ * angle, pi/4 times a ratio in [-1, 1], is one eighth of a turn at most:
+ * wp_sincos_2pi of its magnitude, the sign put back on the sine. */
+static inline float2 wp_sample_concentric_disk(float u1, float u2) {
+    float a = 2.0f * u1 - 1.0f;
+    float b = 2.0f * u2 - 1.0f;
+    if (a == 0.0f && b == 0.0f)
+        return (float2)(0.0f, 0.0f);
+    int wide = fabs(a) > fabs(b);
+    float r = wide ? a : b;
+    float ratio = wide ? b / a : a / b;
+    float sine, cosine;
+    wp_sincos_2pi(0.125f * fabs(ratio), &sine, &cosine);
+    sine = copysign(sine, ratio);
+    /* Where |b| >= |a| the angle is pi/2 - (pi/4) a/b: cosine and sine swap. */
+    return wide ? (float2)(r * cosine, r * sine) : (float2)(r * sine, r * cosine);
 }
 
 /* The direction (theta, phi) around unit n, theta from n: the report's

@@ -43,6 +43,22 @@
     WP_IF(bsdf)(wp_has_##name##_is_defined = WP_HAS_##KIND, )
 enum { WP_MATERIALS(WP_MATERIAL_FEATURE_CHECK) wp_material_features_checked };
 #undef WP_MATERIAL_FEATURE_CHECK
+/* The camera's: a thin lens (aperture radius > 0), and one switch per
+ * pixel filter with sampling code of its own (the sampled column of
+ * WP_FILTERS, wp_shared.h; checked like the materials'). */
+#ifndef WP_HAS_LENS
+#define WP_HAS_LENS 1
+#endif
+#ifndef WP_HAS_TENT_FILTER
+#define WP_HAS_TENT_FILTER 1
+#endif
+#ifndef WP_HAS_GAUSSIAN_FILTER
+#define WP_HAS_GAUSSIAN_FILTER 1
+#endif
+#define WP_FILTER_FEATURE_CHECK(KIND, Name, name, value, sampled)                                  \
+    WP_IF(sampled)(wp_has_##name##_filter_is_defined = WP_HAS_##KIND##_FILTER, )
+enum { WP_FILTERS(WP_FILTER_FEATURE_CHECK) wp_filter_features_checked };
+#undef WP_FILTER_FEATURE_CHECK
 #ifndef WP_HAS_SHADING_NORMALS /* triangles with vertex normals */
 #define WP_HAS_SHADING_NORMALS 1
 #endif

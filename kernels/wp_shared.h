@@ -267,15 +267,50 @@ typedef struct {
  * node, its deepest path pushes at most 3 x 20 + 4 = 64 entries. */
 #define WP_BVH_MAX_DEPTH 41u
 
-/* The pinhole camera: a ray through film position (sx, sy) in [-1, 1]^2
+/* The pixel reconstruction filters, one row each: X(KIND, Name, name, value,
+ * sampled), Mitsuba 3's names. A sample's position in its pixel is drawn
+ * from the filter (filter importance sampling, kernels/camera.h), so that the
+ * film stays a per-pixel sum of equally weighted samples (no splatting) and
+ * the image does not depend on how the samples are split:
+ *   WP_FILTER_KIND  the constant in WpCamera.filter;
+ *   Name            FilterKind::Name on the host (src/scene/scene.hpp);
+ *   name            the scene file's filter "type" (src/scene/load.cpp) and,
+ *                   with `_filter`, the feature's name;
+ *   sampled         1 for a filter with its own sampling code, compiled in
+ *                   only for scenes that use it (the feature switch
+ *                   WP_HAS_KIND_FILTER, kernels/scene_features.h); 0 for the
+ *                   box, a uniform point in the pixel, which is always there.
+ * WP_FILTERS_WITH(X, a) hands every row to X with `a` first. */
+#define WP_FILTERS_WITH(X, a)                                                                      \
+    X(a, BOX, Box, box, 0u, 0)                /* one pixel wide, uniform: radius 1/2 */            \
+    X(a, TENT, Tent, tent, 1u, 1)             /* 1 - |x| / radius, radius 1 by default */          \
+    X(a, GAUSSIAN, Gaussian, gaussian, 2u, 1) /* exp(-x^2 / (2 stddev^2)) - its value at 4 stddev  \
+                                               */
+#define WP_FILTERS(X) WP_FILTERS_WITH(WP_MATERIAL_ROW_OF, X)
+
+#define WP_FILTER_ENUMERATOR(KIND, Name, name, value, sampled) WP_FILTER_##KIND = value,
+enum { WP_FILTERS(WP_FILTER_ENUMERATOR) WP_FILTER_KIND_COUNT };
+#undef WP_FILTER_ENUMERATOR
+
+/* The camera: a pinhole ray through film position (sx, sy) in [-1, 1]^2
  * (x right, y up) has direction forward + sx * right + sy * up, where right
  * and up are already scaled by the half-extent of the image plane at unit
- * distance. */
+ * distance. With a thin lens (Mitsuba's `thinlens`) the ray leaves a point of
+ * the aperture disk instead of the eye and passes through the point where the
+ * pinhole ray meets the plane of focus (kernels/camera.h). */
 typedef struct {
     wp_float4 eye;
     wp_float4 forward;
     wp_float4 right;
     wp_float4 up;
+    wp_float4 lens_right;   /* thin lens: the unit right vector times the aperture radius
+                               (xyz), the focus distance along forward (w) */
+    wp_float4 lens_up;      /* the unit up vector times the aperture radius (xyz), the
+                               aperture radius (w): 0 is a pinhole */
+    wp_uint filter;         /* WP_FILTER_* */
+    wp_float filter_radius; /* pixels: where the filter ends (tent, gaussian) */
+    wp_float filter_scale;  /* gaussian: 1 / (stddev sqrt(2)) */
+    wp_float filter_bias;   /* gaussian: exp(-(radius filter_scale)^2), its value at the radius */
 } WpCamera;
 
 /* Everything the kernels need besides buffers, passed by value.

@@ -158,6 +158,11 @@ std::uint64_t scene_content_hash(const Scene& scene) {
     h.vec(c.look_at);
     h.vec(c.up);
     h.f64(c.vertical_fov_degrees);
+    h.f64(c.aperture_radius);
+    h.f64(c.focus_distance);
+    h.u64(static_cast<std::uint64_t>(c.filter));
+    h.f64(c.filter_radius);
+    h.f64(c.filter_stddev);
     h.u64(scene.materials.size());
     // Every value that changes how a material renders: a changed roughness or
     // index of refraction must not resume silently.

@@ -307,6 +307,12 @@ SceneFeatures analyse_features(const Scene& scene, std::uint32_t max_fixed_count
         f.lights && std::any_of(scene.spheres.begin(), scene.spheres.end(), [&](const Sphere& s) {
             return scene.materials[s.material].kind == MaterialKind::Mirror;
         });
+    f.lens = scene.camera.aperture_radius > 0.0;
+    // One feature per filter with sampling code: on when the camera uses it.
+#define WP_FILTER_FEATURE_USED(features, KIND, Name, name, value, sampled)                         \
+    WP_IF(sampled)(features.name##_filter = scene.camera.filter == FilterKind::Name;)
+    WP_FILTERS_WITH(WP_FILTER_FEATURE_USED, f)
+#undef WP_FILTER_FEATURE_USED
     const std::size_t primitives = scene.triangles.size() + scene.spheres.size();
     f.bvh = primitives >= kMinBvhPrimitives;
     f.fixed_counts = !f.bvh && primitives <= max_fixed_count_primitives;
@@ -319,7 +325,10 @@ SceneFeatures analyse_features(const Scene& scene, std::uint32_t max_fixed_count
                 f.mirror_group_triangles = std::max(
                     f.mirror_group_triangles, static_cast<std::uint32_t>(mirror.triangles.size()));
         f.shadow_occluders = shadow_occluders(scene);
-        f.shadow_culling = f.shadow_occluders.size() < scene.triangles.size();
+        // The occluders are chosen by the side of each plane the eye is on;
+        // a lens's camera rays leave anywhere on its aperture, so it keeps
+        // every occluder.
+        f.shadow_culling = !f.lens && f.shadow_occluders.size() < scene.triangles.size();
     }
     return f;
 }
@@ -443,6 +452,28 @@ DeviceScene flatten_scene(const Scene& scene, bool hierarchy) {
     out.camera.forward = to_float4(forward);
     out.camera.right = to_float4(right * (half_height * aspect));
     out.camera.up = to_float4(up * half_height);
+    // Lengths scale with the scene's float frame, as coordinates do.
+    const double aperture = frame.scale * c.aperture_radius;
+    out.camera.lens_right = to_float4(right * aperture, frame.scale * c.focus_distance);
+    out.camera.lens_up = to_float4(up * aperture, aperture);
+    out.camera.filter = static_cast<wp_uint>(c.filter);
+    switch (c.filter) {
+    case FilterKind::Box:
+        out.camera.filter_radius = 0.5f;
+        break;
+    case FilterKind::Tent:
+        out.camera.filter_radius = static_cast<float>(c.filter_radius);
+        break;
+    case FilterKind::Gaussian: {
+        // Mitsuba's: cut off at 4 standard deviations, less its value there.
+        const double radius = 4.0 * c.filter_stddev;
+        const double scale = 1.0 / (c.filter_stddev * std::sqrt(2.0));
+        out.camera.filter_radius = static_cast<float>(radius);
+        out.camera.filter_scale = static_cast<float>(scale);
+        out.camera.filter_bias = static_cast<float>(std::exp(-(radius * scale) * (radius * scale)));
+        break;
+    }
+    }
 
     if (hierarchy)
         build_hierarchy(out);

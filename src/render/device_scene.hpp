@@ -30,6 +30,11 @@ inline constexpr std::uint32_t kMinBvhPrimitives = kMaxFixedCountPrimitives + 1;
 #define WP_MATERIAL_FEATURE_ROW(X, KIND, Name, name, value, bsdf, glossy)                          \
     WP_IF(bsdf)(X(name, WP_HAS_##KIND))
 #define WP_MATERIAL_FEATURES(X) WP_MATERIALS_WITH(WP_MATERIAL_FEATURE_ROW, X)
+// The pixel filters' rows come from WP_FILTERS: one per filter with sampling
+// code (not the box), named NAME_filter, set when the camera uses it.
+#define WP_FILTER_FEATURE_ROW(X, KIND, Name, name, value, sampled)                                 \
+    WP_IF(sampled)(X(name##_filter, WP_HAS_##KIND##_FILTER))
+#define WP_FILTER_FEATURES(X) WP_FILTERS_WITH(WP_FILTER_FEATURE_ROW, X)
 #define WP_SCENE_FEATURES(X)                                                                       \
     X(triangles, WP_HAS_TRIANGLES)                                                                 \
     X(spheres, WP_HAS_SPHERES)                                                                     \
@@ -37,7 +42,9 @@ inline constexpr std::uint32_t kMinBvhPrimitives = kMaxFixedCountPrimitives + 1;
     X(shading_normals, WP_HAS_SHADING_NORMALS) /* triangles with vertex normals */                 \
     X(lights, WP_HAS_LIGHTS)                   /* emissive triangles for next-event estimation */  \
     X(planar_mirrors, WP_HAS_PLANAR_MIRRORS)   /* flat mirror triangles, and lights */             \
-    X(mirror_spheres, WP_HAS_MIRROR_SPHERES)   /* spheres of a mirror material, and lights */
+    X(mirror_spheres, WP_HAS_MIRROR_SPHERES)   /* spheres of a mirror material, and lights */      \
+    X(lens, WP_HAS_LENS)                       /* a thin lens: aperture radius > 0 */              \
+    WP_FILTER_FEATURES(X)                      /* the pixel filter, unless the box */
 
 // Which kinds of primitive, material and light the scene uses.
 struct SceneFeatures {

@@ -12,6 +12,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "scene/camera.hpp"
 #include "scene/json_reader.hpp"
 #include "scene/material.hpp"
 #include "scene/mesh.hpp"
@@ -125,7 +126,9 @@ class SceneReader : private json::Reader {
 
     void read_camera(const Json& cam, const Ptr& p) {
         expect_object(cam, p, "an object");
-        check_keys(cam, p, {"eye", "look_at", "direction", "up", "fov", "resolution"});
+        check_keys(cam, p,
+                   {"eye", "look_at", "direction", "up", "fov", "fov_axis", "resolution",
+                    "aperture_radius", "focus_distance", "filter"});
         Camera& c = scene_.camera;
         c.eye = vec3(require(cam, p, "eye"), p / "eye", Range::Coordinate);
 
@@ -158,11 +161,22 @@ class SceneReader : private json::Reader {
             fail(p / "up", std::string("is parallel to the view direction (") + dir_name +
                                "): the image's orientation is undefined");
 
+        FovAxis axis = FovAxis::Y;
+        if (auto it = cam.find("fov_axis"); it != cam.end()) {
+            const std::string& name = expect_string(*it, p / "fov_axis");
+            const std::optional<FovAxis> a = fov_axis_from_name(name);
+            if (!a)
+                fail(p / "fov_axis", "unknown fov_axis '" + shorten(name, 40) + "' (expected " +
+                                         fov_axis_names() + ")");
+            axis = *a;
+        }
         const Ptr pf = p / "fov";
-        c.vertical_fov_degrees = number(require(cam, p, "fov"), pf);
-        if (!(c.vertical_fov_degrees > 0.0 && c.vertical_fov_degrees < 180.0))
-            fail(pf, "vertical field of view must be between 0 and 180 degrees (exclusive), got " +
-                         number_text(c.vertical_fov_degrees));
+        const double fov = number(require(cam, p, "fov"), pf);
+        if (!(fov > 0.0 && fov < 180.0))
+            fail(pf, std::string(axis == FovAxis::Y ? "vertical field of view"
+                                                    : "field of view along fov_axis '" +
+                                                          std::string(fov_axis_name(axis)) + "'") +
+                         " must be between 0 and 180 degrees (exclusive), got " + number_text(fov));
 
         const Ptr pr = p / "resolution";
         const Json& res = require(cam, p, "resolution");
@@ -179,6 +193,72 @@ class SceneReader : private json::Reader {
         }
         c.width = wh[0];
         c.height = wh[1];
+        // Needs the resolution: the axes are related by the aspect ratio.
+        c.vertical_fov_degrees = vertical_fov_degrees(fov, axis, c.width, c.height);
+
+        read_lens(cam, p);
+        if (auto it = cam.find("filter"); it != cam.end())
+            read_filter(*it, p / "filter");
+    }
+
+    // A thin lens: aperture_radius >= 0 (0, the default, is a pinhole), and
+    // with a positive one a focus_distance > 0; both in scene units.
+    void read_lens(const Json& cam, const Ptr& p) {
+        Camera& c = scene_.camera;
+        if (auto it = cam.find("aperture_radius"); it != cam.end()) {
+            c.aperture_radius = number(*it, p / "aperture_radius");
+            if (c.aperture_radius < 0.0)
+                fail(p / "aperture_radius", "must not be negative (0 is a pinhole), got " +
+                                                number_text(c.aperture_radius));
+            check_range(c.aperture_radius, p / "aperture_radius", Range::Coordinate);
+        }
+        if (auto it = cam.find("focus_distance"); it != cam.end()) {
+            c.focus_distance = number(*it, p / "focus_distance");
+            if (!(c.focus_distance > 0.0))
+                fail(p / "focus_distance",
+                     "must be positive, got " + number_text(c.focus_distance));
+            check_range(c.focus_distance, p / "focus_distance", Range::Coordinate);
+        } else if (c.aperture_radius > 0.0) {
+            fail(p / "focus_distance",
+                 "missing required field 'focus_distance' (a lens with aperture_radius > 0 "
+                 "focuses at that distance)");
+        }
+    }
+
+    // "filter": a name ("tent"), or an object with its type and size:
+    // {"type": "tent", "radius": 1} or {"type": "gaussian", "stddev": 0.5}
+    // (Mitsuba's rfilter plugins and their defaults).
+    void read_filter(const Json& f, const Ptr& p) {
+        Camera& c = scene_.camera;
+        const bool is_object = f.is_object();
+        const Ptr pt = is_object ? p / "type" : p;
+        const std::string& name =
+            is_object ? expect_string(require(f, p, "type"), pt) : expect_string(f, p);
+        const std::optional<FilterKind> kind = filter_kind_from_name(name);
+        if (!kind)
+            fail(pt, "unknown filter '" + shorten(name, 40) + "' (expected " + filter_kind_names() +
+                         ")");
+        c.filter = *kind;
+        if (!is_object)
+            return;
+        const char* size = c.filter == FilterKind::Tent       ? "radius"
+                           : c.filter == FilterKind::Gaussian ? "stddev"
+                                                              : nullptr;
+        if (size)
+            check_keys(f, p, {"type", size});
+        else
+            check_keys(f, p, {"type"});
+        if (!size)
+            return;
+        auto it = f.find(size);
+        if (it == f.end())
+            return;
+        const double x = number(*it, p / size);
+        if (!(x > 0.0 && x <= scene_limits::max_filter_size))
+            fail(p / size, "must be positive and at most " +
+                               number_text(scene_limits::max_filter_size) + " pixels, got " +
+                               number_text(x));
+        (c.filter == FilterKind::Tent ? c.filter_radius : c.filter_stddev) = x;
     }
 
     // --- materials ------------------------------------------------------------

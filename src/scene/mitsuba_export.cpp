@@ -224,9 +224,18 @@ std::string sensor(const Scene& scene, const MitsubaExportOptions& options) {
                     " degrees; " + std::to_string(scene.camera.width) + "x" +
                     std::to_string(scene.camera.height) + " pixels") +
         "\n";
-    s += "    <sensor type=\"perspective\">\n";
+    // A lens is Mitsuba's thinlens sensor: the same aperture disk in the
+    // plane of the eye and the same plane of focus (kernels/camera.h).
+    const bool lens = scene.camera.aperture_radius > 0.0;
+    s += std::string("    <sensor type=\"") + (lens ? "thinlens" : "perspective") + "\">\n";
     s += "        <string name=\"fov_axis\" value=\"x\"/>\n";
     s += "        <float name=\"fov\" value=\"" + number(c.fov_x_degrees) + "\"/>\n";
+    if (lens) {
+        s += "        <float name=\"aperture_radius\" value=\"" +
+             number(scene.camera.aperture_radius) + "\"/>\n";
+        s += "        <float name=\"focus_distance\" value=\"" +
+             number(scene.camera.focus_distance) + "\"/>\n";
+    }
     s += "        <float name=\"near_clip\" value=\"" + number(c.near_clip) + "\"/>\n";
     s += "        <float name=\"far_clip\" value=\"" + number(c.far_clip) + "\"/>\n";
     s += "        <transform name=\"to_world\">\n";
@@ -237,15 +246,30 @@ std::string sensor(const Scene& scene, const MitsubaExportOptions& options) {
     s += "            <integer name=\"sample_count\" value=\"" +
          std::to_string(options.sample_count) + "\"/>\n";
     s += "        </sampler>\n";
-    // A one-pixel box filter: wavepath averages samples jittered uniformly
-    // over each pixel (kernels/generate.cl).
+    // The same pixel filter: wavepath draws each sample's position from it
+    // (kernels/camera.h), Mitsuba splats with its weights; both converge to
+    // the filtered image.
     s += "        <film type=\"hdrfilm\">\n";
     s += "            <integer name=\"width\" value=\"" + std::to_string(scene.camera.width) +
          "\"/>\n";
     s += "            <integer name=\"height\" value=\"" + std::to_string(scene.camera.height) +
          "\"/>\n";
     s += "            <string name=\"pixel_format\" value=\"rgb\"/>\n";
-    s += "            <rfilter type=\"box\"/>\n";
+    switch (scene.camera.filter) {
+    case FilterKind::Box:
+        s += "            <rfilter type=\"box\"/>\n";
+        break;
+    case FilterKind::Tent:
+        s += "            <rfilter type=\"tent\">\n"
+             "                <float name=\"radius\" value=\"" +
+             number(scene.camera.filter_radius) + "\"/>\n            </rfilter>\n";
+        break;
+    case FilterKind::Gaussian:
+        s += "            <rfilter type=\"gaussian\">\n"
+             "                <float name=\"stddev\" value=\"" +
+             number(scene.camera.filter_stddev) + "\"/>\n            </rfilter>\n";
+        break;
+    }
     s += "        </film>\n";
     s += "    </sensor>\n";
     return s;

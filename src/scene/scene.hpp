@@ -24,13 +24,33 @@ class SceneError : public std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+// The pixel reconstruction filters: the rows of WP_FILTERS (kernels/wp_shared.h),
+// with the kernels' values.
+#define WP_FILTER_KIND_ENUMERATOR(KIND, Name, name, value, sampled) Name = value,
+enum class FilterKind : std::uint32_t { WP_FILTERS(WP_FILTER_KIND_ENUMERATOR) };
+#undef WP_FILTER_KIND_ENUMERATOR
+
 struct Camera {
     glm::dvec3 eye{0.0};
     glm::dvec3 look_at{0.0, 0.0, -1.0}; // a point the camera looks at
     glm::dvec3 up{0.0, 1.0, 0.0};
-    double vertical_fov_degrees = 90.0; // full angle, top to bottom of the image
-    int width = 0;                      // pixels
+    // Full angle, top to bottom of the image. The scene file may give the
+    // field of view along another axis (fov_axis, scene/camera.hpp); the
+    // loader converts it to this one.
+    double vertical_fov_degrees = 90.0;
+    int width = 0; // pixels
     int height = 0;
+    // A thin lens (Mitsuba's thinlens), in scene units: the aperture's radius
+    // (0: a pinhole, the eye) and the distance along the view direction from
+    // the eye to the plane that is in focus (used when the radius is > 0).
+    double aperture_radius = 0.0;
+    double focus_distance = 1.0;
+    // The pixel filter and its size in pixels: the tent's radius, or the
+    // Gaussian's standard deviation (it ends at 4 of them, as Mitsuba's does);
+    // the box's is fixed (one pixel). Mitsuba's defaults.
+    FilterKind filter = FilterKind::Box;
+    double filter_radius = 1.0; // tent
+    double filter_stddev = 0.5; // gaussian
 };
 
 // The material kinds: the rows of WP_MATERIALS (kernels/wp_shared.h), with

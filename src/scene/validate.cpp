@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include <glm/geometric.hpp>
 
@@ -104,6 +105,16 @@ class Checker {
                                    "distance from the origin (there is no usable view direction)");
         if (up_is_parallel(c.eye, c.look_at, c.up))
             fail("camera.up", "is zero or parallel to the view direction");
+        if (!(c.aperture_radius >= 0.0 && c.aperture_radius <= scene_limits::max_coordinate))
+            fail("camera.aperture_radius", "must be in [0, 1e30], got " + fmt(c.aperture_radius));
+        if (!(c.focus_distance > 0.0 && c.focus_distance <= scene_limits::max_coordinate))
+            fail("camera.focus_distance", "must be in (0, 1e30], got " + fmt(c.focus_distance));
+        if (static_cast<wp_uint>(c.filter) >= WP_FILTER_KIND_COUNT)
+            fail("camera.filter", "unknown filter kind");
+        for (const auto& [value, field] : {std::pair{c.filter_radius, "camera.filter_radius"},
+                                           std::pair{c.filter_stddev, "camera.filter_stddev"}})
+            if (!(value > 0.0 && value <= scene_limits::max_filter_size))
+                fail(field, "must be in (0, 64] pixels, got " + fmt(value));
 
         for (std::size_t i = 0; i < scene_.materials.size(); ++i) {
             const Material& m = scene_.materials[i];

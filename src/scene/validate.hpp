@@ -34,6 +34,9 @@ inline constexpr double max_index = 1e4;
 // Largest microfacet roughness alpha (the kernels floor it at 1e-4, as
 // Mitsuba does); past 1 a surface is rougher than any measured one.
 inline constexpr double max_alpha = 4.0;
+// Largest pixel filter size (a tent's radius, a Gaussian's standard
+// deviation), in pixels: past it a pixel averages most of a small image.
+inline constexpr double max_filter_size = 64.0;
 // Largest image side in pixels.
 inline constexpr int max_resolution = 16384;
 // A triangle is zero-area when |cross(e1, e2)| <= this * (longest edge)^2.

@@ -11,6 +11,8 @@
 #include <map>
 #include <random>
 #include <set>
+#include <string>
+#include <utility>
 #include <vector>
 
 using namespace wp;
@@ -57,7 +59,8 @@ class GenerateState {
     // passed as it is at the start of a wave (slot = work-item index), any
     // other through the finished queue, as regeneration does.
     GenerateResult run(const WpFrame& frame, const std::vector<cl_uint>& slots, cl_uint slot_count,
-                       cl_uint ray_counter, cl_uint queued_before) {
+                       cl_uint ray_counter, cl_uint queued_before,
+                       const std::string& options = "") {
         const std::size_t queue_size = frame.pool_size;
         std::vector<cl_uint> queues(2 * queue_size + 100 + WP_COUNTER_COUNT, kSentinel);
         const std::size_t base = ray_counter * queue_size;
@@ -83,7 +86,7 @@ class GenerateState {
         buffers.ray_queues = upload(queues);
         buffers.counters = upload(counters);
         run_stage("generate", frame, make_launch(slot_count, ray_counter, !identity), buffers,
-                  slots.size());
+                  slots.size(), options);
         std::vector<cl_uint> all_queues = download<cl_uint>(buffers.ray_queues, queues.size());
         // Appending to queue B leaves queue A untouched (the test's made-up
         // survivors can make queue A run past its end, which the integrator's
@@ -499,4 +502,103 @@ TEST_CASE("generate: a slot with nearly 2^32 tasks still starts its first task",
     CHECK(r.task[0] == 1u);
     CHECK(r.pixel[0] == 0u);
     CHECK(r.sample[0] == 0u);
+}
+
+namespace {
+
+// Shirley and Chiu's concentric map in double precision, written from the
+// paper's description (not from kernels/sampling.h).
+std::pair<double, double> concentric_disk(double u1, double u2) {
+    const double a = 2.0 * u1 - 1.0, b = 2.0 * u2 - 1.0;
+    if (a == 0.0 && b == 0.0)
+        return {0.0, 0.0};
+    double r, phi;
+    if (std::fabs(a) > std::fabs(b)) {
+        r = a;
+        phi = (M_PI / 4.0) * (b / a);
+    } else {
+        r = b;
+        phi = M_PI / 2.0 - (M_PI / 4.0) * (a / b);
+    }
+    return {r * std::cos(phi), r * std::sin(phi)};
+}
+
+} // namespace
+
+TEST_CASE("generate: a thin lens's rays leave the aperture disk and meet the pinhole ray on the "
+          "plane of focus",
+          "[cl][generate][camera]") {
+    const int width = 7, height = 5;
+    wp::Scene scene = camera_scene(width, height);
+    scene.camera.aperture_radius = 0.3;
+    scene.camera.focus_distance = 2.5;
+    wp::DeviceScene flat = wp::flatten_scene(scene);
+    const Pinhole camera(scene.camera);
+    const cl_uint pixels = width * height;
+    std::vector<cl_uint> list(pixels);
+    for (cl_uint i = 0; i < pixels; ++i)
+        list[i] = i;
+
+    // The lens is compiled in by the general kernels (and by
+    // -D WP_HAS_LENS=1 alone); its feature says so.
+    CHECK(wp::analyse_features(scene).lens);
+    WpFrame frame{};
+    frame.camera = flat.camera;
+    frame.width = width;
+    frame.height = height;
+    frame.seed = 77;
+    frame.sample_count = 1;
+    frame.pool_size = pixels;
+    GenerateState state(pixels, std::vector<cl_uint>(pixels, 0u));
+    GenerateResult r = state.run(frame, list, pixels, WP_COUNTER_QUEUE_A, 0);
+
+    double worst_origin = 0.0, worst_focus = 0.0;
+    for (cl_uint pixel = 0; pixel < pixels; ++pixel) {
+        INFO("pixel " << pixel);
+        // The pinhole ray's direction scaled to unit length along forward,
+        // and where it meets the plane of focus.
+        const D3 d = camera.direction(frame.seed, pixel, 0);
+        const D3 focus_point =
+            camera.eye + (scene.camera.focus_distance / dot(d, camera.forward)) * d;
+        const auto [lx, ly] =
+            concentric_disk(wp_random(frame.seed, pixel, 0, WP_LENS_BOUNCE, WP_DIM_LENS_U),
+                            wp_random(frame.seed, pixel, 0, WP_LENS_BOUNCE, WP_DIM_LENS_V));
+        const D3 aperture_point =
+            camera.eye + scene.camera.aperture_radius * (lx * camera.right + ly * camera.up);
+
+        const D3 origin = from_float4(r.origin[pixel]);
+        const D3 direction = from_float4(r.direction[pixel]);
+        worst_origin = std::max(worst_origin, max_abs(origin - aperture_point));
+        CHECK(max_abs(origin - aperture_point) < 1e-6 * (1.0 + max_abs(camera.eye)));
+        // On the aperture: in the plane of the eye, within the radius.
+        CHECK(std::fabs(dot(origin - camera.eye, camera.forward)) < 1e-6);
+        CHECK(length(origin - camera.eye) <= scene.camera.aperture_radius * (1.0 + 1e-6));
+        // The ray passes through the focus point: its distance from the line.
+        const D3 to_focus = focus_point - origin;
+        const double miss = length(to_focus - dot(to_focus, direction) * direction);
+        worst_focus = std::max(worst_focus, miss);
+        CHECK(miss < 1e-5 * length(to_focus));
+        CHECK(std::fabs(length(direction) - 1.0) < 1e-6);
+    }
+    INFO("largest origin error " << worst_origin << ", largest miss of the focus point "
+                                 << worst_focus);
+    CHECK(worst_focus < 1e-5 * scene.camera.focus_distance);
+
+    // Aperture 0 is the pinhole, bit for bit, in kernels that have the lens
+    // compiled in (the general ones) and in those that do not.
+    wp::Scene pinhole_scene = camera_scene(width, height);
+    WpFrame pinhole = frame;
+    pinhole.camera = wp::flatten_scene(pinhole_scene).camera;
+    CHECK(pinhole.camera.lens_up.s[3] == 0.0f);
+    GenerateState with_lens(pixels, std::vector<cl_uint>(pixels, 0u));
+    GenerateResult a = with_lens.run(pinhole, list, pixels, WP_COUNTER_QUEUE_A, 0);
+    GenerateState without_lens(pixels, std::vector<cl_uint>(pixels, 0u));
+    GenerateResult b =
+        without_lens.run(pinhole, list, pixels, WP_COUNTER_QUEUE_A, 0,
+                         "-D WP_HAS_LENS=0 -D WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0");
+    for (cl_uint pixel = 0; pixel < pixels; ++pixel)
+        for (int k = 0; k < 4; ++k) {
+            CHECK(float_bits(a.origin[pixel].s[k]) == float_bits(b.origin[pixel].s[k]));
+            CHECK(float_bits(a.direction[pixel].s[k]) == float_bits(b.direction[pixel].s[k]));
+        }
 }

@@ -72,6 +72,12 @@ namespace {
     X(WpCamera, forward)                                                                           \
     X(WpCamera, right)                                                                             \
     X(WpCamera, up)                                                                                \
+    X(WpCamera, lens_right)                                                                        \
+    X(WpCamera, lens_up)                                                                           \
+    X(WpCamera, filter)                                                                            \
+    X(WpCamera, filter_radius)                                                                     \
+    X(WpCamera, filter_scale)                                                                      \
+    X(WpCamera, filter_bias)                                                                       \
     X(WpFrame, camera)                                                                             \
     X(WpFrame, width)                                                                              \
     X(WpFrame, height)                                                                             \
@@ -144,13 +150,18 @@ const char* const kFrameEchoSource = R"CL(
 __kernel void echo_frame(WpFrame frame, __global uint* out) {
     if (get_global_id(0) != 0) return;
     uint i = 0;
-    float4 v[4] = {frame.camera.eye, frame.camera.forward, frame.camera.right, frame.camera.up};
-    for (int k = 0; k < 4; ++k) {
+    float4 v[6] = {frame.camera.eye, frame.camera.forward, frame.camera.right, frame.camera.up,
+                   frame.camera.lens_right, frame.camera.lens_up};
+    for (int k = 0; k < 6; ++k) {
         out[i++] = as_uint(v[k].x);
         out[i++] = as_uint(v[k].y);
         out[i++] = as_uint(v[k].z);
         out[i++] = as_uint(v[k].w);
     }
+    out[i++] = frame.camera.filter;
+    out[i++] = as_uint(frame.camera.filter_radius);
+    out[i++] = as_uint(frame.camera.filter_scale);
+    out[i++] = as_uint(frame.camera.filter_bias);
     out[i++] = frame.width;
     out[i++] = frame.height;
     out[i++] = frame.seed;
@@ -215,6 +226,12 @@ TEST_CASE("A WpFrame passed by value reaches the kernel field for field", "[cl][
     frame.camera.forward = float4(0.1f, 0.2f, -0.97f, -1.0f);
     frame.camera.right = float4(1.25f, 0.0f, 0.5f, 7.0f);
     frame.camera.up = float4(-0.03f, 0.75f, 0.01f, 1e-20f);
+    frame.camera.lens_right = float4(0.125f, -3.5f, 2.0f, 1e6f);
+    frame.camera.lens_up = float4(-0.5f, 0.25f, 1e-7f, 0.0625f);
+    frame.camera.filter = WP_FILTER_GAUSSIAN;
+    frame.camera.filter_radius = 2.0f;
+    frame.camera.filter_scale = 1.4142135f;
+    frame.camera.filter_bias = 3.3546262e-4f;
     frame.width = 640;
     frame.height = 480;
     frame.seed = 0x9abcdef0u;
@@ -231,10 +248,14 @@ TEST_CASE("A WpFrame passed by value reaches the kernel field for field", "[cl][
     frame.path_types = 0x13u;
 
     std::vector<cl_uint> expected;
-    for (const cl_float4* v :
-         {&frame.camera.eye, &frame.camera.forward, &frame.camera.right, &frame.camera.up})
+    for (const cl_float4* v : {&frame.camera.eye, &frame.camera.forward, &frame.camera.right,
+                               &frame.camera.up, &frame.camera.lens_right, &frame.camera.lens_up})
         for (int k = 0; k < 4; ++k)
             expected.push_back(float_bits(v->s[k]));
+    expected.push_back(frame.camera.filter);
+    for (float f :
+         {frame.camera.filter_radius, frame.camera.filter_scale, frame.camera.filter_bias})
+        expected.push_back(float_bits(f));
     for (cl_uint u : {frame.width, frame.height, frame.seed, frame.first_sample, frame.sample_count,
                       frame.pool_size, frame.triangle_count, frame.sphere_count, frame.light_count})
         expected.push_back(u);

@@ -276,6 +276,26 @@ TEST_CASE("checkpoint: the scene hash sees every change that alters the image", 
     other = scene;
     other.camera.vertical_fov_degrees += 1e-9;
     CHECK(scene_content_hash(other) != h);
+    // The lens and the filter.
+    other = scene;
+    other.camera.aperture_radius = 0.01;
+    CHECK(scene_content_hash(other) != h);
+    other.camera.focus_distance *= 2.0;
+    CHECK(scene_content_hash(other) != scene_content_hash([&] {
+              Scene s = other;
+              s.camera.focus_distance = scene.camera.focus_distance;
+              return s;
+          }()));
+    other = scene;
+    other.camera.filter = FilterKind::Gaussian;
+    CHECK(scene_content_hash(other) != h);
+    other.camera.filter_stddev = 0.25;
+    CHECK(scene_content_hash(other) != h);
+    other = scene;
+    other.camera.filter = FilterKind::Tent;
+    const std::uint64_t tent = scene_content_hash(other);
+    other.camera.filter_radius = 2.0;
+    CHECK(scene_content_hash(other) != tent);
     other = scene;
     other.triangles[0].material =
         static_cast<std::uint32_t>((other.triangles[0].material + 1) % other.materials.size());

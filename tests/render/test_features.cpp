@@ -133,6 +133,8 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_CONDUCTOR=0 -D WP_HAS_ROUGHCONDUCTOR=0 -D WP_HAS_DIELECTRIC=0 -D "
           "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_PLASTIC=0 -D WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D "
+          "WP_HAS_LENS=0 -D "
+          "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D "
           "WP_TRIANGLE_COUNT=26 -D "
           "WP_SPHERE_COUNT=2 -D WP_LIGHT_COUNT=2 -D "
           "WP_MIRROR_GROUP_TRIANGLES=2 -D WP_SHADOW_OCCLUDER_COUNT=5 -D "
@@ -142,6 +144,8 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_CONDUCTOR=0 -D WP_HAS_ROUGHCONDUCTOR=0 -D WP_HAS_DIELECTRIC=0 -D "
           "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_PLASTIC=0 -D WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=0 -D "
+          "WP_HAS_LENS=0 -D "
+          "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D "
           "WP_TRIANGLE_COUNT=26 -D "
           "WP_SPHERE_COUNT=0 -D WP_LIGHT_COUNT=2 -D "
           "WP_MIRROR_GROUP_TRIANGLES=2 -D WP_SHADOW_OCCLUDER_COUNT=5 -D "
@@ -151,6 +155,8 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_CONDUCTOR=0 -D WP_HAS_ROUGHCONDUCTOR=0 -D WP_HAS_DIELECTRIC=0 -D "
           "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_PLASTIC=0 -D WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=0 -D WP_HAS_PLANAR_MIRRORS=0 -D WP_HAS_MIRROR_SPHERES=0 -D "
+          "WP_HAS_LENS=0 -D "
+          "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D "
           "WP_TRIANGLE_COUNT=0 -D "
           "WP_SPHERE_COUNT=4 -D WP_LIGHT_COUNT=0 -D "
           "WP_MIRROR_GROUP_TRIANGLES=0");
@@ -159,6 +165,8 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_CONDUCTOR=0 -D WP_HAS_ROUGHCONDUCTOR=0 -D WP_HAS_DIELECTRIC=0 -D "
           "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_PLASTIC=0 -D WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=0 -D WP_HAS_MIRROR_SPHERES=0 -D "
+          "WP_HAS_LENS=0 -D "
+          "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D "
           "WP_TRIANGLE_COUNT=26 -D "
           "WP_SPHERE_COUNT=2 -D WP_LIGHT_COUNT=2 -D "
           "WP_MIRROR_GROUP_TRIANGLES=0 -D WP_SHADOW_OCCLUDER_COUNT=5 -D "
@@ -168,31 +176,37 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_CONDUCTOR=0 -D WP_HAS_ROUGHCONDUCTOR=0 -D WP_HAS_DIELECTRIC=0 -D "
           "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_PLASTIC=0 -D WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=0 -D WP_HAS_PLANAR_MIRRORS=0 -D WP_HAS_MIRROR_SPHERES=0 -D "
+          "WP_HAS_LENS=0 -D "
+          "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D "
           "WP_TRIANGLE_COUNT=24 -D "
           "WP_SPHERE_COUNT=2 -D WP_LIGHT_COUNT=0 -D "
           "WP_MIRROR_GROUP_TRIANGLES=0 -D WP_SHADOW_OCCLUDER_COUNT=3 -D "
           "WP_SHADOW_OCCLUDERS=21,22,23");
     // Past the fixed-count limit: runtime counts and the hierarchy.
-    CHECK(
-        analyse_features(large()).build_options() ==
-        "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 -D "
-        "WP_HAS_CONDUCTOR=0 -D WP_HAS_ROUGHCONDUCTOR=0 -D WP_HAS_DIELECTRIC=0 -D "
-        "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_PLASTIC=0 -D WP_HAS_SHADING_NORMALS=0 "
-        "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D WP_USE_BVH=1");
+    CHECK(analyse_features(large()).build_options() ==
+          "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 -D "
+          "WP_HAS_CONDUCTOR=0 -D WP_HAS_ROUGHCONDUCTOR=0 -D WP_HAS_DIELECTRIC=0 -D "
+          "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_PLASTIC=0 -D WP_HAS_SHADING_NORMALS=0 "
+          "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D "
+          "WP_HAS_LENS=0 -D "
+          "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D WP_USE_BVH=1");
     // The general kernels: every feature, runtime counts, the scene's hierarchy.
-    CHECK(
-        SceneFeatures::general_for(analyse_features(large())).build_options() ==
-        "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 -D "
-        "WP_HAS_CONDUCTOR=1 -D WP_HAS_ROUGHCONDUCTOR=1 -D WP_HAS_DIELECTRIC=1 -D "
-        "WP_HAS_THINDIELECTRIC=1 -D WP_HAS_PLASTIC=1 -D WP_HAS_SHADING_NORMALS=1 "
-        "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D WP_USE_BVH=1");
+    CHECK(SceneFeatures::general_for(analyse_features(large())).build_options() ==
+          "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 -D "
+          "WP_HAS_CONDUCTOR=1 -D WP_HAS_ROUGHCONDUCTOR=1 -D WP_HAS_DIELECTRIC=1 -D "
+          "WP_HAS_THINDIELECTRIC=1 -D WP_HAS_PLASTIC=1 -D WP_HAS_SHADING_NORMALS=1 "
+          "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D "
+          "WP_HAS_LENS=1 -D "
+          "WP_HAS_TENT_FILTER=1 -D WP_HAS_GAUSSIAN_FILTER=1 -D WP_USE_BVH=1");
     CHECK(SceneFeatures::general_for(analyse_features(hexroom())).build_options() ==
           SceneFeatures::all().build_options());
     CHECK(SceneFeatures::all().build_options() ==
           "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 -D "
           "WP_HAS_CONDUCTOR=1 -D WP_HAS_ROUGHCONDUCTOR=1 -D WP_HAS_DIELECTRIC=1 -D "
           "WP_HAS_THINDIELECTRIC=1 -D WP_HAS_PLASTIC=1 -D WP_HAS_SHADING_NORMALS=1 "
-          "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1");
+          "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D "
+          "WP_HAS_LENS=1 -D "
+          "WP_HAS_TENT_FILTER=1 -D WP_HAS_GAUSSIAN_FILTER=1");
 }
 
 TEST_CASE("features: fixed counts stop at the limit, and 0 turns them off") {
@@ -219,7 +233,7 @@ TEST_CASE("features: describe() names the features and the compiled-in counts") 
     CHECK(SceneFeatures::all().describe() ==
           "triangles spheres diffuse mirror conductor roughconductor dielectric thindielectric "
           "plastic shading_normals lights "
-          "planar_mirrors mirror_spheres");
+          "planar_mirrors mirror_spheres lens tent_filter gaussian_filter");
 }
 
 // The program's options begin with the features' (estimator options may follow).
@@ -263,6 +277,20 @@ TEST_CASE("features: specialised and general kernels render bit-identical images
     }
     SECTION("more primitives than fixed counts allow") {
         check_specialised_equals_general(large());
+    }
+    // The camera's switches: the lens and a filter compiled in alone, and
+    // chosen at run time among all of them.
+    SECTION("a thin lens and the tent filter") {
+        Scene scene = hexroom();
+        scene.camera.aperture_radius = 0.05;
+        scene.camera.focus_distance = 3.0;
+        scene.camera.filter = FilterKind::Tent;
+        check_specialised_equals_general(scene);
+    }
+    SECTION("the Gaussian filter") {
+        Scene scene = hexroom();
+        scene.camera.filter = FilterKind::Gaussian;
+        check_specialised_equals_general(scene);
     }
 }
 

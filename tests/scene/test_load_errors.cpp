@@ -197,6 +197,76 @@ TEST_CASE("loader: every validation error names its field", "[scene][load][error
              R"({"eye": [-1, 0, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 90, "resolution": "8x8"})"),
          "/camera/resolution", "expected an array of 2 integers"},
 
+        // camera: fov_axis, thin lens, filter
+        {"unknown fov_axis",
+         with_camera(
+             R"({"eye": [-1, 0, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 90, "resolution": [8, 8], "fov_axis": "z"})"),
+         "/camera/fov_axis", "unknown fov_axis 'z' (expected x, y, diagonal, smaller, larger)"},
+        {"fov_axis not a string",
+         with_camera(
+             R"({"eye": [-1, 0, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 90, "resolution": [8, 8], "fov_axis": 1})"),
+         "/camera/fov_axis", "expected a string"},
+        {"fov along x of 180",
+         with_camera(
+             R"({"eye": [-1, 0, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 180, "fov_axis": "x", "resolution": [8, 8]})"),
+         "/camera/fov", "field of view along fov_axis 'x' must be between 0 and 180"},
+        {"negative aperture",
+         with_camera(
+             R"({"eye": [-1, 0, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 90, "resolution": [8, 8], "aperture_radius": -0.1, "focus_distance": 1})"),
+         "/camera/aperture_radius", "must not be negative (0 is a pinhole), got -0.1"},
+        {"huge aperture",
+         with_camera(
+             R"({"eye": [-1, 0, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 90, "resolution": [8, 8], "aperture_radius": 1e31, "focus_distance": 1})"),
+         "/camera/aperture_radius", "magnitude too large"},
+        {"negative focus distance",
+         with_camera(
+             R"({"eye": [-1, 0, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 90, "resolution": [8, 8], "aperture_radius": 0.1, "focus_distance": -2})"),
+         "/camera/focus_distance", "must be positive, got -2"},
+        {"zero focus distance",
+         with_camera(
+             R"({"eye": [-1, 0, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 90, "resolution": [8, 8], "aperture_radius": 0.1, "focus_distance": 0})"),
+         "/camera/focus_distance", "must be positive, got 0"},
+        {"focus distance missing with a lens",
+         with_camera(
+             R"({"eye": [-1, 0, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 90, "resolution": [8, 8], "aperture_radius": 0.1})"),
+         "/camera/focus_distance", "missing required field 'focus_distance'"},
+        {"focus distance a string",
+         with_camera(
+             R"({"eye": [-1, 0, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 90, "resolution": [8, 8], "aperture_radius": 0.1, "focus_distance": "far"})"),
+         "/camera/focus_distance", "expected a number"},
+        {"unknown filter",
+         with_camera(
+             R"({"eye": [-1, 0, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 90, "resolution": [8, 8], "filter": "mitchell"})"),
+         "/camera/filter", "unknown filter 'mitchell' (expected box, tent, gaussian)"},
+        {"unknown filter type",
+         with_camera(
+             R"({"eye": [-1, 0, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 90, "resolution": [8, 8], "filter": {"type": "lanczos"}})"),
+         "/camera/filter/type", "unknown filter 'lanczos'"},
+        {"filter without a type",
+         with_camera(
+             R"({"eye": [-1, 0, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 90, "resolution": [8, 8], "filter": {"radius": 2}})"),
+         "/camera/filter/type", "missing required field"},
+        {"a size the filter does not have",
+         with_camera(
+             R"({"eye": [-1, 0, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 90, "resolution": [8, 8], "filter": {"type": "tent", "stddev": 2}})"),
+         "/camera/filter/stddev", "unknown key 'stddev'"},
+        {"the box has no size",
+         with_camera(
+             R"({"eye": [-1, 0, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 90, "resolution": [8, 8], "filter": {"type": "box", "radius": 2}})"),
+         "/camera/filter/radius", "unknown key 'radius'"},
+        {"zero tent radius",
+         with_camera(
+             R"({"eye": [-1, 0, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 90, "resolution": [8, 8], "filter": {"type": "tent", "radius": 0}})"),
+         "/camera/filter/radius", "must be positive and at most 64 pixels, got 0"},
+        {"huge gaussian",
+         with_camera(
+             R"({"eye": [-1, 0, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 90, "resolution": [8, 8], "filter": {"type": "gaussian", "stddev": 100}})"),
+         "/camera/filter/stddev", "at most 64 pixels, got 100"},
+        {"filter a number",
+         with_camera(
+             R"({"eye": [-1, 0, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 90, "resolution": [8, 8], "filter": 3})"),
+         "/camera/filter", "expected a string"},
+
         // materials
         {"material not an object", with_materials(R"({"white": [0.7, 0.7, 0.7]})"),
          "/materials/white", "expected a material object"},
