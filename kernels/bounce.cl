@@ -17,7 +17,7 @@ __kernel void bounce(WP_FUSED_PARAMETERS) {
     if (index >= counters[launch.ray_queue])
         return;
     wp_uint slot = wp_ray_queue(ray_queues, frame, launch.ray_queue)[index];
-    WpSceneView scene = WP_SCENE_VIEW();
+    WP_SCENE_VIEW(scene);
     float t;
     wp_uint primitive = wp_closest_hit(&scene, wp_load_xyz(ray_origin, slot),
                                        wp_load_xyz(ray_direction, slot), INFINITY, &t);

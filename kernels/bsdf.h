@@ -18,6 +18,7 @@
 #include "bsdf/mirror.h"
 #include "bsdf/plastic.h"
 #include "bsdf/roughconductor.h"
+#include "bsdf/roughdielectric.h"
 #include "bsdf/thindielectric.h"
 #include "scene_features.h"
 

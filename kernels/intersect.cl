@@ -13,7 +13,7 @@ __kernel void intersect(WP_STAGE_PARAMETERS) {
     if (!WP_TRACE_SURPLUS_ITEMS && !queued)
         return;
     wp_uint slot = queued ? wp_ray_queue(ray_queues, frame, launch.ray_queue)[index] : 0u;
-    WpSceneView scene = WP_SCENE_VIEW();
+    WP_SCENE_VIEW(scene);
     float t;
     wp_uint hit = wp_closest_hit(&scene, wp_load_xyz(ray_origin, slot),
                                  wp_load_xyz(ray_direction, slot), INFINITY, &t);

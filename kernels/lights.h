@@ -60,6 +60,7 @@ static inline wp_uint wp_pick_light(__global const WpLight* lights, wp_uint coun
 
 /* A light sample as seen from a surface point. */
 typedef struct {
+    float3 origin;     /* where the shadow ray starts (the surface's lit side) */
     float3 direction;  /* unit, from the shadow-ray origin towards the light */
     float length;      /* how far the shadow ray must stay unblocked */
     float3 irradiance; /* Le * cos_surface * cos_light / d^2 / pdf: multiply by the BRDF */
@@ -84,6 +85,7 @@ static inline int wp_aim_shadow_ray(float3 origin, float3 point, const WpTriangl
         ray_length - wp_shadow_end_margin(point, wp_triangle_scale(light), ray_length);
     if (!(length_to_test > 0.0f))
         return 0;
+    out->origin = origin;
     out->direction = ray / ray_length;
     out->length = length_to_test;
     return 1;
@@ -91,13 +93,15 @@ static inline int wp_aim_shadow_ray(float3 origin, float3 point, const WpTriangl
 
 /* Samples the lights as seen from the surface point `position` (normal on the
  * lit side `normal`); the shadow ray starts at `origin`, the point offset off
- * the surface. The geometry term belongs to the surface point: taken at the
- * offset origin it biased a light 1e-3 above a floor by 8 % (the offset was
- * 4 % of the gap; docs/stability.md, case 6). Returns 0 when the point faces
- * away, the light faces away (lights are one-sided), or nothing can arrive. */
+ * the surface. With `two_sided` (a BSDF that transmits) a light behind the
+ * surface counts too, by the cosine's magnitude, and its shadow ray starts at
+ * `origin_behind`, offset to the other side. The geometry term belongs to the surface point: taken
+ * at the offset origin it biased a light 1e-3 above a floor by 8 % (the offset was 4 % of the gap;
+ * docs/stability.md, case 6). Returns 0 when the point faces away, the light faces away (lights are
+ * one-sided), or nothing can arrive. */
 static inline int wp_sample_light(const WpSceneView* scene, float3 position, float3 origin,
-                                  float3 normal, float u_pick, float u, float v,
-                                  WpLightSample* out) {
+                                  float3 origin_behind, int two_sided, float3 normal, float u_pick,
+                                  float u, float v, WpLightSample* out) {
     if (scene->light_count == 0u) /* general kernels may meet a scene without lights */
         return 0;
     WpTriangle light =
@@ -117,11 +121,16 @@ static inline int wp_sample_light(const WpSceneView* scene, float3 position, flo
                                                  solid_angle, u, v);
         float cos_surface = dot(normal, wi);
         float cos_light = -dot(light_normal, wi);
+        float3 from = origin;
+        if (two_sided && cos_surface < 0.0f) {
+            cos_surface = -cos_surface;
+            from = origin_behind;
+        }
         if (!(cos_surface > 0.0f && cos_light > 0.0f))
             return 0;
         float distance = plane_distance / cos_light; /* along wi to the light's plane */
         float3 point = position + distance * wi;
-        if (!wp_aim_shadow_ray(origin, point, &light, out))
+        if (!wp_aim_shadow_ray(from, point, &light, out))
             return 0;
         float triangle_area =
             0.5f * length(cross(light.v1.xyz - light.v0.xyz, light.v2.xyz - light.v0.xyz));
@@ -138,7 +147,12 @@ static inline int wp_sample_light(const WpSceneView* scene, float3 position, flo
     float3 wi = to_light / distance;
     float cos_surface = dot(normal, wi);
     float cos_light = -dot(light_normal, wi);
-    if (!(cos_surface > 0.0f && cos_light > 0.0f) || !wp_aim_shadow_ray(origin, point, &light, out))
+    float3 from = origin;
+    if (two_sided && cos_surface < 0.0f) {
+        cos_surface = -cos_surface;
+        from = origin_behind;
+    }
+    if (!(cos_surface > 0.0f && cos_light > 0.0f) || !wp_aim_shadow_ray(from, point, &light, out))
         return 0;
     float geometry = cos_surface * cos_light / (distance * distance);
     out->irradiance = scene->materials[wp_triangle_material(&light)].emission.xyz *

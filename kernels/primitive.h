@@ -140,8 +140,8 @@ static inline void wp_shade_with_vertex_normals(const WpSceneView* scene, const 
 /* The surface of `primitive` where the ray origin + t direction hit it. The
  * hit point is reprojected onto the surface, so that its error scales with
  * the surface's coordinates, not with t. */
-static inline WpSurface wp_surface_at(const WpSceneView* scene, wp_uint primitive, float3 origin,
-                                      float3 direction, float t) {
+static inline void wp_surface_at(const WpSceneView* scene, wp_uint primitive, float3 origin,
+                                 float3 direction, float t, WpSurface* out) {
     WpSurface s;
     float3 position = origin + t * direction;
     s.inside_solid = 0;
@@ -165,7 +165,8 @@ static inline WpSurface wp_surface_at(const WpSceneView* scene, wp_uint primitiv
         if (wp_triangle_normals(&triangle) != 0u) {
             s.front_face = dot(direction, s.normal) < 0.0f;
             wp_shade_with_vertex_normals(scene, &triangle, &s);
-            return s;
+            *out = s;
+            return;
         }
 #endif
     }
@@ -174,7 +175,7 @@ static inline WpSurface wp_surface_at(const WpSceneView* scene, wp_uint primitiv
     s.smooth = 0;
     s.spawn_front = s.position;
     s.spawn_back = s.position;
-    return s;
+    *out = s;
 }
 
 #endif /* WP_PRIMITIVE_H */

@@ -67,11 +67,14 @@ static inline float3 wp_shade_emission(const WpMaterial* material, const WpSurfa
  * shade kernel queues it, a fused kernel traces it at once). */
 static inline void wp_shade_next_event(const WpSceneView* scene, const WpMaterial* material,
                                        const WpSurface* surface, float3 wo,
-                                       const WpShadingPoint* point, float3 origin, float3 beta,
-                                       float u_pick, float u, float v, WpShadowRay* shadow) {
+                                       const WpShadingPoint* point, float3 origin,
+                                       float3 origin_behind, float3 beta, float u_pick, float u,
+                                       float v, WpShadowRay* shadow) {
 #if WP_HAS_LIGHTS && WP_USE_NEE
     WpLightSample light;
-    if (!wp_sample_light(scene, surface->position, origin, point->n, u_pick, u, v, &light))
+    /* A transmitting BSDF sees lights on both sides. */
+    if (!wp_sample_light(scene, surface->position, origin, origin_behind,
+                         wp_bsdf_transmits(material), point->n, u_pick, u, v, &light))
         return;
     float3 contribution = beta * wp_bsdf_eval_pi(material, wo, light.direction, point) *
                           light.irradiance * (1.0f / WP_PI);
@@ -81,14 +84,14 @@ static inline void wp_shade_next_event(const WpSceneView* scene, const WpMateria
 #endif
     if (wp_is_black(contribution))
         return;
-    shadow->origin = origin;
+    shadow->origin = light.origin;
     shadow->direction = light.direction;
     shadow->length = light.length;
     shadow->contribution = contribution;
     shadow->made = 1;
 #else
     (void)scene, (void)material, (void)surface, (void)wo, (void)point;
-    (void)origin, (void)beta;
+    (void)origin, (void)origin_behind, (void)beta;
     (void)u_pick, (void)u, (void)v, (void)shadow;
 #endif
 }
@@ -142,9 +145,10 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
     if (primitive == WP_NO_HIT) /* the ray left the scene: the path ends with what it has */
         return WP_SHADED_ENDS;
 
-    WpSceneView scene = WP_SCENE_VIEW();
+    WP_SCENE_VIEW(scene);
     float3 direction = ray_direction[slot].xyz;
-    WpSurface surface = wp_surface_at(&scene, primitive, ray_origin[slot].xyz, direction, t);
+    WpSurface surface;
+    wp_surface_at(&scene, primitive, ray_origin[slot].xyz, direction, t, &surface);
     WpMaterial material = materials[surface.material];
     if (surface.inside_solid && !wp_bsdf_transmits(&material)) {
         /* Into a solid that transmits nothing only an offset origin can get:
@@ -189,8 +193,14 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
     if (wp_bsdf_is_black(&material))
         return WP_SHADED_ENDS;
 
-    /* Shadow rays and reflected rays leave by the side the ray came from. */
+    /* Shadow rays and reflected rays leave by the side the ray came from,
+     * transmitted ones (and shadow rays towards lights behind a surface that
+     * transmits) by the other. */
     float3 origin = wp_offset_ray_origin(spawn, normal, surface.scale);
+    float3 origin_behind = origin;
+    if (wp_bsdf_transmits(&material))
+        origin_behind = wp_offset_ray_origin(
+            surface.front_face ? surface.spawn_back : surface.spawn_front, -normal, surface.scale);
 #if WP_HAS_LIGHTS && WP_USE_NEE
     if (!wp_bsdf_is_delta(&material)) {
         /* One light point's numbers serve the light seen directly and, with
@@ -199,8 +209,8 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
         float u_light = wp_path_random(&random, WP_DIM_LIGHT_U);
         float v_light = wp_path_random(&random, WP_DIM_LIGHT_V);
         if (WP_PATH_NEXT_EVENT_SELECTED(frame.path_types, flags))
-            wp_shade_next_event(&scene, &material, &surface, direction, &point, origin, beta,
-                                u_pick, u_light, v_light, shadow);
+            wp_shade_next_event(&scene, &material, &surface, direction, &point, origin,
+                                origin_behind, beta, u_pick, u_light, v_light, shadow);
 #if WP_MIRROR_NEE
         shadow->mirror_made =
             WP_MIRROR_NEXT_EVENT_SELECTED(frame.path_types, flags) &&
@@ -221,8 +231,7 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
     if (scattered.flags == 0u || !(transmitted ? cos_geometric < 0.0f : cos_geometric > 0.0f))
         return WP_SHADED_ENDS;
     if (transmitted) /* the new ray leaves by the other side */
-        origin = wp_offset_ray_origin(surface.front_face ? surface.spawn_back : surface.spawn_front,
-                                      -normal, surface.scale);
+        origin = origin_behind;
     int delta = wp_bsdf_sample_is_delta(&scattered);
 #if WP_MIRROR_NEE || WP_HAS_GLOSSY /* what the emission weight at the next vertex needs */
     if (!delta)

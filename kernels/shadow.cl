@@ -11,7 +11,7 @@ __kernel void shadow(WP_STAGE_PARAMETERS) {
     int queued = index < launch.count;
     if (!WP_TRACE_SURPLUS_ITEMS && !queued)
         return;
-    WpSceneView scene = WP_SCENE_VIEW();
+    WP_SCENE_VIEW(scene);
     wp_uint slot = queued ? shadow_queue[index] : 0u;
 
     /* Scalar loads and a per-component update keep vector instructions out
@@ -68,7 +68,7 @@ __kernel void mirror_shadow(WP_STAGE_PARAMETERS) {
     if (!WP_TRACE_SURPLUS_ITEMS && !queued)
         return;
     wp_uint slot = queued ? shadow_queue[frame.pool_size + index] : 0u;
-    WpSceneView scene = WP_SCENE_VIEW();
+    WP_SCENE_VIEW(scene);
     int blocked = wp_shadow_occluded(&scene, wp_load_xyz(mirror_shadow_origin, slot),
                                      wp_load_xyz(mirror_shadow_direction, slot),
                                      wp_load_w(mirror_shadow_direction, slot));

@@ -35,17 +35,18 @@ typedef struct {
     wp_uint mirror_sphere_count;
 } WpSceneView;
 
-#define WP_SCENE_ASSIGN(name, type) view.name = name;
-static inline WpSceneView wp_scene_view(WpFrame frame WP_SCENE_BUFFERS(WP_SCENE_PARAMETER)) {
-    WpSceneView view;
+#define WP_SCENE_ASSIGN(name, type) view->name = name;
+/* Written through a pointer, not returned: a returned struct is an sret
+ * argument, which Oclgrind 21.10 cannot run once inlined (bsdf/interface.h). */
+static inline void wp_scene_view(WpSceneView* view,
+                                 WpFrame frame WP_SCENE_BUFFERS(WP_SCENE_PARAMETER)) {
     WP_SCENE_BUFFERS(WP_SCENE_ASSIGN)
-    view.triangle_count = frame.triangle_count;
-    view.sphere_count = frame.sphere_count;
-    view.light_count = frame.light_count;
-    view.light_area = frame.light_area;
-    view.mirror_group_count = frame.mirror_group_count;
-    view.mirror_sphere_count = frame.mirror_sphere_count;
-    return view;
+    view->triangle_count = frame.triangle_count;
+    view->sphere_count = frame.sphere_count;
+    view->light_count = frame.light_count;
+    view->light_area = frame.light_area;
+    view->mirror_group_count = frame.mirror_group_count;
+    view->mirror_sphere_count = frame.mirror_sphere_count;
 }
 
 /* The stages' per-item work lives in functions that take the stage's own
@@ -90,9 +91,11 @@ typedef struct {
     int mirror_made;
 } WpShadowRay;
 
-/* Inside a stage: the scene view of this launch. */
+/* Inside a stage: declares `name`, the scene view of this launch. */
 #define WP_SCENE_ARGUMENT(name, type) , name
-#define WP_SCENE_VIEW() wp_scene_view(frame WP_SCENE_BUFFERS(WP_SCENE_ARGUMENT))
+#define WP_SCENE_VIEW(name)                                                                        \
+    WpSceneView name;                                                                              \
+    wp_scene_view(&name, frame WP_SCENE_BUFFERS(WP_SCENE_ARGUMENT))
 
 /* Ray queue `queue` (0 or 1) inside the ray_queues buffer. */
 static inline __global wp_uint* wp_ray_queue(__global wp_uint* ray_queues, WpFrame frame,

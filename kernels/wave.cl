@@ -21,7 +21,7 @@ __kernel void wave(WP_FUSED_PARAMETERS) {
     wp_uint slot = get_global_id(0);
     if (slot >= frame.pool_size)
         return;
-    WpSceneView scene = WP_SCENE_VIEW();
+    WP_SCENE_VIEW(scene);
     wp_uint rays = 0, samples = 0, shadows = 0;
     for (; samples < launch.count; ++samples) {
         if (!wp_generate_path(WP_STAGE_ARGUMENTS, slot))

@@ -60,7 +60,8 @@ typedef cl_float4 wp_float4;
     X(a, ROUGHCONDUCTOR, RoughConductor, roughconductor, 4u, 1, 1) /* microfacet metal */          \
     X(a, DIELECTRIC, Dielectric, dielectric, 5u, 1, 0)             /* smooth glass, water */       \
     X(a, THINDIELECTRIC, ThinDielectric, thindielectric, 6u, 1, 0) /* a pane of no thickness */    \
-    X(a, PLASTIC, Plastic, plastic, 7u, 1, 0)                      /* diffuse under a coating */
+    X(a, PLASTIC, Plastic, plastic, 7u, 1, 0)                      /* diffuse under a coating */   \
+    X(a, ROUGHDIELECTRIC, RoughDielectric, roughdielectric, 8u, 1, 1) /* frosted glass */
 #define WP_MATERIALS(X) WP_MATERIALS_WITH(WP_MATERIAL_ROW_OF, X)
 #define WP_MATERIAL_ROW_OF(X, ...) X(__VA_ARGS__)
 
@@ -210,9 +211,9 @@ typedef struct {
     wp_float4 transmittance;  /* dielectrics: specular_transmittance, rgb in [0, 1] */
     wp_float4 specular;       /* plastic: the coating's specular_reflectance, rgb in [0, 1] */
     wp_uint kind;             /* WP_MATERIAL_* */
-    wp_uint distribution;     /* roughconductor: WP_MICROFACET_* */
+    wp_uint distribution;     /* rough kinds: WP_MICROFACET_* */
     wp_uint fresnel;          /* conductors: 1, the Fresnel term of eta and k; 0, F = 1 ("none") */
-    wp_float alpha_u;         /* roughconductor: roughness along the tangent, > 0 */
+    wp_float alpha_u;         /* rough kinds: roughness along the tangent, > 0 */
     wp_float alpha_v;         /* ... and along the bitangent */
     wp_float fdr_int;         /* plastic: the coating's diffuse Fresnel reflectance from inside */
     wp_float specular_weight; /* plastic: the share of samples steered to the coating */

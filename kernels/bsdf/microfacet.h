@@ -31,12 +31,21 @@ typedef struct {
     wp_uint distribution; /* WP_MICROFACET_* */
 } WpMicrofacet;
 
-static inline WpMicrofacet wp_microfacet_of(const WpMaterial* m) {
-    WpMicrofacet d;
-    d.alpha_u = fmax(m->alpha_u, WP_MICROFACET_MIN_ALPHA);
-    d.alpha_v = fmax(m->alpha_v, WP_MICROFACET_MIN_ALPHA);
-    d.distribution = m->distribution;
-    return d;
+/* w in the local frame (t, b, n) of a microfacet BSDF, t and b from
+ * wp_make_basis(n). */
+static inline float3 wp_to_local(float3 w, float3 n) {
+    float3 t, b;
+    wp_make_basis(n, &t, &b);
+    return (float3)(dot(w, t), dot(w, b), dot(w, n));
+}
+
+/* The material's distribution, written through a pointer as every struct the
+ * shade kernel inlines is (a returned one is an sret argument, which
+ * Oclgrind 21.10 cannot run once inlined: bsdf/interface.h). */
+static inline void wp_microfacet_of(const WpMaterial* m, WpMicrofacet* d) {
+    d->alpha_u = fmax(m->alpha_u, WP_MICROFACET_MIN_ALPHA);
+    d->alpha_v = fmax(m->alpha_v, WP_MICROFACET_MIN_ALPHA);
+    d->distribution = m->distribution;
 }
 
 /* The distribution of normals D(m), per unit projected area. */

@@ -19,13 +19,6 @@
 #include "bsdf/interface.h"
 #include "bsdf/microfacet.h"
 
-/* w in the frame (t, b, n). */
-static inline float3 wp_to_local(float3 w, float3 n) {
-    float3 t, b;
-    wp_make_basis(n, &t, &b);
-    return (float3)(dot(w, t), dot(w, b), dot(w, n));
-}
-
 static inline void wp_roughconductor_sample(const WpMaterial* m, float3 wo,
                                             const WpShadingPoint* point, float u1, float u2,
                                             WpBsdfSample* out) {
@@ -37,7 +30,8 @@ static inline void wp_roughconductor_sample(const WpMaterial* m, float3 wo,
         wp_bsdf_no_sample(out);
         return;
     }
-    WpMicrofacet d = wp_microfacet_of(m);
+    WpMicrofacet d;
+    wp_microfacet_of(m, &d);
     float3 h = wp_microfacet_sample_visible(&d, v, u1, u2);
     float v_dot_h = dot(v, h);
     float3 l = 2.0f * v_dot_h * h - v;
@@ -62,7 +56,8 @@ static inline float3 wp_roughconductor_eval_pi(const WpMaterial* m, float3 wo, f
     if (!(v.z > 0.0f && l.z > 0.0f))
         return (float3)(0.0f);
     float3 h = normalize(v + l);
-    WpMicrofacet d = wp_microfacet_of(m);
+    WpMicrofacet d;
+    wp_microfacet_of(m, &d);
     float g = wp_microfacet_g1(&d, v, h) * wp_microfacet_g1(&d, l, h);
     float v_dot_h = fmin(1.0f, fmax(0.0f, dot(v, h)));
     return wp_conductor_reflectance(m, v_dot_h) *
@@ -79,7 +74,8 @@ static inline float wp_roughconductor_pdf(const WpMaterial* m, float3 wo, float3
     float v_dot_h = dot(v, h);
     if (!(v_dot_h > 0.0f))
         return 0.0f;
-    WpMicrofacet d = wp_microfacet_of(m);
+    WpMicrofacet d;
+    wp_microfacet_of(m, &d);
     return wp_microfacet_pdf_visible(&d, v, h) / (4.0f * v_dot_h);
 }
 

@@ -367,7 +367,7 @@ DeviceScene flatten_scene(const Scene& scene, bool hierarchy) {
         w.transmittance = to_float4(m.transmittance);
         w.specular = to_float4(m.specular);
         if (m.kind == MaterialKind::Dielectric || m.kind == MaterialKind::ThinDielectric ||
-            m.kind == MaterialKind::Plastic)
+            m.kind == MaterialKind::RoughDielectric || m.kind == MaterialKind::Plastic)
             w.eta = to_float4(glm::dvec3(m.int_ior / m.ext_ior));
         if (m.kind == MaterialKind::Plastic) {
             const double eta = m.int_ior / m.ext_ior;

@@ -320,6 +320,14 @@ class SceneReader : private json::Reader {
             read_conductor(m, pm, mat);
             read_roughness(m, pm, mat);
             return;
+        case MaterialKind::RoughDielectric:
+            check_keys(m, pm,
+                       {"type", "int_ior", "ext_ior", "specular_reflectance",
+                        "specular_transmittance", "emission", "distribution", "alpha", "alpha_u",
+                        "alpha_v"});
+            read_dielectric(m, pm, mat);
+            read_roughness(m, pm, mat);
+            return;
         case MaterialKind::Plastic:
             check_keys(m, pm,
                        {"type", "int_ior", "ext_ior", "diffuse_reflectance", "specular_reflectance",

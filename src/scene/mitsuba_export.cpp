@@ -128,6 +128,14 @@ std::string material_id(std::size_t index) {
     return "material-" + std::to_string(index);
 }
 
+// A rough material's distribution and roughness, as Mitsuba's parameters.
+std::string roughness_xml(const Material& m, const std::string& in) {
+    return "    <string name=\"distribution\" value=\"" +
+           std::string(m.distribution == MicrofacetDistribution::Ggx ? "ggx" : "beckmann") +
+           "\"/>\n" + in + "    <float name=\"alpha_u\" value=\"" + number(m.alpha_u) + "\"/>\n" +
+           in + "    <float name=\"alpha_v\" value=\"" + number(m.alpha_v) + "\"/>\n";
+}
+
 // A material's BSDF. wavepath's diffuse and mirror surfaces reflect alike on
 // both sides (kernels/shade.cl flips the normal to the side the ray came
 // from); Mitsuba's reflect on the front only unless wrapped in `twosided`.
@@ -155,13 +163,8 @@ std::string bsdf(const Material& m, std::size_t index) {
         inner += in + "        " + rgb("eta", m.eta) + "\n";
         inner += in + "        " + rgb("k", m.k) + "\n";
         inner += in + "        " + rgb("specular_reflectance", m.reflectance) + "\n";
-        if (rough) {
-            inner += in + "        <string name=\"distribution\" value=\"" +
-                     (m.distribution == MicrofacetDistribution::Ggx ? "ggx" : "beckmann") +
-                     "\"/>\n";
-            inner += in + "        <float name=\"alpha_u\" value=\"" + number(m.alpha_u) + "\"/>\n";
-            inner += in + "        <float name=\"alpha_v\" value=\"" + number(m.alpha_v) + "\"/>\n";
-        }
+        if (rough)
+            inner += in + "    " + roughness_xml(m, in + "    ");
         inner += in + "    </bsdf>\n";
         break;
     }
@@ -177,10 +180,12 @@ std::string bsdf(const Material& m, std::size_t index) {
         break;
     case MaterialKind::Dielectric:
     case MaterialKind::ThinDielectric:
+    case MaterialKind::RoughDielectric:
         // Not twosided: a dielectric has two sides of its own (Mitsuba refuses
         // to wrap a BSDF that transmits), the front one outside.
         return in + xml_comment("material '" + m.name + "'") + "\n" + in + "<bsdf type=\"" +
-               material_kind_name(m.kind) + "\" id=\"" + material_id(index) + "\">\n" + in +
+               material_kind_name(m.kind) + "\" id=\"" + material_id(index) + "\">\n" +
+               (m.kind == MaterialKind::RoughDielectric ? in + roughness_xml(m, in) : "") + in +
                "    <float name=\"int_ior\" value=\"" + number(m.int_ior) + "\"/>\n" + in +
                "    <float name=\"ext_ior\" value=\"" + number(m.ext_ior) + "\"/>\n" + in + "    " +
                rgb("specular_reflectance", m.reflectance) + "\n" + in + "    " +

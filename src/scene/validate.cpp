@@ -142,8 +142,13 @@ class Checker {
                 vec(m.eta, f + ".eta", 0.0, scene_limits::max_index);
                 vec(m.k, f + ".k", 0.0, scene_limits::max_index);
                 break;
+            case MaterialKind::RoughDielectric:
+                positive(m.alpha_u, f + ".alpha_u", scene_limits::max_alpha);
+                positive(m.alpha_v, f + ".alpha_v", scene_limits::max_alpha);
+                [[fallthrough]];
             case MaterialKind::Plastic:
-                vec(m.specular, f + ".specular", 0.0, 1.0);
+                if (m.kind == MaterialKind::Plastic)
+                    vec(m.specular, f + ".specular", 0.0, 1.0);
                 [[fallthrough]];
             case MaterialKind::Dielectric:
             case MaterialKind::ThinDielectric:

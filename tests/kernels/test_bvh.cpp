@@ -33,7 +33,7 @@ __kernel void closed(WpFrame frame WP_SCENE_BUFFERS(WP_SCENE_PARAMETER), wp_uint
     wp_uint i = get_global_id(0);
     if (i >= count)
         return;
-    WpSceneView scene = WP_SCENE_VIEW();
+    WP_SCENE_VIEW(scene);
     float3 o = origins[i].xyz;
     float3 d = targets[i].xyz - o;
     if (i & 1u) {
@@ -58,7 +58,7 @@ __kernel void compare(WpFrame frame WP_SCENE_BUFFERS(WP_SCENE_PARAMETER), wp_uin
     wp_uint i = get_global_id(0);
     if (i >= count)
         return;
-    WpSceneView scene = WP_SCENE_VIEW();
+    WP_SCENE_VIEW(scene);
     float3 o = origins[i].xyz, d = directions[i].xyz;
     float segment = directions[i].w; /* any-hit queries up to here */
     float t_bvh, t_loop, t_any;

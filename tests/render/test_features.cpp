@@ -131,7 +131,8 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
     CHECK(analyse_features(hexroom()).build_options() ==
           "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 -D "
           "WP_HAS_CONDUCTOR=0 -D WP_HAS_ROUGHCONDUCTOR=0 -D WP_HAS_DIELECTRIC=0 -D "
-          "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_PLASTIC=0 -D WP_HAS_SHADING_NORMALS=0 "
+          "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_PLASTIC=0 -D WP_HAS_ROUGHDIELECTRIC=0 -D "
+          "WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D "
           "WP_HAS_LENS=0 -D "
           "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D "
@@ -142,7 +143,8 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
     CHECK(analyse_features(triangles_only()).build_options() ==
           "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=0 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 -D "
           "WP_HAS_CONDUCTOR=0 -D WP_HAS_ROUGHCONDUCTOR=0 -D WP_HAS_DIELECTRIC=0 -D "
-          "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_PLASTIC=0 -D WP_HAS_SHADING_NORMALS=0 "
+          "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_PLASTIC=0 -D WP_HAS_ROUGHDIELECTRIC=0 -D "
+          "WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=0 -D "
           "WP_HAS_LENS=0 -D "
           "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D "
@@ -153,7 +155,8 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
     CHECK(analyse_features(spheres_only()).build_options() ==
           "-D WP_HAS_TRIANGLES=0 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 -D "
           "WP_HAS_CONDUCTOR=0 -D WP_HAS_ROUGHCONDUCTOR=0 -D WP_HAS_DIELECTRIC=0 -D "
-          "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_PLASTIC=0 -D WP_HAS_SHADING_NORMALS=0 "
+          "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_PLASTIC=0 -D WP_HAS_ROUGHDIELECTRIC=0 -D "
+          "WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=0 -D WP_HAS_PLANAR_MIRRORS=0 -D WP_HAS_MIRROR_SPHERES=0 -D "
           "WP_HAS_LENS=0 -D "
           "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D "
@@ -163,7 +166,8 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
     CHECK(analyse_features(no_mirror()).build_options() ==
           "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=0 -D "
           "WP_HAS_CONDUCTOR=0 -D WP_HAS_ROUGHCONDUCTOR=0 -D WP_HAS_DIELECTRIC=0 -D "
-          "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_PLASTIC=0 -D WP_HAS_SHADING_NORMALS=0 "
+          "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_PLASTIC=0 -D WP_HAS_ROUGHDIELECTRIC=0 -D "
+          "WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=0 -D WP_HAS_MIRROR_SPHERES=0 -D "
           "WP_HAS_LENS=0 -D "
           "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D "
@@ -174,7 +178,8 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
     CHECK(analyse_features(no_light()).build_options() ==
           "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 -D "
           "WP_HAS_CONDUCTOR=0 -D WP_HAS_ROUGHCONDUCTOR=0 -D WP_HAS_DIELECTRIC=0 -D "
-          "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_PLASTIC=0 -D WP_HAS_SHADING_NORMALS=0 "
+          "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_PLASTIC=0 -D WP_HAS_ROUGHDIELECTRIC=0 -D "
+          "WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=0 -D WP_HAS_PLANAR_MIRRORS=0 -D WP_HAS_MIRROR_SPHERES=0 -D "
           "WP_HAS_LENS=0 -D "
           "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D "
@@ -186,7 +191,8 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
     CHECK(analyse_features(large()).build_options() ==
           "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 -D "
           "WP_HAS_CONDUCTOR=0 -D WP_HAS_ROUGHCONDUCTOR=0 -D WP_HAS_DIELECTRIC=0 -D "
-          "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_PLASTIC=0 -D WP_HAS_SHADING_NORMALS=0 "
+          "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_PLASTIC=0 -D WP_HAS_ROUGHDIELECTRIC=0 -D "
+          "WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D "
           "WP_HAS_LENS=0 -D "
           "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D WP_USE_BVH=1");
@@ -194,7 +200,8 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
     CHECK(SceneFeatures::general_for(analyse_features(large())).build_options() ==
           "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 -D "
           "WP_HAS_CONDUCTOR=1 -D WP_HAS_ROUGHCONDUCTOR=1 -D WP_HAS_DIELECTRIC=1 -D "
-          "WP_HAS_THINDIELECTRIC=1 -D WP_HAS_PLASTIC=1 -D WP_HAS_SHADING_NORMALS=1 "
+          "WP_HAS_THINDIELECTRIC=1 -D WP_HAS_PLASTIC=1 -D WP_HAS_ROUGHDIELECTRIC=1 -D "
+          "WP_HAS_SHADING_NORMALS=1 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D "
           "WP_HAS_LENS=1 -D "
           "WP_HAS_TENT_FILTER=1 -D WP_HAS_GAUSSIAN_FILTER=1 -D WP_USE_BVH=1");
@@ -203,7 +210,8 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
     CHECK(SceneFeatures::all().build_options() ==
           "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 -D "
           "WP_HAS_CONDUCTOR=1 -D WP_HAS_ROUGHCONDUCTOR=1 -D WP_HAS_DIELECTRIC=1 -D "
-          "WP_HAS_THINDIELECTRIC=1 -D WP_HAS_PLASTIC=1 -D WP_HAS_SHADING_NORMALS=1 "
+          "WP_HAS_THINDIELECTRIC=1 -D WP_HAS_PLASTIC=1 -D WP_HAS_ROUGHDIELECTRIC=1 -D "
+          "WP_HAS_SHADING_NORMALS=1 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D "
           "WP_HAS_LENS=1 -D "
           "WP_HAS_TENT_FILTER=1 -D WP_HAS_GAUSSIAN_FILTER=1");
@@ -232,7 +240,7 @@ TEST_CASE("features: describe() names the features and the compiled-in counts") 
           "triangles spheres diffuse mirror lights planar_mirrors mirror_spheres; bvh");
     CHECK(SceneFeatures::all().describe() ==
           "triangles spheres diffuse mirror conductor roughconductor dielectric thindielectric "
-          "plastic shading_normals lights "
+          "plastic roughdielectric shading_normals lights "
           "planar_mirrors mirror_spheres lens tent_filter gaussian_filter");
 }
 

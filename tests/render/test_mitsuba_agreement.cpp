@@ -93,3 +93,7 @@ TEST_CASE("Mitsuba 3 agreement: smooth and thin dielectrics", "[render][material
 TEST_CASE("Mitsuba 3 agreement: plastic, linear and nonlinear", "[render][materials][statistical]") {
     check_agreement("plastic", 1024);
 }
+
+TEST_CASE("Mitsuba 3 agreement: rough dielectrics", "[render][materials][statistical]") {
+    check_agreement("roughglass", 2048);
+}

@@ -1,0 +1,171 @@
+/* The rough dielectric (Mitsuba 3's `roughdielectric`): frosted glass, a
+ * dielectric interface made of microfacets (Walter et al., "Microfacet Models
+ * for Refraction through Rough Surfaces", EGSR 2007), with Mitsuba's
+ * distributions, roughness and separable Smith masking (bsdf/microfacet.h).
+ * In the local frame of the shading normal on the ray's side, v = -wo the
+ * direction towards the viewer (v.z > 0), eta the index beyond relative to
+ * the ray's side (as for `dielectric`), h the microfacet normal:
+ *
+ *   reflection,   l.z > 0:  f = F(v.h) D(h) G1(v,h) G1(l,h) / (4 v.z |l.z|),
+ *                           h = normalize(v + l);
+ *   transmission, l.z < 0:  f = (1 - F(v.h)) D(h) G1(v,h) G1(l,h) |v.h| |l.h| /
+ *                               (v.z |l.z| (v.h + eta l.h)^2),
+ *                           h = -normalize(v + eta l), turned to v's side,
+ *
+ * the transmitted part without Walter's eta^2 because paths carry radiance
+ * (the (n_from / n_to)^2 of bsdf/dielectric.h; Mitsuba's radiance mode does
+ * the same).
+ *
+ * Sampling: the side first, reflection with probability P = F(v.z) (the
+ * smooth interface's reflectance, kept within [0.05, 0.95] so that neither
+ * side is ever starved; 0 without an interface, eta = 1), then a normal
+ * visible from v (Heitz) with the same number rescaled, and l reflected or
+ * refracted about it. Mitsuba picks the side after the normal, by F(v.h), from
+ * a third number that wavepath's two numbers per bounce do not have; both
+ * are unbiased, with the same density in eval and pdf as in sample. The
+ * weight is then F(v.h) G1(l,h) / P or (1 - F(v.h)) G1(l,h) / (1 - P) times
+ * (n_from / n_to)^2.
+ *
+ * Next-event estimation sees lights on both sides of a surface that
+ * transmits (kernels/lights.h), and weighs them against BSDF sampling by
+ * multiple importance sampling, as for the rough conductor. */
+#ifndef WP_BSDF_ROUGHDIELECTRIC_H
+#define WP_BSDF_ROUGHDIELECTRIC_H
+
+#include "bsdf/dielectric.h"
+#include "bsdf/fresnel.h"
+#include "bsdf/interface.h"
+#include "bsdf/microfacet.h"
+
+/* The probability of sampling reflection for a ray at v.z with relative index eta. */
+static inline float wp_roughdielectric_reflect_probability(float cos_i, float eta) {
+    if (eta == 1.0f)
+        return 0.0f;
+    float cos_t;
+    return clamp(wp_fresnel_dielectric(cos_i, eta, &cos_t), 0.05f, 0.95f);
+}
+
+/* The microfacet normal that takes v to l (on v's side; 0 when none does). */
+static inline float3 wp_roughdielectric_half(float3 v, float3 l, float eta) {
+    float3 h = l.z > 0.0f ? v + l : -(v + eta * l);
+    float len = length(h);
+    if (!(len > 0.0f))
+        return (float3)(0.0f);
+    h /= len;
+    return h.z < 0.0f ? -h : h;
+}
+
+/* pi f and the density of l (the formulas above), in the local frame. */
+static inline void wp_roughdielectric_eval_local(const WpMaterial* m, float3 v, float3 l, float eta,
+                                                 float3* f_pi, float* pdf) {
+    *f_pi = (float3)(0.0f);
+    *pdf = 0.0f;
+    if (!(v.z > 0.0f) || l.z == 0.0f)
+        return;
+    int reflect = l.z > 0.0f;
+    float3 h = wp_roughdielectric_half(v, l, eta);
+    float v_h = dot(v, h), l_h = dot(l, h);
+    /* Both directions on their own side of the microfacet. */
+    if (!(v_h > 0.0f) || !(reflect ? l_h > 0.0f : l_h < 0.0f))
+        return;
+    WpMicrofacet d;
+    wp_microfacet_of(m, &d);
+    float cos_t;
+    float fresnel = wp_fresnel_dielectric(fmin(1.0f, v_h), eta, &cos_t);
+    float g = wp_microfacet_g1(&d, v, h) * wp_microfacet_g1(&d, l, h);
+    float dh = wp_microfacet_d(&d, h);
+    float p_reflect = wp_roughdielectric_reflect_probability(fmin(1.0f, v.z), eta);
+    float visible = wp_microfacet_pdf_visible(&d, v, h);
+    if (reflect) {
+        *f_pi = m->reflectance.xyz * (WP_PI * fresnel * dh * g / (4.0f * v.z * l.z));
+        *pdf = p_reflect * visible / (4.0f * v_h);
+    } else {
+        float denominator = v_h + eta * l_h;
+        float jacobian = eta * eta * fabs(l_h) / (denominator * denominator);
+        /* Radiance: Walter's eta^2 cancels against (1 / eta)^2. */
+        *f_pi = m->transmittance.xyz * (WP_PI * (1.0f - fresnel) * dh * g * v_h * fabs(l_h) /
+                                        (v.z * fabs(l.z) * denominator * denominator));
+        *pdf = (1.0f - p_reflect) * visible * jacobian;
+    }
+    if (!isfinite(*pdf) || !all(isfinite(*f_pi))) {
+        *f_pi = (float3)(0.0f);
+        *pdf = 0.0f;
+    }
+}
+
+static inline void wp_roughdielectric_sample(const WpMaterial* m, float3 wo,
+                                             const WpShadingPoint* p, float u1, float u2,
+                                             WpBsdfSample* out) {
+    float3 t, b, n = p->n;
+    wp_make_basis(n, &t, &b);
+    float3 v = (float3)(-dot(wo, t), -dot(wo, b), -dot(wo, n));
+    float eta = wp_dielectric_eta(m, p);
+    if (!(v.z > 0.0f)) {
+        wp_bsdf_no_sample(out);
+        return;
+    }
+    float p_reflect = wp_roughdielectric_reflect_probability(fmin(1.0f, v.z), eta);
+    int reflect = u1 < p_reflect;
+    float u = reflect ? u1 / p_reflect : (u1 - p_reflect) / (1.0f - p_reflect);
+    WpMicrofacet d;
+    wp_microfacet_of(m, &d);
+    float3 h = wp_microfacet_sample_visible(&d, v, fmin(u, 0x1.fffffep-1f), u2);
+    float v_h = dot(v, h);
+    float cos_t;
+    float fresnel = wp_fresnel_dielectric(fmin(1.0f, fmax(0.0f, v_h)), eta, &cos_t);
+    float3 l;
+    if (reflect) {
+        l = 2.0f * v_h * h - v;
+    } else {
+        if (!(fresnel < 1.0f)) { /* total internal reflection at this microfacet */
+            wp_bsdf_no_sample(out);
+            return;
+        }
+        float inv_eta = 1.0f / eta;
+        l = (inv_eta * v_h - cos_t) * h - inv_eta * v;
+    }
+    if (!(v_h > 0.0f) || !(reflect ? l.z > 0.0f : l.z < 0.0f)) {
+        wp_bsdf_no_sample(out);
+        return;
+    }
+    WpBsdfSample s;
+    float3 f_pi;
+    wp_roughdielectric_eval_local(m, v, l, eta, &f_pi, &s.pdf);
+    if (!(s.pdf > 0.0f)) {
+        wp_bsdf_no_sample(out);
+        return;
+    }
+    s.direction = normalize(l.x * t + l.y * b + l.z * n);
+    s.weight = f_pi * (fabs(l.z) / (WP_PI * s.pdf));
+    s.flags = (reflect ? WP_BSDF_REFLECTION : WP_BSDF_TRANSMISSION) | WP_BSDF_GLOSSY;
+    s.eta = reflect ? 1.0f : eta;
+    *out = s;
+}
+
+static inline float3 wp_roughdielectric_eval_pi(const WpMaterial* m, float3 wo, float3 wi,
+                                                const WpShadingPoint* p) {
+    float3 f_pi;
+    float pdf;
+    wp_roughdielectric_eval_local(m, -wp_to_local(wo, p->n), wp_to_local(wi, p->n),
+                                  wp_dielectric_eta(m, p), &f_pi, &pdf);
+    return f_pi;
+}
+
+static inline float wp_roughdielectric_pdf(const WpMaterial* m, float3 wo, float3 wi,
+                                           const WpShadingPoint* p) {
+    float3 f_pi;
+    float pdf;
+    wp_roughdielectric_eval_local(m, -wp_to_local(wo, p->n), wp_to_local(wi, p->n),
+                                  wp_dielectric_eta(m, p), &f_pi, &pdf);
+    return pdf;
+}
+
+static inline int wp_roughdielectric_is_delta(void) {
+    return 0;
+}
+
+static inline int wp_roughdielectric_transmits(void) {
+    return 1;
+}
+
+#endif /* WP_BSDF_ROUGHDIELECTRIC_H */
