@@ -100,6 +100,10 @@ struct SourceFile {
         return {name, static_cast<int>(line - line_starts.begin()) + 1,
                 static_cast<int>(at - *line) + 1};
     }
+
+    // An element's place: pugixml's offset is that of its name, one byte
+    // after the '<' where messages point.
+    Location at(const pugi::xml_node& node) const { return locate(node.offset_debug() - 1); }
 };
 
 // The tags of plugin objects (Mitsuba 3's object types).
@@ -154,7 +158,7 @@ class Reader {
         check_version(file, root);
         auto scene = std::make_shared<Object>();
         scene->tag = "scene";
-        scene->where = file.locate(root.offset_debug());
+        scene->where = file.at(root);
         read_contents(file, root, *scene);
         include_stack_.pop_back();
         return {scene, files_read_};
@@ -199,7 +203,7 @@ class Reader {
 
     [[noreturn]] void fail(const SourceFile& file, const pugi::xml_node& node,
                            const std::string& problem) const {
-        fail_at(file.locate(node.offset_debug()), describe(node), problem);
+        fail_at(file.at(node), describe(node), problem);
     }
 
     static std::string describe(const pugi::xml_node& node) {
@@ -314,7 +318,7 @@ class Reader {
     void include(const SourceFile& file, const pugi::xml_node& node, Object& object) {
         const std::string name = attribute(file, node, "filename", true);
         const std::filesystem::path path = std::filesystem::path(file.name).parent_path() / name;
-        const Location where = file.locate(node.offset_debug());
+        const Location where = file.at(node);
         const SourceFile& included = open(path, &where, describe(node));
         const pugi::xml_node root = included.document.document_element();
         if (std::string_view(root.name()) != "scene")
@@ -327,7 +331,7 @@ class Reader {
     std::shared_ptr<const Object> read_object(const SourceFile& file, const pugi::xml_node& node) {
         auto object = std::make_shared<Object>();
         object->tag = node.name();
-        object->where = file.locate(node.offset_debug());
+        object->where = file.at(node);
         object->type = attribute(file, node, "type", true);
         object->id = attribute(file, node, "id", false);
         object->name = attribute(file, node, "name", false);
@@ -380,7 +384,7 @@ class Reader {
     Parameter read_parameter(const SourceFile& file, const pugi::xml_node& node, ValueKind kind) {
         Parameter p;
         p.kind = kind;
-        p.where = file.locate(node.offset_debug());
+        p.where = file.at(node);
         p.name = attribute(file, node, "name", true);
         p.element = element_text(node.name(), {{"name", p.name}});
         switch (kind) {
