@@ -80,19 +80,22 @@ TEST_CASE("mitsuba import: transform steps apply in the order written",
     CHECK(a.materials[a.triangles[2].material].reflectance == glm::dvec3(0.5));
 }
 
-TEST_CASE("mitsuba import: rotations are right-handed, flip_normals turns the front",
+TEST_CASE("mitsuba import: rotations are right-handed, flip_normals and mirrors turn the front",
           "[scene][mitsuba][import]") {
     wp::test::TempDir dir;
     const wp::Scene s = load(dir, R"(<shape type="rectangle">
         <transform name="to_world"><rotate x="1" angle="90"/></transform></shape>
     <shape type="rectangle"><boolean name="flip_normals" value="true"/></shape>
-    <shape type="rectangle"><transform name="to_world"><scale x="-1"/></transform></shape>)");
-    REQUIRE(s.triangles.size() == 8);
+    <shape type="rectangle"><transform name="to_world"><scale x="-1"/></transform></shape>
+    <shape type="disk"><transform name="to_world"><scale x="-1"/></transform></shape>)");
+    REQUIRE(s.triangles.size() == 8 + 256);
     check_near(normal_of(s.triangles[2]), {0, -1, 0}); // +z turned 90 degrees about +x
     check_near(normal_of(s.triangles[4]), {0, 0, -1});
-    // A mirror keeps an analytic shape's front, as Mitsuba's normal transform
-    // does: the winding of the mirrored corners alone would face -z.
-    check_near(normal_of(s.triangles[6]), {0, 0, 1});
+    // A mirror turns a rectangle round, as Mitsuba 3.9.1 does (its front is
+    // the winding of the mirrored corners); the disk keeps its front.
+    check_near(normal_of(s.triangles[6]), {0, 0, -1});
+    for (std::size_t i = 8; i < s.triangles.size(); ++i)
+        check_near(normal_of(s.triangles[i]), {0, 0, 1});
 }
 
 TEST_CASE("mitsuba import: the cube faces out, the disk is a fan of its area",

@@ -71,10 +71,12 @@ void check_coordinates(Parameters& p, const glm::dvec3& v) {
                                    ", beyond wavepath's limit of 1e30");
 }
 
-// Rectangle, cube, disk. Mitsuba orients the rectangle and the disk by
-// their normal, transformed as a normal is, so a mirroring to_world keeps
-// their front; wavepath reverses the winding to match. The cube is a mesh
-// in Mitsuba: its front is its transformed winding, as for obj and ply.
+// Rectangle, cube, disk. Under a mirroring to_world Mitsuba 3.9.1 keeps
+// the disk's front (it transforms the disk's normal as a normal), so
+// wavepath reverses the winding to match, and turns the rectangle's and the
+// cube's round, as a mesh's (measured: a ray at each shape mirrored by
+// <scale x="-1"/> sees the normal -z on a rectangle, a cube face and a PLY
+// triangle, +z on a disk; docs/mitsuba-import.md).
 void add_triangles(Parameters& p, const std::vector<Corners>& local, bool keep_front,
                    std::uint32_t material, Scene& scene) {
     const wp::Transform to_world = p.transform("to_world").value_or(wp::Transform());
@@ -196,7 +198,7 @@ void add_shape(const Object& shape, std::uint32_t material, Scene& scene) {
                       type == "rectangle" ? rectangle()
                       : type == "cube"    ? cube()
                                           : disk(),
-                      type != "cube", material, scene);
+                      type == "disk", material, scene);
     } else {
         p.fail("unsupported shape type '" + json::shorten(type, 40) +
                "' (wavepath reads obj, ply, rectangle, cube, sphere and disk)");
