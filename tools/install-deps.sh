@@ -19,7 +19,7 @@ packages=(
   build-essential cmake pkg-config
   pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers clinfo oclgrind
   libglm-dev libstb-dev catch2 nlohmann-json3-dev libtinyexr-dev libcli11-dev
-  libtinyobjloader-dev libexpat1-dev libcpp-httplib-dev
+  libtinyobjloader-dev libexpat1-dev libpugixml-dev libcpp-httplib-dev
   libopenmpi-dev openmpi-bin # MPI renders (docs/multi-device.md); optional to the build
 )
 if [[ "${1:-}" == "--ci" ]]; then

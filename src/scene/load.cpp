@@ -16,6 +16,7 @@
 #include "scene/json_reader.hpp"
 #include "scene/material.hpp"
 #include "scene/mesh.hpp"
+#include "scene/mitsuba/load_mitsuba.hpp"
 #include "scene/transform_reader.hpp"
 #include "scene/validate.hpp"
 #include "util/file.hpp"
@@ -713,6 +714,8 @@ Scene parse_scene(std::string_view json_text, const std::string& source_name) {
 }
 
 Scene load_scene(const std::filesystem::path& path) {
+    if (lower_extension(path) == ".xml")
+        return load_mitsuba_scene(path);
     const std::string name = path.string();
     std::string text;
     try {

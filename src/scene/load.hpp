@@ -14,7 +14,9 @@
 
 namespace wp {
 
-// Reads and parses the file. Throws SceneError("cannot open scene '<path>': <reason>")
+// Reads and parses the file: a Mitsuba 3 scene when its name ends in .xml
+// (any case; scene/mitsuba/load_mitsuba.hpp, docs/mitsuba-import.md), else
+// wavepath's JSON. Throws SceneError("cannot open scene '<path>': <reason>")
 // when the file cannot be opened or read, and whatever parse_scene throws otherwise.
 // Scene::source is the path as given.
 Scene load_scene(const std::filesystem::path& path);

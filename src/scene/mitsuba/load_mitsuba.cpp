@@ -1,0 +1,182 @@
+// A Mitsuba 3 scene put together from its plugins (load_mitsuba.hpp).
+#include "scene/mitsuba/load_mitsuba.hpp"
+
+#include <map>
+#include <memory>
+#include <tuple>
+#include <vector>
+
+#include "scene/json_reader.hpp"
+#include "scene/mitsuba/bsdfs.hpp"
+#include "scene/mitsuba/parameters.hpp"
+#include "scene/mitsuba/sensor.hpp"
+#include "scene/mitsuba/shapes.hpp"
+#include "scene/mitsuba/xml_reader.hpp"
+#include "scene/validate.hpp"
+
+namespace wp {
+namespace mitsuba {
+namespace {
+
+using json::number_text;
+
+// An `area` emitter's radiance.
+glm::dvec3 read_emitter(const Object& emitter) {
+    Parameters p(emitter);
+    if (emitter.type != "area")
+        p.fail("unsupported emitter inside a shape (wavepath has area emitters)");
+    const std::optional<glm::dvec3> radiance = p.color("radiance");
+    if (!radiance)
+        p.fail("an area emitter needs its radiance");
+    check_range(p, "radiance", *radiance, 0.0, scene_limits::max_radiance);
+    for (const auto& child : emitter.children)
+        fail_at(child->where, child->element(),
+                child->tag == "texture" ? "textured radiance is not supported yet (give an <rgb>)"
+                                        : "wavepath does not support a <" + child->tag +
+                                              "> inside " + emitter.element());
+    p.finish();
+    return *radiance;
+}
+
+// Mitsuba's `path` integrator. wavepath's paths end by Russian roulette
+// alone (a cap of 1024 bounces guards lossless corridors), which is
+// Mitsuba's max_depth -1; a finite max_depth is noted, since it darkens
+// Mitsuba's image. rr_depth changes the noise only.
+void read_integrator(const Object& integrator, std::vector<std::string>& warnings) {
+    Parameters p(integrator);
+    if (integrator.type != "path")
+        p.fail("unsupported integrator (wavepath's is Mitsuba's path)");
+    const long long max_depth = p.integer("max_depth").value_or(-1);
+    if (max_depth != -1)
+        warnings.push_back(integrator.where.text() + ": " + integrator.element() + ": max_depth " +
+                           std::to_string(max_depth) +
+                           " is not applied: wavepath ends paths by Russian roulette only (as "
+                           "max_depth -1); set --max-depth for a cap");
+    p.ignore("rr_depth");
+    if (p.boolean("hide_emitters").value_or(false))
+        p.fail("hide_emitters", "hide_emitters is not supported (wavepath shows the lights a "
+                                "camera ray hits)");
+    for (const auto& child : integrator.children)
+        fail_at(child->where, child->element(),
+                "wavepath does not support a <" + child->tag + "> inside " + integrator.element());
+    p.finish();
+}
+
+class SceneAssembler {
+  public:
+    Scene assemble(const std::filesystem::path& path,
+                   const std::map<std::string, std::string>& defines) {
+        const Document document = read_document(path, defines);
+        scene_.source = path.string();
+        scene_.files.assign(document.files.begin() + 1, document.files.end());
+        const Object& root = *document.scene;
+        bool has_sensor = false;
+        for (const auto& child : root.children) {
+            const Object& object = *child;
+            if (object.tag == "sensor") {
+                if (has_sensor) {
+                    scene_.warnings.push_back(object.where.text() + ": " + object.element() +
+                                              ": a second sensor; wavepath renders the first");
+                    continue;
+                }
+                scene_.camera = read_sensor(object, scene_.warnings);
+                has_sensor = true;
+            } else if (object.tag == "shape") {
+                add_shape_with_material(object);
+            } else if (object.tag == "integrator") {
+                read_integrator(object, scene_.warnings);
+            } else if ((object.tag == "bsdf" || object.tag == "texture") && !object.id.empty()) {
+                // Declared for <ref>s; read where a shape uses it.
+            } else if (object.tag == "emitter") {
+                fail_at(object.where, object.element(),
+                        "unsupported emitter at the scene's top level (wavepath's lights are "
+                        "area emitters inside shapes: <emitter type=\"area\">)");
+            } else {
+                fail_at(object.where, object.element(),
+                        "unsupported at the scene's top level (wavepath reads sensor, "
+                        "integrator, shape, and bsdf with an id)");
+            }
+        }
+        if (!root.parameters.empty())
+            fail_at(root.parameters.front().where, root.parameters.front().element,
+                    "a value outside any plugin");
+        if (!has_sensor)
+            fail_at(root.where, "<scene>",
+                    "the scene has no <sensor> (wavepath needs a "
+                    "perspective or thinlens camera)");
+        if (scene_.triangles.empty() && scene_.spheres.empty())
+            fail_at(root.where, "<scene>", "the scene has no shapes");
+        validate_scene(scene_); // a backstop: the readers have checked all of this
+        return std::move(scene_);
+    }
+
+  private:
+    void add_shape_with_material(const Object& shape) {
+        const Object* bsdf = nullptr;
+        const Object* emitter = nullptr;
+        for (const auto& child : shape.children) {
+            const Object*& slot = child->tag == "bsdf" ? bsdf : emitter;
+            if (child->tag != "bsdf" && child->tag != "emitter")
+                continue; // add_shape refuses it
+            if (slot)
+                fail_at(child->where, child->element(),
+                        "a second <" + child->tag + "> in " + shape.element());
+            slot = child.get();
+        }
+        const glm::dvec3 emission = emitter ? read_emitter(*emitter) : glm::dvec3(0.0);
+        const std::uint32_t material = material_of(bsdf, emission);
+        if (shape.type == "sphere" && emitter && scene_.materials[material].is_emissive())
+            fail_at(emitter->where, emitter->element(),
+                    "spheres cannot be emitters in wavepath (its lights are triangles): use a "
+                    "rectangle, a disk or a mesh");
+        add_shape(shape, material, scene_);
+    }
+
+    // The material of a BSDF (null: Mitsuba's default, a diffuse 0.5) with
+    // an emission: each pair once, in order of first use. A black diffuse
+    // that emits is wavepath's emitter kind.
+    std::uint32_t material_of(const Object* bsdf, const glm::dvec3& emission) {
+        const auto key = std::make_tuple(bsdf, emission.x, emission.y, emission.z);
+        if (const auto it = materials_.find(key); it != materials_.end())
+            return it->second;
+        auto cached = bsdfs_.find(bsdf);
+        if (cached == bsdfs_.end()) {
+            Material m;
+            if (bsdf) {
+                m = read_bsdf(*bsdf, scene_.warnings);
+                m.name = bsdf->id.empty() ? "bsdf at " + bsdf->where.text() : bsdf->id;
+            } else {
+                m.kind = MaterialKind::Diffuse;
+                m.reflectance = glm::dvec3(0.5);
+                m.name = "default diffuse";
+            }
+            cached = bsdfs_.emplace(bsdf, m).first;
+        }
+        Material m = cached->second;
+        if (emission != glm::dvec3(0.0)) {
+            m.name += " emitting " + number_text(emission.x) + " " + number_text(emission.y) + " " +
+                      number_text(emission.z);
+            if (m.kind == MaterialKind::Diffuse && m.reflectance == glm::dvec3(0.0))
+                m.kind = MaterialKind::Emitter;
+            m.emission = emission;
+        }
+        const auto index = static_cast<std::uint32_t>(scene_.materials.size());
+        scene_.materials.push_back(std::move(m));
+        materials_.emplace(key, index);
+        return index;
+    }
+
+    Scene scene_;
+    std::map<const Object*, Material> bsdfs_;
+    std::map<std::tuple<const Object*, double, double, double>, std::uint32_t> materials_;
+};
+
+} // namespace
+} // namespace mitsuba
+
+Scene load_mitsuba_scene(const std::filesystem::path& path,
+                         const std::map<std::string, std::string>& defines) {
+    return mitsuba::SceneAssembler().assemble(path, defines);
+}
+
+} // namespace wp

@@ -1,0 +1,246 @@
+// The Mitsuba reader (scene/mitsuba/load_mitsuba.hpp) on small scenes whose
+// result is worked out by hand: the order of transform steps, rotations,
+// flip_normals, the cube and the disk, a sphere's to_world, the sensor's
+// frame and field of view, <default>/$name, <include>, <ref>, and the bad
+// input table: each one line with the file, line and column.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "scene/load.hpp"
+#include "support/temp_dir.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kSensor = R"(<sensor type="perspective">
+        <float name="fov" value="60"/>
+        <transform name="to_world"><lookat origin="0, 0, 5" target="0, 0, 0" up="0, 1, 0"/></transform>
+        <film type="hdrfilm"><integer name="width" value="48"/><integer name="height" value="32"/></film>
+    </sensor>)";
+
+const std::string kLight = R"(<shape type="rectangle">
+        <transform name="to_world"><translate z="-2"/></transform>
+        <bsdf type="diffuse"><rgb name="reflectance" value="0"/></bsdf>
+        <emitter type="area"><rgb name="radiance" value="1"/></emitter>
+    </shape>)";
+
+void write(const fs::path& path, const std::string& text) {
+    std::ofstream(path) << text;
+}
+
+// A scene file of `body` (after the sensor and a light) in `dir`.
+wp::Scene load(const wp::test::TempDir& dir, const std::string& body,
+               const std::string& name = "s.xml") {
+    write(dir / name, "<scene version=\"3.0.0\">\n    " + kSensor + "\n    " + kLight + "\n    " +
+                          body + "\n</scene>\n");
+    return wp::load_scene(dir / name);
+}
+
+glm::dvec3 normal_of(const wp::Triangle& t) {
+    return glm::normalize(glm::cross(t.v[1] - t.v[0], t.v[2] - t.v[0]));
+}
+
+void check_near(const glm::dvec3& a, const glm::dvec3& b) {
+    INFO("(" << a.x << ", " << a.y << ", " << a.z << ") against (" << b.x << ", " << b.y << ", "
+             << b.z << ")");
+    CHECK(glm::length(a - b) < 1e-12);
+}
+
+std::string error_of(const wp::test::TempDir& dir, const std::string& text) {
+    write(dir / "bad.xml", text);
+    try {
+        (void)wp::load_scene(dir / "bad.xml");
+    } catch (const wp::SceneError& e) {
+        return e.what();
+    }
+    return "<no error>";
+}
+
+} // namespace
+
+TEST_CASE("mitsuba import: transform steps apply in the order written",
+          "[scene][mitsuba][import]") {
+    wp::test::TempDir dir;
+    // The light is triangles 0 and 1; the rectangle's corner (1, 1, 0).
+    const wp::Scene a = load(dir, R"(<shape type="rectangle"><transform name="to_world">
+        <scale value="2"/><translate x="1"/></transform></shape>)");
+    const wp::Scene b = load(dir, R"(<shape type="rectangle"><transform name="to_world">
+        <translate x="1"/><scale value="2"/></transform></shape>)");
+    REQUIRE(a.triangles.size() == 4);
+    check_near(a.triangles[2].v[2], {3, 2, 0}); // (1, 1, 0) * 2 + (1, 0, 0)
+    check_near(b.triangles[2].v[2], {4, 2, 0}); // ((1, 1, 0) + (1, 0, 0)) * 2
+    // Mitsuba's default BSDF, a diffuse 0.5, with no twosided: a warning.
+    CHECK(a.materials[a.triangles[2].material].reflectance == glm::dvec3(0.5));
+}
+
+TEST_CASE("mitsuba import: rotations are right-handed, flip_normals and mirrors turn the front",
+          "[scene][mitsuba][import]") {
+    wp::test::TempDir dir;
+    const wp::Scene s = load(dir, R"(<shape type="rectangle">
+        <transform name="to_world"><rotate x="1" angle="90"/></transform></shape>
+    <shape type="rectangle"><boolean name="flip_normals" value="true"/></shape>
+    <shape type="rectangle"><transform name="to_world"><scale x="-1"/></transform></shape>
+    <shape type="disk"><transform name="to_world"><scale x="-1"/></transform></shape>)");
+    REQUIRE(s.triangles.size() == 8 + 256);
+    check_near(normal_of(s.triangles[2]), {0, -1, 0}); // +z turned 90 degrees about +x
+    check_near(normal_of(s.triangles[4]), {0, 0, -1});
+    // A mirror turns a rectangle round, as Mitsuba 3.9.1 does (its front is
+    // the winding of the mirrored corners); the disk keeps its front.
+    check_near(normal_of(s.triangles[6]), {0, 0, -1});
+    for (std::size_t i = 8; i < s.triangles.size(); ++i)
+        check_near(normal_of(s.triangles[i]), {0, 0, 1});
+}
+
+TEST_CASE("mitsuba import: the cube faces out, the disk is a fan of its area",
+          "[scene][mitsuba][import]") {
+    wp::test::TempDir dir;
+    const wp::Scene s = load(dir, R"(<shape type="cube"><transform name="to_world">
+        <translate x="3"/></transform></shape>
+    <shape type="disk"><transform name="to_world"><scale value="2"/></transform></shape>)");
+    double cube_area = 0.0, disk_area = 0.0;
+    int cube = 0, disk = 0;
+    for (std::size_t i = 2; i < s.triangles.size(); ++i) {
+        const wp::Triangle& t = s.triangles[i];
+        const double area = 0.5 * glm::length(glm::cross(t.v[1] - t.v[0], t.v[2] - t.v[0]));
+        const glm::dvec3 centre = (t.v[0] + t.v[1] + t.v[2]) / 3.0;
+        if (centre.x > 1.5) {
+            ++cube;
+            cube_area += area;
+            CHECK(glm::dot(normal_of(t), centre - glm::dvec3(3, 0, 0)) > 0.0);
+        } else {
+            ++disk;
+            disk_area += area;
+            check_near(normal_of(t), {0, 0, 1});
+        }
+    }
+    CHECK(cube == 12);
+    CHECK(cube_area == Approx(24.0).epsilon(1e-12));
+    CHECK(disk == 256);
+    const double fan = 0.5 * 256 * 4.0 * std::sin(2.0 * M_PI / 256); // radius 2
+    CHECK(disk_area == Approx(fan).epsilon(1e-12));
+    CHECK(disk_area == Approx(4.0 * M_PI).epsilon(2e-4));
+}
+
+TEST_CASE("mitsuba import: a sphere's to_world moves and scales it", "[scene][mitsuba][import]") {
+    wp::test::TempDir dir;
+    const wp::Scene s = load(dir, R"(<shape type="sphere">
+        <point name="center" x="1"/><float name="radius" value="0.5"/>
+        <transform name="to_world"><rotate z="1" angle="90"/><scale value="3"/>
+            <translate y="1"/></transform></shape>)");
+    REQUIRE(s.spheres.size() == 1);
+    check_near(s.spheres[0].center, {0, 4, 0}); // (1,0,0) -> (0,1,0) -> (0,3,0) -> (0,4,0)
+    CHECK(s.spheres[0].radius == Approx(1.5).epsilon(1e-15));
+}
+
+TEST_CASE("mitsuba import: the sensor's frame and its field of view along x",
+          "[scene][mitsuba][import]") {
+    wp::test::TempDir dir;
+    const wp::Scene s = load(dir, R"(<shape type="rectangle"/>)");
+    check_near(s.camera.eye, {0, 0, 5});
+    check_near(glm::normalize(s.camera.look_at - s.camera.eye), {0, 0, -1});
+    // fov 60 along x of a 48 x 32 image: tan(v / 2) = tan(30 degrees) * 32 / 48.
+    const double vertical = 2.0 * std::atan(std::tan(M_PI / 6.0) * 32.0 / 48.0) * 180.0 / M_PI;
+    CHECK(s.camera.vertical_fov_degrees == Approx(vertical).epsilon(1e-12));
+    CHECK(s.camera.filter == wp::FilterKind::Gaussian); // hdrfilm's default
+}
+
+TEST_CASE("mitsuba import: <default>, $name, <include> and <ref>", "[scene][mitsuba][import]") {
+    wp::test::TempDir dir;
+    write(dir / "materials.xml", R"(<scene version="3.0.0">
+    <bsdf type="twosided" id="paint"><bsdf type="diffuse">
+        <rgb name="reflectance" value="$paint"/></bsdf></bsdf>
+</scene>)");
+    const wp::Scene s = load(dir, R"(<default name="paint" value="0.25, 0.5, 0.75"/>
+    <include filename="materials.xml"/>
+    <shape type="rectangle"><ref id="paint"/></shape>
+    <shape type="cube"><ref id="paint"/></shape>)");
+    REQUIRE(s.triangles.size() == 2 + 2 + 12);
+    const std::uint32_t m = s.triangles[2].material;
+    CHECK(s.triangles[15].material == m); // one BSDF, one material
+    CHECK(s.materials[m].reflectance == glm::dvec3(0.25, 0.5, 0.75));
+    CHECK(s.materials[m].name == "paint");
+    CHECK(s.warnings.empty());  // twosided: no one-sided warning
+    CHECK(s.files.size() == 1); // the include, which outputs must not overwrite
+}
+
+TEST_CASE("mitsuba import: bad input is one line with the file, line and column",
+          "[scene][mitsuba][import][errors]") {
+    wp::test::TempDir dir;
+    const std::string bad = (dir / "bad.xml").string();
+    struct Case {
+        const char* what;
+        std::string xml;
+        std::string where; // "L:C"
+        std::string fragment;
+    };
+    const std::string head = "<scene version=\"3.0.0\">\n";
+    const std::vector<Case> cases{
+        {"malformed XML", head + "<shape type=\"cube\">\n</scene>\n", "3:3", "malformed XML"},
+        {"not a scene", "<sensor type=\"perspective\"/>\n", "1:1", "root element must be <scene>"},
+        {"old version", "<scene version=\"0.6.0\">\n</scene>\n", "1:1", "versions 2.x and 3.x"},
+        {"unsupported shape", head + "  <shape type=\"serialized\"/>\n</scene>\n", "2:3",
+         "unsupported shape type 'serialized' (wavepath reads obj, ply"},
+        {"unsupported BSDF",
+         head + kSensor + "\n<shape type=\"cube\"><bsdf type=\"hair\"/></shape></scene>", "7:20",
+         "unsupported BSDF type 'hair' (wavepath reads diffuse"},
+        {"unsupported emitter", head + "<emitter type=\"constant\"/>\n</scene>\n", "2:1",
+         "unsupported emitter at the scene's top level"},
+        {"unknown parameter",
+         head + "<shape type=\"cube\">\n  <float name=\"radius\" value=\"1\"/>"
+                "</shape></scene>",
+         "3:3", "does not support the parameter 'radius' of <shape type=\"cube\">"},
+        {"wrong kind",
+         head + "<shape type=\"sphere\"><string name=\"radius\" value=\"1\"/>"
+                "</shape></scene>",
+         "2:22", "must be <float> or <integer>, not <string>"},
+        {"undefined $name",
+         head + "<shape type=\"sphere\"><float name=\"radius\" value=\"$r\"/>"
+                "</shape></scene>",
+         "2:22", "undefined parameter $r"},
+        {"unknown ref", head + "<shape type=\"cube\"><ref id=\"nope\"/></shape></scene>", "2:20",
+         "refers to id 'nope', which no earlier element declares"},
+        {"missing mesh",
+         head + "<shape type=\"obj\">\n<string name=\"filename\" value=\"no.obj\"/>"
+                "</shape></scene>",
+         "3:1", "no.obj"},
+        {"include cycle", head + "<include filename=\"bad.xml\"/>\n</scene>\n", "2:1",
+         "include cycle"},
+        {"non-uniform sphere",
+         head + "<shape type=\"sphere\"><transform name=\"to_world\">"
+                "<scale x=\"2\"/></transform></shape></scene>",
+         "2:22", "must scale uniformly"},
+        {"mirrored camera",
+         head + "<sensor type=\"perspective\"><transform name=\"to_world\">"
+                "<scale x=\"-1\"/></transform></sensor></scene>",
+         "2:28", "mirrors the image"},
+        {"spectrum pairs",
+         head +
+             "<shape type=\"cube\"><bsdf type=\"diffuse\">\n"
+             "<spectrum name=\"reflectance\" value=\"400:0.1, 700:0.5\"/></bsdf></shape></scene>",
+         "3:1", "wavelength:value pairs are not supported yet"},
+        {"reflectance range",
+         head + "<shape type=\"cube\"><bsdf type=\"diffuse\">\n"
+                "<rgb name=\"reflectance\" value=\"2\"/></bsdf></shape></scene>",
+         "3:1", "must be in [0, 1], got 2"},
+        {"no sensor", head + "<shape type=\"cube\"/></scene>", "1:1", "has no <sensor>"},
+        {"emitting sphere",
+         head + "<shape type=\"sphere\"><emitter type=\"area\">"
+                "<rgb name=\"radiance\" value=\"1\"/></emitter></shape></scene>",
+         "2:22", "spheres cannot be emitters"},
+    };
+    for (const Case& c : cases) {
+        INFO(c.what << "\n" << c.xml);
+        const std::string message = error_of(dir, c.xml);
+        INFO(message);
+        CHECK(message.rfind(bad + ":" + c.where + ": ", 0) == 0);
+        CHECK(message.find(c.fragment) != std::string::npos);
+        CHECK(message.find('\n') == std::string::npos);
+    }
+}
