@@ -279,9 +279,6 @@ int run_render(const RenderCommand& command) {
         if (lower_extension(command.out) != ".exr")
             throw std::runtime_error("--aov: the AOVs are layers of an EXR, and --out '" +
                                      command.out + "' is not an .exr");
-        if (!command.checkpoints.resume.empty())
-            throw std::runtime_error("--aov cannot be used with --resume: checkpoints do not hold "
-                                     "the AOVs (docs/checkpoints.md)");
     }
     Scene scene = load_scene_for_render(command.scene, command.width, command.height);
     check_distinct_outputs(scene_inputs(scene), outputs); // its meshes, known once it is read
