@@ -56,6 +56,16 @@ TEST_CASE("cli: --aov writes the layers asked for beside a beauty image that is 
         CHECK(aov.at("albedo.R")[p] + aov.at("albedo.G")[p] + aov.at("albedo.B")[p] > 0.0f);
     }
 
+    // The metadata names them, in AOV order; a render without them does not.
+    const auto has_aovs_entry = [](const fs::path& path, const std::string& value) {
+        for (const auto& [key, text] : wp::read_exr_summary(path).metadata)
+            if (key == "wavepath.aovs")
+                return text == value;
+        return value.empty();
+    };
+    CHECK(has_aovs_entry(s.dir / "aov.exr", "albedo,normal,depth"));
+    CHECK(has_aovs_entry(s.dir / "plain.exr", ""));
+
     Run some = render(out_flag(s, "depth.exr") + " --aov depth", s);
     REQUIRE(some.exit_code == 0);
     const auto depth = wp::read_exr_channels(s.dir / "depth.exr");
