@@ -203,3 +203,19 @@ TEST_CASE("AOVs: every launch plan, and two halves of the samples merged, give t
     const Film copy(kSize, kSize, halves.sums());
     CHECK(copy.aov_mean(2) == halves.aov_mean(2));
 }
+
+TEST_CASE("AOVs: their code is compiled only for a render that asks for them", "[render][aov]") {
+    const Scene scene = plane_scene();
+    IntegratorOptions plain;
+    const SceneFeatures features = integrator_features(scene, plain);
+    CHECK(kernel_build_options(features, plain).find("WP_AOV") == std::string::npos);
+    for (std::uint32_t aovs : {kAovAlbedo, kAovNormal, kAovDepth, kAovAlbedo | kAovDepth}) {
+        IntegratorOptions options;
+        options.aovs = aovs;
+        CHECK(kernel_build_options(features, options).find(" -D WP_AOV=1") != std::string::npos);
+    }
+    WavefrontIntegrator without(test::device(), scene, plain);
+    CHECK(without.program().options.find("WP_AOV") == std::string::npos);
+    WavefrontIntegrator with(test::device(), scene, with_aovs());
+    CHECK(with.program().options.find(" -D WP_AOV=1") != std::string::npos);
+}
