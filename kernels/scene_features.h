@@ -90,6 +90,14 @@ enum { WP_FILTERS(WP_FILTER_FEATURE_CHECK) wp_filter_features_checked };
 #define WP_SHADOW_TERMINATOR_FIX 1
 #endif
 
+/* Output switch, not a scene feature: shade adds the camera ray's first hit
+ * to the AOV buffers (albedo, shading normal, depth; kernels/shade.cl). The
+ * host turns it on only for a render that asks for AOVs (--aov); off, no AOV
+ * code is compiled and images are as without it. */
+#ifndef WP_AOV
+#define WP_AOV 0
+#endif
+
 /* Estimator switch, not a scene feature: with next-event estimation off,
  * light is found only by paths that hit an emitter, and emitters count after
  * every bounce. Slower to converge, but with bounded variance (no 1/r^2). */

@@ -126,6 +126,26 @@ static inline int wp_shade_roulette(const WpMaterial* material, const WpBsdfSamp
 #endif
 }
 
+/* The AOVs (WP_AOV): a camera ray's first hit adds, to its pixel's sums, the
+ * material's albedo (the reflectance-like colour each kind stores in
+ * `reflectance`, wp_shared.h; an emitter's is 0), the shading normal on the
+ * side the ray came from (world space, unit) and the distance along the ray
+ * (the direction is unit, generate.cl). A ray that misses adds nothing: 0.
+ * The slot owns the pixel (WpFrame), so no atomics are needed. Writes
+ * through the buffers, returns nothing (kernels/shade.cl is inlined whole). */
+#if WP_AOV
+static inline void wp_shade_aovs(const WpMaterial* material, const WpSurface* surface, float t,
+                                 wp_uint pixel, __global float4* aov_albedo,
+                                 __global float4* aov_normal, __global float* aov_depth) {
+    float3 albedo =
+        material->kind == WP_MATERIAL_EMITTER ? (float3)(0.0f) : material->reflectance.xyz;
+    float3 normal = surface->front_face ? surface->shading_normal : -surface->shading_normal;
+    aov_albedo[pixel] += (float4)(albedo, 0.0f);
+    aov_normal[pixel] += (float4)(normal, 0.0f);
+    aov_depth[pixel] += t;
+}
+#endif
+
 /* What became of a shaded path (wp_shade_path). */
 #define WP_SHADED_ENDS 0    /* missed, absorbed or out of roulette: finished */
 #define WP_SHADED_GOES_ON 1 /* scattered: it traces its next ray */
@@ -150,6 +170,10 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
     WpSurface surface;
     wp_surface_at(&scene, primitive, ray_origin[slot].xyz, direction, t, &surface);
     WpMaterial material = materials[surface.material];
+#if WP_AOV
+    if (path_depth[slot] == 0u) /* the camera ray's first hit */
+        wp_shade_aovs(&material, &surface, t, path_pixel[slot], aov_albedo, aov_normal, aov_depth);
+#endif
     if (surface.inside_solid && !wp_bsdf_transmits(&material)) {
         /* Into a solid that transmits nothing only an offset origin can get:
          * inside a mirror sphere such a path would bounce until the depth

@@ -413,6 +413,17 @@ typedef struct {
     /* the film of the current batch of iterations, per pixel (kernels/accumulate.cl) */           \
     X(film_sum, wp_float4, 0, 1, 0)                                                                \
     X(film_sum_squares, wp_float4, 0, 1, 0)                                                        \
-    X(film_odd_sum, wp_float4, 0, 1, 0)
+    X(film_odd_sum, wp_float4, 0, 1, 0)                                                            \
+    WP_AOV_BUFFERS(X)
+
+/* The AOVs' sums of the current batch, per pixel, added by shade at the camera
+ * ray's first hit (kernels/shade.cl, WP_AOV; docs/lights-and-camera.md,
+ * "AOVs"). Rows of WP_PATH_BUFFERS like the others; the host allocates them
+ * whole only for a render that asks for AOVs, and a one-element dummy
+ * otherwise (src/render/device_buffers.cpp). */
+#define WP_AOV_BUFFERS(X)                                                                          \
+    X(aov_albedo, wp_float4, 0, 1, 0) /* rgb: the material's albedo */                             \
+    X(aov_normal, wp_float4, 0, 1, 0) /* xyz: the shading normal facing the camera */              \
+    X(aov_depth, wp_float, 0, 1, 0)   /* the distance along the camera ray */
 
 #endif /* WP_SHARED_H */

@@ -19,6 +19,7 @@
 #include "app/view_cli.hpp"
 #include "cl/context.hpp"
 #include "cl/device.hpp"
+#include "image/exr.hpp"
 #include "image/image_io.hpp"
 #include "image/metrics.hpp"
 #include "render/multi_device.hpp"
@@ -76,9 +77,16 @@ std::vector<NamedPath> scene_inputs(const Scene& scene) {
     return inputs;
 }
 
-void write_result_image(const std::string& path, const Image& image, const ViewOptions& view) {
+void write_result_image(const std::string& path, const Image& image, const ViewOptions& view,
+                        std::span<const ExrLayer> layers) {
+    const auto write = [&](const std::filesystem::path& to) {
+        if (layers.empty())
+            write_image(to, image, view);
+        else
+            write_exr(to, image, layers);
+    };
     try {
-        write_image(path, image, view);
+        write(path);
         return;
     } catch (const FileError& e) {
         // Same extension, so the fallback holds the same format.
@@ -86,13 +94,41 @@ void write_result_image(const std::string& path, const Image& image, const ViewO
                                                ("wavepath-" + std::to_string(::getpid()) + "-" +
                                                 std::filesystem::path(path).filename().string());
         try {
-            write_image(fallback, image, view);
+            write(fallback);
         } catch (const std::exception&) {
             throw e; // nowhere to save it: the first failure is the one to report
         }
         throw FileError(e.what(), "the image was saved to '" + fallback.string() + "' instead");
     }
 }
+
+namespace {
+
+// Refuses an --aov list that parse_aovs does not take.
+const CLI::Validator aov_list(
+    [](const std::string& text) -> std::string {
+        try {
+            parse_aovs(text);
+        } catch (const std::invalid_argument& e) {
+            return e.what();
+        }
+        return {};
+    },
+    "AOVS");
+
+// The EXR layers of the AOVs asked for (docs/lights-and-camera.md, "AOVs"):
+// albedo.R/G/B, normal.X/Y/Z and depth.Z, Blender's and OpenEXR's names.
+std::vector<ExrLayer> aov_layers(const Film& film, std::uint32_t aovs) {
+    static const std::vector<std::string> channels[kAovCount] = {
+        {"R", "G", "B"}, {"X", "Y", "Z"}, {"Z"}};
+    std::vector<ExrLayer> layers;
+    for (std::uint32_t number = 0; number < kAovCount; ++number)
+        if (aovs & (1u << number))
+            layers.push_back({aov_name(number), channels[number], film.aov_mean(number)});
+    return layers;
+}
+
+} // namespace
 
 CLI::App* add_render_subcommand(CLI::App& app, RenderCommand& command) {
     CLI::App* r = app.add_subcommand("render", "Render a scene to an image");
@@ -119,6 +155,14 @@ CLI::App* add_render_subcommand(CLI::App& app, RenderCommand& command) {
     r->add_option("--variance", command.variance,
                   "Also write each pixel's variance of the mean (sample variance / samples; "
                   ".exr or .pfm), for `wavepath compare --variance`");
+    r->add_option_function<std::string>(
+         "--aov",
+         [&command](const std::string& list) { command.integrator.aovs = parse_aovs(list); },
+         "Also write these AOVs of the camera ray's first hit, per pixel the mean over its "
+         "samples, as layers of the .exr --out: a comma-separated list of albedo (albedo.R/G/B), "
+         "normal (the shading normal facing the camera, normal.X/Y/Z), depth (the distance "
+         "along the ray, depth.Z); 0 where the ray misses (docs/lights-and-camera.md, \"AOVs\")")
+        ->check(aov_list);
     r->add_option("--trace", command.trace,
                   "Write every kernel launch and transfer as a Chrome trace (Perfetto, "
                   "chrome://tracing)");
@@ -231,6 +275,11 @@ int run_render(const RenderCommand& command) {
                             {"--profile-json", command.profile_json},
                             {"--trace", command.trace}});
 
+    if (command.integrator.aovs != 0) {
+        if (lower_extension(command.out) != ".exr")
+            throw std::runtime_error("--aov: the AOVs are layers of an EXR, and --out '" +
+                                     command.out + "' is not an .exr");
+    }
     Scene scene = load_scene_for_render(command.scene, command.width, command.height);
     check_distinct_outputs(scene_inputs(scene), outputs); // its meshes, known once it is read
     const std::string scene_sha256 = file_sha256(command.scene); // for the metadata
@@ -289,7 +338,7 @@ int run_render(const RenderCommand& command) {
                                       .devices = device_names(integrator),
                                       .launch_plan = integrator.integrator().launch_summary(),
                                       .render_seconds = integrator.stats().render_seconds});
-    write_result_image(command.out, image, view);
+    write_result_image(command.out, image, view, aov_layers(film, options.aovs));
     if (!command.png.empty())
         write_result_image(command.png, image, view);
     if (!command.variance.empty()) {

@@ -2,11 +2,13 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "app/checkpointing.hpp"
 #include "app/render_loop.hpp"
+#include "image/exr.hpp"
 #include "image/tonemap.hpp"
 #include "render/film.hpp"
 #include "render/integrator_options.hpp"
@@ -149,7 +151,9 @@ std::vector<NamedPath> scene_inputs(const Scene& scene);
 // Writes an image that took long to make; if that fails, saves it to a
 // fallback file (in the system's temporary directory) so the work is not
 // lost, and throws FileError naming both the failure and the fallback.
-void write_result_image(const std::string& path, const Image& image, const ViewOptions& view);
+// `layers` (an EXR's AOVs) only for an .exr `path`.
+void write_result_image(const std::string& path, const Image& image, const ViewOptions& view,
+                        std::span<const ExrLayer> layers = {});
 
 // Loads a scene, prints its warnings, and applies --width/--height (0 keeps
 // the scene's resolution).

@@ -49,6 +49,8 @@ Metadata render_metadata(const RenderRecord& record) {
     if (!record.launch_plan.empty())
         metadata.insert(metadata.begin() + 13, /* after wavepath.devices */
                         {"wavepath.launch_plan", record.launch_plan});
+    if (record.options.aovs != 0) // the EXR's layers (docs/lights-and-camera.md, "AOVs")
+        metadata.emplace_back("wavepath.aovs", describe_aovs(record.options.aovs));
     return metadata;
 }
 

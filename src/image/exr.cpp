@@ -208,46 +208,66 @@ void parse_header(std::span<const unsigned char> bytes, HeaderGuard& header,
 
 } // namespace
 
-void write_exr(const std::filesystem::path& path, const Image& img) {
+void write_exr(const std::filesystem::path& path, const Image& img,
+               std::span<const ExrLayer> layers) {
     const std::string context = "cannot write '" + path.string() + "'";
     check_image_shape(img, context);
 
-    // EXR stores channels planar and sorted by name, so split RGB into B, G, R planes.
+    // EXR stores channels planar and sorted by name: one plane per channel,
+    // R, G, B from the image and each layer's, then sorted.
     const std::size_t n =
         static_cast<std::size_t>(img.width) * static_cast<std::size_t>(img.height);
-    std::array<std::vector<float>, 3> planes; // B, G, R
-    for (auto& plane : planes) {
-        plane.resize(n);
-    }
-    for (std::size_t i = 0; i < n; ++i) {
-        planes[0][i] = img.rgb[i * 3 + 2];
-        planes[1][i] = img.rgb[i * 3 + 1];
-        planes[2][i] = img.rgb[i * 3 + 0];
-    }
-    std::array<unsigned char*, 3> plane_ptrs{};
+    struct Plane {
+        std::string name;
+        std::vector<float> values;
+    };
+    std::vector<Plane> planes;
     for (std::size_t c = 0; c < 3; ++c) {
-        plane_ptrs[c] = reinterpret_cast<unsigned char*>(planes[c].data());
+        Plane plane{std::string(1, "RGB"[c]), std::vector<float>(n)};
+        for (std::size_t i = 0; i < n; ++i)
+            plane.values[i] = img.rgb[i * 3 + c];
+        planes.push_back(std::move(plane));
+    }
+    for (const ExrLayer& layer : layers) {
+        const std::size_t k = layer.channels.size();
+        if (k == 0 || layer.values.size() != n * k)
+            throw ImageError(context + ": layer '" + layer.name + "' has " +
+                             std::to_string(layer.values.size()) + " values, not " +
+                             std::to_string(n) + " pixels of " + std::to_string(k) + " channels");
+        for (std::size_t c = 0; c < k; ++c) {
+            Plane plane{layer.name + "." + layer.channels[c], std::vector<float>(n)};
+            for (std::size_t i = 0; i < n; ++i)
+                plane.values[i] = layer.values[i * k + c];
+            planes.push_back(std::move(plane));
+        }
+    }
+    std::sort(planes.begin(), planes.end(),
+              [](const Plane& a, const Plane& b) { return a.name < b.name; });
+    const std::size_t count = planes.size();
+    std::vector<unsigned char*> plane_ptrs(count);
+    // The header's arrays are ours (not malloc'd), so FreeEXRHeader must not see them.
+    std::vector<EXRChannelInfo> channels(count);
+    for (std::size_t c = 0; c < count; ++c) {
+        if (planes[c].name.size() >= sizeof channels[c].name ||
+            (c > 0 && planes[c].name == planes[c - 1].name))
+            throw ImageError(context + ": channel name '" + planes[c].name +
+                             "' is too long or repeated");
+        plane_ptrs[c] = reinterpret_cast<unsigned char*>(planes[c].values.data());
+        std::strncpy(channels[c].name, planes[c].name.c_str(), sizeof channels[c].name - 1);
     }
 
     EXRImage image;
     InitEXRImage(&image);
-    image.num_channels = 3;
+    image.num_channels = static_cast<int>(count);
     image.width = img.width;
     image.height = img.height;
     image.images = plane_ptrs.data();
 
-    // The header's arrays are ours (not malloc'd), so FreeEXRHeader must not see them.
-    std::array<EXRChannelInfo, 3> channels{};
-    const char* names[3] = {"B", "G", "R"};
-    for (std::size_t c = 0; c < 3; ++c) {
-        std::strncpy(channels[c].name, names[c], sizeof channels[c].name - 1);
-    }
-    std::array<int, 3> pixel_types{TINYEXR_PIXELTYPE_FLOAT, TINYEXR_PIXELTYPE_FLOAT,
-                                   TINYEXR_PIXELTYPE_FLOAT};
-    std::array<int, 3> requested_types = pixel_types; // store float32: no precision loss
+    std::vector<int> pixel_types(count, TINYEXR_PIXELTYPE_FLOAT);
+    std::vector<int> requested_types = pixel_types; // store float32: no precision loss
     EXRHeader header;
     InitEXRHeader(&header);
-    header.num_channels = 3;
+    header.num_channels = static_cast<int>(count);
     header.channels = channels.data();
     header.pixel_types = pixel_types.data();
     header.requested_pixel_types = requested_types.data();
@@ -370,6 +390,44 @@ Image decode_exr(std::span<const unsigned char> bytes, const std::string& file_n
     }
     img.metadata = string_attributes(header.header);
     return img;
+}
+
+} // namespace wp
+
+namespace wp {
+
+std::map<std::string, std::vector<float>> read_exr_channels(const std::filesystem::path& path) {
+    const std::string context = "cannot read '" + path.string() + "'";
+    const std::vector<unsigned char> bytes = read_file_bytes(path);
+    HeaderGuard header;
+    parse_header(bytes, header, context);
+    for (int c = 0; c < header.header.num_channels; ++c) {
+        const int type = header.header.pixel_types[c];
+        if (type != TINYEXR_PIXELTYPE_HALF && type != TINYEXR_PIXELTYPE_FLOAT)
+            throw ImageError(context + ": channel '" + header.header.channels[c].name +
+                             "' holds integers; only half or float channels are supported");
+        header.header.requested_pixel_types[c] = TINYEXR_PIXELTYPE_FLOAT;
+    }
+    check_data_window(header.header.data_window, context);
+    check_chunks_complete(bytes, header.header, context);
+    ImageGuard image;
+    image.image.num_channels = header.header.num_channels; // as decode_exr says why
+    const char* err = nullptr;
+    if (LoadEXRImageFromMemory(&image.image, &header.header, bytes.data(), bytes.size(), &err) !=
+        TINYEXR_SUCCESS)
+        throw ImageError(context +
+                         ": corrupt or truncated EXR data: " + take_error(err, "unknown error"));
+    image.loaded = true;
+    if (image.image.images == nullptr || image.image.width <= 0 || image.image.height <= 0)
+        throw ImageError(context + ": EXR file holds no scanline pixels");
+    const std::size_t n =
+        static_cast<std::size_t>(image.image.width) * static_cast<std::size_t>(image.image.height);
+    std::map<std::string, std::vector<float>> channels;
+    for (int c = 0; c < header.header.num_channels; ++c) {
+        const float* plane = reinterpret_cast<const float*>(image.image.images[c]);
+        channels[header.header.channels[c].name] = std::vector<float>(plane, plane + n);
+    }
+    return channels;
 }
 
 } // namespace wp

@@ -50,6 +50,7 @@ void send_film(const MpiJob& job, const Film& film, bool has_samples) {
     job.send_doubles(0, kFilm, sums.odd_sum);
     job.send_counts(0, kFilm, sums.count);
     job.send_counts(0, kFilm, sums.odd_count);
+    job.send_doubles(0, kFilm, sums.aov_sum); // empty without AOVs
 }
 
 // A rank's chunks come from rank 0, one request per chunk.
@@ -213,6 +214,7 @@ class MpiPeers : public RenderPeers {
         job_.receive_doubles(r, kFilm, sums.odd_sum);
         job_.receive_counts(r, kFilm, sums.count);
         job_.receive_counts(r, kFilm, sums.odd_count);
+        job_.receive_doubles(r, kFilm, sums.aov_sum);
         films_[r] = Film(width_, height_, std::move(sums));
     }
 

@@ -229,6 +229,8 @@ std::vector<unsigned char> encode_checkpoint(const CheckpointIdentity& id,
     for (const std::vector<std::uint64_t>* a : {&sums.count, &sums.odd_count})
         for (std::uint64_t x : *a)
             w.u64(x);
+    for (double x : sums.aov_sum) // a render with AOVs: 7 more a pixel; else none
+        w.f64(x);
     w.u64(fnv1a64_bytes(w.out.data(), w.out.size()));
     return std::move(w.out);
 }
@@ -256,7 +258,14 @@ FilmCheckpoint decode_checkpoint(const std::vector<unsigned char>& bytes, const 
 
     // The rest has a known size: check it before reading (or allocating) it.
     const std::size_t pixels = static_cast<std::size_t>(width) * height;
-    const std::size_t expected = r.position() + pixels * (9 + 2) * 8 + 8;
+    // A render with AOVs (--aov) saves their sums too, 7 doubles a pixel after
+    // the counts (Film::sums); which of the two it is, the size says, and the
+    // checksum and the options (its kernels' -D WP_AOV=1) back it up.
+    std::size_t expected = r.position() + pixels * (9 + 2) * 8 + 8;
+    const std::size_t aov_bytes = pixels * 7 * 8;
+    const bool aovs = bytes.size() == expected + aov_bytes;
+    if (aovs)
+        expected += aov_bytes;
     if (bytes.size() < expected)
         r.fail("truncated: " + std::to_string(bytes.size()) + " of its " +
                std::to_string(expected) + " bytes");
@@ -274,6 +283,11 @@ FilmCheckpoint decode_checkpoint(const std::vector<unsigned char>& bytes, const 
         for (std::uint64_t& x : *a)
             x = r.u64("film");
     }
+    if (aovs) {
+        sums.aov_sum.resize(pixels * 7);
+        for (double& x : sums.aov_sum)
+            x = r.f64("AOVs");
+    }
     if (r.u64("checksum") != checksum)
         r.fail("damaged: its checksum does not match its contents");
     // The kernels drop non-finite samples (counted as NaN/Inf in the summary),
@@ -289,6 +303,10 @@ FilmCheckpoint decode_checkpoint(const std::vector<unsigned char>& bytes, const 
                        " is not finite (" + std::to_string((*a)[i]) + ")");
         ++which;
     }
+    for (std::size_t i = 0; i < sums.aov_sum.size(); ++i)
+        if (!std::isfinite(sums.aov_sum[i]))
+            r.fail("damaged: pixel " + std::to_string(i / 7) + "'s AOV sum is not finite (" +
+                   std::to_string(sums.aov_sum[i]) + ")");
     // Written only between render() calls, where every pixel holds every
     // sample index below samples_per_pixel, half of them odd.
     for (std::size_t p = 0; p < pixels; ++p)

@@ -1,15 +1,34 @@
 #include "render/device_buffers.hpp"
 
 #include <algorithm>
+#include <string_view>
 
 namespace wp {
 
-PathBufferBytes path_buffer_bytes() {
+namespace {
+
+// Whether `name` is a row of WP_AOV_BUFFERS.
+constexpr bool is_aov_row(std::string_view name) {
+#define WP_IS_AOV(row, ...)                                                                        \
+    if (name == #row)                                                                              \
+        return true;
+    WP_AOV_BUFFERS(WP_IS_AOV)
+#undef WP_IS_AOV
+    return false;
+}
+
+} // namespace
+
+PathBufferBytes path_buffer_bytes(bool aovs) {
     PathBufferBytes bytes;
 #define WP_ADD_BYTES(name, type, slot_count, pixel_count, fixed_count)                             \
-    bytes.per_slot += sizeof(type) * (slot_count);                                                 \
-    bytes.per_pixel += sizeof(type) * (pixel_count);                                               \
-    bytes.fixed += sizeof(type) * (fixed_count);
+    if (!aovs && is_aov_row(#name)) {                                                              \
+        bytes.fixed += sizeof(type); /* a one-element dummy */                                     \
+    } else {                                                                                       \
+        bytes.per_slot += sizeof(type) * (slot_count);                                             \
+        bytes.per_pixel += sizeof(type) * (pixel_count);                                           \
+        bytes.fixed += sizeof(type) * (fixed_count);                                               \
+    }
     WP_PATH_BUFFERS(WP_ADD_BYTES)
 #undef WP_ADD_BYTES
     return bytes;
@@ -34,15 +53,18 @@ std::uint64_t PathBufferBytes::largest(std::uint64_t slots, std::uint64_t pixels
 }
 
 DeviceBuffers allocate_device_buffers(const cl::Context& context, const DeviceScene& scene,
-                                      std::uint64_t slots, std::uint64_t pixels) {
+                                      std::uint64_t slots, std::uint64_t pixels, bool aovs) {
     DeviceBuffers b;
 #define WP_UPLOAD(name, type) b.name = upload_buffer(context, scene.name);
     WP_SCENE_BUFFERS(WP_UPLOAD)
 #undef WP_UPLOAD
 #define WP_ALLOCATE(name, type, per_slot, per_pixel, fixed)                                        \
-    b.name = cl::Buffer(context, CL_MEM_READ_WRITE,                                                \
-                        sizeof(type) * std::max<std::uint64_t>(                                    \
-                                           1, (per_slot)*slots + (per_pixel)*pixels + (fixed)));
+    b.name = cl::Buffer(                                                                           \
+        context, CL_MEM_READ_WRITE,                                                                \
+        sizeof(type) *                                                                             \
+            (!aovs && is_aov_row(#name)                                                            \
+                 ? 1                                                                               \
+                 : std::max<std::uint64_t>(1, (per_slot)*slots + (per_pixel)*pixels + (fixed))));
     WP_PATH_BUFFERS(WP_ALLOCATE)
 #undef WP_ALLOCATE
     return b;

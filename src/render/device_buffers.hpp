@@ -24,6 +24,8 @@ struct DeviceBuffers {
 #undef WP_BUFFER_MEMBER
 
 // Bytes of path buffers per path slot, per pixel, and fixed, from the list.
+// Without AOVs (`aovs` false) the rows of WP_AOV_BUFFERS are one-element
+// dummies, counted as fixed bytes: what allocate_device_buffers allocates.
 struct PathBufferBytes {
     std::uint64_t per_slot = 0;
     std::uint64_t per_pixel = 0;
@@ -36,12 +38,14 @@ struct PathBufferBytes {
         return per_slot * slots + per_pixel * pixels + fixed;
     }
 };
-PathBufferBytes path_buffer_bytes();
+PathBufferBytes path_buffer_bytes(bool aovs = false);
 
 // Uploads the scene buffers (read-only) from `scene`, and allocates the path
-// buffers for `slots` path slots and `pixels` pixels (contents undefined).
+// buffers for `slots` path slots and `pixels` pixels (contents undefined); the
+// AOV rows (WP_AOV_BUFFERS) in full only with `aovs`, kernels built with
+// WP_AOV being the only ones that touch them.
 DeviceBuffers allocate_device_buffers(const cl::Context& context, const DeviceScene& scene,
-                                      std::uint64_t slots, std::uint64_t pixels);
+                                      std::uint64_t slots, std::uint64_t pixels, bool aovs = false);
 
 // A read-only buffer holding `data`; OpenCL has no empty buffers, so an empty
 // vector gets a one-element dummy.

@@ -16,11 +16,13 @@ Film::Film(int width, int height)
 Film::Film(int width, int height, FilmSums sums)
     : width_(width), height_(height), sum_(std::move(sums.sum)),
       sum_squares_(std::move(sums.sum_squares)), odd_sum_(std::move(sums.odd_sum)),
-      count_(std::move(sums.count)), odd_count_(std::move(sums.odd_count)) {
+      count_(std::move(sums.count)), odd_count_(std::move(sums.odd_count)),
+      aov_sum_(std::move(sums.aov_sum)) {
     const std::size_t pixels =
         width > 0 && height > 0 ? static_cast<std::size_t>(width) * height : 0;
     if (pixels == 0 || sum_.size() != pixels * 3 || sum_squares_.size() != pixels * 3 ||
-        odd_sum_.size() != pixels * 3 || count_.size() != pixels || odd_count_.size() != pixels)
+        odd_sum_.size() != pixels * 3 || count_.size() != pixels || odd_count_.size() != pixels ||
+        (!aov_sum_.empty() && aov_sum_.size() != pixels * 7))
         throw std::invalid_argument("Film: the saved sums do not match a " + std::to_string(width) +
                                     "x" + std::to_string(height) + " film");
 }
@@ -51,9 +53,51 @@ void Film::add_batch(const std::vector<float>& sum, const std::vector<float>& su
     }
 }
 
+namespace {
+constexpr std::size_t kAovValues = 7; // albedo rgb, normal xyz, depth per pixel
+}
+
+void Film::add_aov_batch(const std::vector<float>& albedo, const std::vector<float>& normal,
+                         const std::vector<float>& depth) {
+    const std::size_t pixels = count_.size();
+    if (albedo.size() != pixels * 4 || normal.size() != pixels * 4 || depth.size() != pixels)
+        throw std::logic_error("Film::add_aov_batch: buffer size does not match the film");
+    if (aov_sum_.empty())
+        aov_sum_.assign(pixels * kAovValues, 0.0);
+    for (std::size_t p = 0; p < pixels; ++p) {
+        double* sum = &aov_sum_[p * kAovValues];
+        for (std::size_t c = 0; c < 3; ++c) {
+            sum[c] += albedo[p * 4 + c];
+            sum[3 + c] += normal[p * 4 + c];
+        }
+        sum[6] += depth[p];
+    }
+}
+
+std::vector<float> Film::aov_mean(std::uint32_t number) const {
+    const std::size_t channels = number == 2 ? 1 : 3, first = number * 3;
+    std::vector<float> mean(count_.size() * channels, 0.0f);
+    if (aov_sum_.empty())
+        return mean;
+    for (std::size_t p = 0; p < count_.size(); ++p) {
+        if (count_[p] == 0)
+            continue;
+        for (std::size_t c = 0; c < channels; ++c)
+            mean[p * channels + c] = static_cast<float>(aov_sum_[p * kAovValues + first + c] /
+                                                        static_cast<double>(count_[p]));
+    }
+    return mean;
+}
+
 void Film::merge(const Film& other) {
     if (other.width_ != width_ || other.height_ != height_)
         throw std::logic_error("Film::merge: films differ in size");
+    if (!other.aov_sum_.empty()) {
+        if (aov_sum_.empty())
+            aov_sum_.assign(other.aov_sum_.size(), 0.0);
+        for (std::size_t i = 0; i < aov_sum_.size(); ++i)
+            aov_sum_[i] += other.aov_sum_[i];
+    }
     for (std::size_t i = 0; i < sum_.size(); ++i) {
         sum_[i] += other.sum_[i];
         sum_squares_[i] += other.sum_squares_[i];

@@ -22,6 +22,9 @@ struct FilmSums {
     std::vector<double> odd_sum;     // rgb per pixel, odd sample indices only
     std::vector<std::uint64_t> count;
     std::vector<std::uint64_t> odd_count;
+    // The AOVs' sums (albedo rgb, normal xyz, depth: 7 per pixel), or empty
+    // for a film without AOVs (add_aov_batch).
+    std::vector<double> aov_sum = {};
 };
 
 class Film {
@@ -47,16 +50,31 @@ class Film {
     void add_batch(const std::vector<float>& sum, const std::vector<float>& sum_squares,
                    const std::vector<float>& odd_sum);
 
-    // Combines another film of disjoint samples (e.g. from another device).
+    // Adds a batch of the AOVs' sums read from the device (kernels/shade.cl,
+    // WP_AOV): per pixel, a float4 of albedo (rgb), a float4 of the shading
+    // normal (xyz) and a float of depth, each summed over the batch's samples
+    // (which the film's counts count). The film holds AOVs from its first
+    // such batch (or merge) on.
+    void add_aov_batch(const std::vector<float>& albedo, const std::vector<float>& normal,
+                       const std::vector<float>& depth);
+    bool has_aovs() const { return !aov_sum_.empty(); }
+
+    // Combines another film of disjoint samples (e.g. from another device),
+    // AOVs included.
     void merge(const Film& other);
 
     // Everything the film holds, to be given back to the constructor above
     // (a checkpoint, or another MPI rank's film).
-    FilmSums sums() const { return {sum_, sum_squares_, odd_sum_, count_, odd_count_}; }
+    FilmSums sums() const { return {sum_, sum_squares_, odd_sum_, count_, odd_count_, aov_sum_}; }
 
     Image mean() const;                // the estimate: sum / samples, per pixel
     Image variance_of_mean() const;    // per pixel and channel: sample variance / samples
     Image half_mean(int parity) const; // mean over even (0) or odd (1) sample indices
+    // The mean over each pixel's samples of AOV `number` (0 albedo, 1 normal,
+    // 2 depth; kAov* in render/integrator_options.hpp), interleaved: 3
+    // values a pixel (1 for depth); 0 for a pixel without samples or a film
+    // without AOVs.
+    std::vector<float> aov_mean(std::uint32_t number) const;
 
   private:
     int width_ = 0;
@@ -66,6 +84,9 @@ class Film {
     std::vector<double> odd_sum_;     // rgb per pixel, odd sample indices only
     std::vector<std::uint64_t> count_;
     std::vector<std::uint64_t> odd_count_;
+    // The AOVs' sums: albedo rgb, normal xyz, depth per pixel (7 a pixel), or
+    // empty for a film without AOVs.
+    std::vector<double> aov_sum_;
 };
 
 } // namespace wp

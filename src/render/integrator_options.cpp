@@ -103,6 +103,48 @@ std::string to_string(LaunchPlan plan) {
     return "?";
 }
 
+std::string aov_name(std::uint32_t number) {
+    static const char* const names[kAovCount] = {"albedo", "normal", "depth"};
+    return number < kAovCount ? names[number] : "?";
+}
+
+std::uint32_t parse_aovs(const std::string& list) {
+    const std::string expected = "expected a comma-separated list of albedo, normal, depth";
+    if (list.empty())
+        throw std::invalid_argument("an empty list; " + expected);
+    std::uint32_t aovs = 0;
+    std::size_t start = 0;
+    while (true) {
+        const std::size_t end = std::min(list.find(',', start), list.size());
+        const std::string name = list.substr(start, end - start);
+        std::uint32_t number = 0;
+        while (number < kAovCount && aov_name(number) != name)
+            ++number;
+        if (name.empty())
+            throw std::invalid_argument("an empty entry in '" + list + "'; " + expected);
+        if (number == kAovCount)
+            throw std::invalid_argument("unknown AOV '" + name + "' in '" + list + "'; " +
+                                        expected);
+        if (aovs & (1u << number))
+            throw std::invalid_argument("'" + name + "' named twice in '" + list + "'");
+        aovs |= 1u << number;
+        if (end == list.size())
+            return aovs;
+        start = end + 1;
+    }
+}
+
+std::string describe_aovs(std::uint32_t aovs) {
+    std::string text;
+    for (std::uint32_t number = 0; number < kAovCount; ++number)
+        if (aovs & (1u << number)) {
+            if (!text.empty())
+                text += ',';
+            text += aov_name(number);
+        }
+    return text;
+}
+
 std::string describe_estimator(const IntegratorOptions& options) {
     const std::string diffuse = to_string(options.diffuse_sampling);
     std::string text = options.next_event_estimation

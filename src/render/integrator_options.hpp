@@ -118,7 +118,26 @@ struct IntegratorOptions {
     // WAVEPATH_CACHE_DIR) as it is when the options are made; `--no-cache`
     // sets it off here instead of changing the environment of the process.
     CachePolicy program_cache = CachePolicy::from_environment();
+    // The AOVs to gather (a set of kAov* bits; --aov): the camera ray's first
+    // hit per pixel, summed beside the film (Film::aov_mean). Any compiles
+    // the kernels with WP_AOV; none (the default) compiles no AOV code.
+    std::uint32_t aovs = 0;
 };
+
+// The AOVs (docs/lights-and-camera.md, "AOVs"), in the order --aov names
+// them and the EXR's layers are made.
+inline constexpr std::uint32_t kAovAlbedo = 1u; // the first hit's material albedo, rgb
+inline constexpr std::uint32_t kAovNormal = 2u; // its shading normal facing the camera, xyz
+inline constexpr std::uint32_t kAovDepth = 4u;  // the distance along the camera ray to it
+inline constexpr std::uint32_t kAovCount = 3u;
+// "albedo", "normal", "depth" for AOV number 0, 1, 2 (bit 1 << number).
+std::string aov_name(std::uint32_t number);
+// A set of AOVs from a comma-separated list of those names; throws
+// std::invalid_argument for an empty list or entry, an unknown name or one
+// named twice.
+std::uint32_t parse_aovs(const std::string& list);
+// The names of a set, comma-separated, in AOV order ("" for none).
+std::string describe_aovs(std::uint32_t aovs);
 
 // The variants' names, as the command line takes them and reports print
 // them: "cosine" and "report"; "area" and "solid-angle".

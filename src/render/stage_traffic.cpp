@@ -32,8 +32,10 @@ constexpr std::array<BufferAccess, 5> kIntersect{{{"ray_queues", R},
 // kernels/shade.cl: ray_queues is read (its own queue) and written (the
 // survivors' queue); a path ends in finished_queue or goes on, never both,
 // so the table overcounts one 4-byte push. The mirror_* buffers only with
-// next-event estimation through planar mirrors (kernels/mirror_light.h).
-constexpr std::array<BufferAccess, 22> kShade{{{"ray_queues", RW},
+// next-event estimation through planar mirrors (kernels/mirror_light.h). The
+// aov_* buffers only with --aov (WP_AOV), at a path's first hit: listed, but
+// not counted in stage_bytes_per_item.
+constexpr std::array<BufferAccess, 25> kShade{{{"ray_queues", RW},
                                                {"hit_primitive", R},
                                                {"hit_t", R},
                                                {"ray_origin", RW},
@@ -54,7 +56,10 @@ constexpr std::array<BufferAccess, 22> kShade{{{"ray_queues", RW},
                                                {"mirror_shadow_origin2", W},
                                                {"mirror_shadow_direction2", W},
                                                {"mirror_shadow_contribution", W},
-                                               {"finished_queue", W}}};
+                                               {"finished_queue", W},
+                                               {"aov_albedo", RW},
+                                               {"aov_normal", RW},
+                                               {"aov_depth", RW}}};
 
 // kernels/shadow.cl: radiance is written only when the ray is unblocked; the
 // mirror_shadow_* buffers only for entries through a planar mirror.
@@ -80,8 +85,8 @@ constexpr std::array<BufferAccess, 7> kAccumulate{{{"finished_queue", R},
 
 // kernels/bounce.cl, per ray: shade's path state, without the hit and the
 // shadow-ray buffers (those stay in registers); as in kShade, a path ends in
-// finished_queue or goes on, never both.
-constexpr std::array<BufferAccess, 10> kBounce{{{"ray_queues", RW},
+// finished_queue or goes on, never both; the aov_* buffers as in kShade.
+constexpr std::array<BufferAccess, 13> kBounce{{{"ray_queues", RW},
                                                 {"ray_origin", RW},
                                                 {"ray_direction", RW},
                                                 {"throughput", RW},
@@ -90,12 +95,15 @@ constexpr std::array<BufferAccess, 10> kBounce{{{"ray_queues", RW},
                                                 {"path_sample", R},
                                                 {"path_depth", RW},
                                                 {"path_flags", RW},
-                                                {"finished_queue", W}}};
+                                                {"finished_queue", W},
+                                                {"aov_albedo", RW},
+                                                {"aov_normal", RW},
+                                                {"aov_depth", RW}}};
 
 // kernels/wave.cl, per sample: a work-item's path state is its own slot's,
 // touched bounce after bounce in cache; what must reach memory is the
-// slot's state once and its pixel's film.
-constexpr std::array<BufferAccess, 11> kWave{{{"path_task", RW},
+// slot's state once and its pixel's film (and the aov_* buffers as in kShade).
+constexpr std::array<BufferAccess, 14> kWave{{{"path_task", RW},
                                               {"path_pixel", RW},
                                               {"path_sample", RW},
                                               {"path_depth", RW},
@@ -105,7 +113,10 @@ constexpr std::array<BufferAccess, 11> kWave{{{"path_task", RW},
                                               {"throughput", RW},
                                               {"radiance", RW},
                                               {"film_sum", RW},
-                                              {"film_sum_squares", RW}}};
+                                              {"film_sum_squares", RW},
+                                              {"aov_albedo", RW},
+                                              {"aov_normal", RW},
+                                              {"aov_depth", RW}}};
 
 } // namespace
 
@@ -143,6 +154,10 @@ std::uint64_t path_buffer_element_bytes(std::string_view buffer) {
 std::uint64_t stage_bytes_per_item(Stage stage) {
     std::uint64_t bytes = 0;
     for (const BufferAccess& a : stage_buffer_accesses(stage)) {
+        // The AOVs' sums: only with --aov, and only for camera rays (at most
+        // 72 bytes a camera ray); not an item's traffic.
+        if (a.buffer.starts_with("aov_"))
+            continue;
         const std::uint64_t element = path_buffer_element_bytes(a.buffer);
         bytes += element * ((a.access == Access::ReadWrite) ? 2u : 1u);
     }

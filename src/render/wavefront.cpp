@@ -44,10 +44,11 @@ std::string gibibytes(std::uint64_t bytes) {
 
 // Fails with a clear message before allocating what the device cannot hold
 // (drivers report this late and vaguely, if at all).
-void check_device_memory(const DeviceInfo& device, int width, int height, std::uint64_t slots) {
+void check_device_memory(const DeviceInfo& device, int width, int height, std::uint64_t slots,
+                         bool aovs) {
     const std::uint64_t pixels =
         static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
-    const PathBufferBytes bytes = path_buffer_bytes();
+    const PathBufferBytes bytes = path_buffer_bytes(aovs);
     const std::uint64_t total = bytes.total(slots, pixels);
     const char* largest_name = "";
     const std::uint64_t largest = bytes.largest(slots, pixels, &largest_name);
@@ -119,7 +120,7 @@ WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const Scene& sce
     pixel_count_ = static_cast<std::uint32_t>(width) * static_cast<std::uint32_t>(height);
     pool_size_ =
         options_.pool_size == 0 ? pixel_count_ : std::min(options_.pool_size, pixel_count_);
-    check_device_memory(device_.info, width, height, pool_size_);
+    check_device_memory(device_.info, width, height, pool_size_, options_.aovs != 0);
 
     SceneFeatures compiled = compiled_features(features_, options_);
     std::string build_options = kernel_build_options(compiled, options_);
@@ -167,7 +168,8 @@ WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const Scene& sce
     frame_.max_depth = options_.max_depth;
     frame_.path_types = options_.path_types;
 
-    buffers_ = allocate_device_buffers(device_.context, scene_, pool_size_, pixel_count_);
+    buffers_ = allocate_device_buffers(device_.context, scene_, pool_size_, pixel_count_,
+                                       options_.aovs != 0);
     clear_film();
     for (cl::Kernel& kernel : kernels_)
         bind_buffers(kernel, buffers_);
@@ -185,6 +187,12 @@ void WavefrontIntegrator::clear_film() {
     const cl_float4 zero4{};
     for (cl::Buffer* b : {&buffers_.film_sum, &buffers_.film_sum_squares, &buffers_.film_odd_sum})
         device_.queue.enqueueFillBuffer(*b, zero4, 0, sizeof(cl_float4) * pixel_count_);
+    if (options_.aovs != 0) {
+        for (cl::Buffer* b : {&buffers_.aov_albedo, &buffers_.aov_normal})
+            device_.queue.enqueueFillBuffer(*b, zero4, 0, sizeof(cl_float4) * pixel_count_);
+        device_.queue.enqueueFillBuffer(buffers_.aov_depth, cl_float{0.0f}, 0,
+                                        sizeof(cl_float) * pixel_count_);
+    }
 }
 
 void WavefrontIntegrator::launch(Stage stage, const WpLaunch& arguments, std::uint32_t items,
@@ -213,10 +221,21 @@ void WavefrontIntegrator::flush_film(Film& film) {
     std::vector<float> sum(floats), squares(floats), odd_sum(floats);
     read(buffers_.film_sum, floats * sizeof(float), sum.data(), false);
     read(buffers_.film_sum_squares, floats * sizeof(float), squares.data(), false);
+    std::vector<float> albedo, normal, depth;
+    if (options_.aovs != 0) {
+        albedo.resize(floats);
+        normal.resize(floats);
+        depth.resize(pixel_count_);
+        read(buffers_.aov_albedo, floats * sizeof(float), albedo.data(), false);
+        read(buffers_.aov_normal, floats * sizeof(float), normal.data(), false);
+        read(buffers_.aov_depth, depth.size() * sizeof(float), depth.data(), false);
+    }
     read(buffers_.film_odd_sum, floats * sizeof(float), odd_sum.data(), true);
     clear_film();
     auto start = std::chrono::steady_clock::now();
     film.add_batch(sum, squares, odd_sum);
+    if (options_.aovs != 0)
+        film.add_aov_batch(albedo, normal, depth);
     stats_.host_seconds +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -528,6 +547,8 @@ std::string kernel_build_options(const SceneFeatures& features, const Integrator
         text += " -D WP_MIRROR_NEE=1";
     if (features.shading_normals && !options.shadow_terminator_fix)
         text += " -D WP_SHADOW_TERMINATOR_FIX=0";
+    if (options.aovs != 0) // only then: without, the kernels are as they were
+        text += " -D WP_AOV=1";
     return text;
 }
 

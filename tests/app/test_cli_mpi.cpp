@@ -3,13 +3,17 @@
 // its error. Skipped when wavepath was built without MPI or mpirun is absent.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <unistd.h>
 
 #include "app/cli_run.hpp"
 #include "app/same_samples.hpp"
+#include "image/exr.hpp"
 #include "image/image_io.hpp"
 #include "support/sanitizer.hpp"
 
@@ -129,5 +133,47 @@ TEST_CASE("cli mpi: a rank that renders something else ends the job naming it an
               0); // the first line names the rank
         CHECK(stderr_text.find("does not render what rank 0 does: " + c.what) != std::string::npos);
         CHECK_FALSE(fs::exists(image));
+    }
+}
+
+TEST_CASE("cli mpi: two ranks give the AOVs one process gives", "[aov]") {
+    const std::string launcher = mpirun();
+    if (launcher.empty()) {
+        WARN("skipped: wavepath was built without MPI, or mpirun is absent");
+        return;
+    }
+    Scratch s;
+    const std::string arguments = "render " + kHexroom +
+                                  " --spp 8 --width 24 --height 16 --seed 4 --aov "
+                                  "albedo,normal,depth --out ";
+    const fs::path one = s.dir / "one.exr", two = s.dir / "two.exr";
+    Run single = wavepath(arguments + "'" + one.string() + "'", s);
+    INFO(single.err);
+    REQUIRE(single.exit_code == 0);
+    const fs::path out = s.dir / "mpi-out.txt", err = s.dir / "mpi-err.txt";
+    const std::string command = "WAVEPATH_DEVICE='" + test_device_index() + "' " + launcher +
+                                " -np 2 '" + WAVEPATH_EXE + "' " + arguments + "'" + two.string() +
+                                "' >'" + out.string() + "' 2>'" + err.string() + "'";
+    const int status = std::system(command.c_str());
+    const std::string stdout_text = slurp(out);
+    INFO(slurp(err));
+    REQUIRE(status == 0);
+    CHECK(stdout_text.find("\n1    ") != std::string::npos); // rank 1 took part
+    const auto a = wp::read_exr_channels(one), b = wp::read_exr_channels(two);
+    REQUIRE(a.size() == 10);
+    REQUIRE(b.size() == 10);
+    for (const auto& [name, values] : a) {
+        if (name.find('.') == std::string::npos)
+            continue; // R, G, B: the test above
+        INFO(name);
+        const std::vector<float>& other = b.at(name);
+        REQUIRE(other.size() == values.size());
+        // Rank 1's share of a pixel's samples is in its AOVs: a lost share
+        // would halve the mean, not move it by rounding.
+        double worst = 0.0;
+        for (std::size_t i = 0; i < values.size(); ++i)
+            worst = std::max(worst, static_cast<double>(std::abs(values[i] - other[i])) /
+                                        std::max(1.0, static_cast<double>(std::abs(values[i]))));
+        CHECK(worst < 1e-5);
     }
 }

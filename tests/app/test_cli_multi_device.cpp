@@ -3,10 +3,14 @@
 // bad list.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <string>
+#include <vector>
 
 #include "app/cli_run.hpp"
 #include "app/same_samples.hpp"
+#include "image/exr.hpp"
 #include "image/image_io.hpp"
 
 using namespace wp::test::cli;
@@ -84,4 +88,40 @@ TEST_CASE("cli multi-device: two devices render the image one device renders") {
     CHECK(by_name.out.find("0:1   pthread") != std::string::npos);
     CHECK(by_name.out.find("split of 40x30 at 12 spp over 2 devices") != std::string::npos);
     check_same_samples(wp::read_image(two), wp::read_image(one), spp);
+}
+
+TEST_CASE("cli multi-device: two devices give the AOVs one device gives", "[aov]") {
+    if (!on_pocl()) {
+        WARN("skipped: the test device is not PoCL's, which can show the CPU as two devices");
+        return;
+    }
+    Scratch s;
+    const std::string common = "render " + kHexroom +
+                               " --spp 6 --width 24 --height 16 --seed 9 --aov "
+                               "albedo,normal,depth --out ";
+    const auto one = s.dir / "one.exr", two = s.dir / "two.exr";
+    Run single = wavepath(common + "'" + one.string() + "' --device 0:0", s, kTwoCpuDevices);
+    INFO(single.err);
+    REQUIRE(single.exit_code == 0);
+    Run multi = wavepath(common + "'" + two.string() + "' --device all", s, kTwoCpuDevices);
+    INFO(multi.err);
+    REQUIRE(multi.exit_code == 0);
+    CHECK(multi.err.find("(0:0) + ") != std::string::npos);
+    const auto a = wp::read_exr_channels(one), b = wp::read_exr_channels(two);
+    REQUIRE(a.size() == 10);
+    REQUIRE(b.size() == 10);
+    for (const auto& [name, values] : a) {
+        if (name.find('.') == std::string::npos)
+            continue; // R, G, B: the test above
+        INFO(name);
+        const std::vector<float>& other = b.at(name);
+        REQUIRE(other.size() == values.size());
+        // Each device's share of a pixel's samples is in its AOVs: a lost
+        // share would halve the mean, not move it by rounding.
+        double worst = 0.0;
+        for (std::size_t i = 0; i < values.size(); ++i)
+            worst = std::max(worst, static_cast<double>(std::abs(values[i] - other[i])) /
+                                        std::max(1.0, static_cast<double>(std::abs(values[i]))));
+        CHECK(worst < 1e-5);
+    }
 }

@@ -5,6 +5,7 @@
 // -cl-kernel-arg-info, independently of the macros that declare them.
 #include "support/kernel_test_util.hpp"
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -71,4 +72,32 @@ TEST_CASE("stage kernels: the host binds one buffer per listed name, and sizes t
     CHECK(std::string(name) == "film_sum");
     CHECK(path_buffer_bytes().largest(7, 1, &name) == 7 * sizeof(cl_float4)); // a path buffer
     CHECK(std::string(name) == "ray_origin");
+}
+
+TEST_CASE("stage kernels: the AOV buffers are rows of the path list, allocated per pixel only "
+          "for a render with AOVs",
+          "[cl][arguments]") {
+    std::vector<std::string> aov_rows;
+#define WP_AOV_NAME(name, ...) aov_rows.push_back(#name);
+    WP_AOV_BUFFERS(WP_AOV_NAME)
+#undef WP_AOV_NAME
+    CHECK(aov_rows == std::vector<std::string>{"aov_albedo", "aov_normal", "aov_depth"});
+    const std::vector<std::string> all = expected_parameters();
+    CHECK(std::equal(aov_rows.rbegin(), aov_rows.rend(), all.rbegin())); // the list's last rows
+
+    const DeviceBuffers without = stage_buffers(3, 5);
+    CHECK(without.aov_albedo.getInfo<CL_MEM_SIZE>() == sizeof(cl_float4)); // a dummy
+    CHECK(without.aov_depth.getInfo<CL_MEM_SIZE>() == sizeof(cl_float));
+    const DeviceBuffers with =
+        allocate_device_buffers(device().context, DeviceScene{}, 3, 5, /*aovs=*/true);
+    CHECK(with.aov_albedo.getInfo<CL_MEM_SIZE>() == 5 * sizeof(cl_float4));
+    CHECK(with.aov_normal.getInfo<CL_MEM_SIZE>() == 5 * sizeof(cl_float4));
+    CHECK(with.aov_depth.getInfo<CL_MEM_SIZE>() == 5 * sizeof(cl_float));
+    std::uint64_t total = 0;
+#define WP_SIZE(name, ...) total += with.name.getInfo<CL_MEM_SIZE>();
+    WP_PATH_BUFFERS(WP_SIZE)
+#undef WP_SIZE
+    CHECK(path_buffer_bytes(true).total(3, 5) == total);
+    CHECK(path_buffer_bytes(true).per_pixel ==
+          path_buffer_bytes(false).per_pixel + 2 * sizeof(cl_float4) + sizeof(cl_float));
 }

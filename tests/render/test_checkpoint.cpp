@@ -113,6 +113,34 @@ TEST_CASE("checkpoint: a film and its identity survive the round trip bit for bi
     CHECK(back.film.variance_of_mean().rgb == film.variance_of_mean().rgb);
 }
 
+TEST_CASE("checkpoint: a film with AOVs keeps them, 7 more numbers a pixel", "[checkpoint][aov]") {
+    Film film = sample_film();
+    const std::size_t pixels = static_cast<std::size_t>(kWidth) * kHeight;
+    std::vector<float> albedo(pixels * 4), normal(pixels * 4), depth(pixels);
+    for (std::size_t i = 0; i < pixels * 4; ++i) {
+        albedo[i] = std::sqrt(static_cast<float>(i + 2));
+        normal[i] = -std::sqrt(static_cast<float>(i + 3)) / 5.0f;
+    }
+    for (std::size_t p = 0; p < pixels; ++p)
+        depth[p] = std::sqrt(static_cast<float>(p + 11)) * 7.0f;
+    film.add_aov_batch(albedo, normal, depth);
+    const std::vector<unsigned char> bytes = encode_checkpoint(sample_identity(), kSpp, film);
+    const std::vector<unsigned char> plain =
+        encode_checkpoint(sample_identity(), kSpp, sample_film());
+    CHECK(bytes.size() == plain.size() + pixels * 7 * 8);
+    const FilmCheckpoint back = decode_checkpoint(bytes, "c.wpck");
+    check_same_film(back.film, film);
+    REQUIRE(back.film.has_aovs());
+    CHECK(back.film.sums().aov_sum == film.sums().aov_sum);
+    for (std::uint32_t aov = 0; aov < 3; ++aov)
+        CHECK(back.film.aov_mean(aov) == film.aov_mean(aov));
+    CHECK_FALSE(decode_checkpoint(plain, "c.wpck").film.has_aovs());
+    // One byte short of the AOVs is neither form: refused.
+    std::vector<unsigned char> cut = bytes;
+    cut.pop_back();
+    CHECK_THROWS(decode_checkpoint(cut, "c.wpck"));
+}
+
 TEST_CASE("checkpoint: saved atomically and loaded for the same render", "[checkpoint]") {
     test::TempDir dir;
     const std::filesystem::path path = dir / "render.wpck";

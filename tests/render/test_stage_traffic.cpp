@@ -83,4 +83,16 @@ TEST_CASE("stage traffic: bytes per item add up the element sizes of the buffer 
     // accumulate: a queue entry, radiance, pixel, sample in; three film float4 read and written.
     CHECK(stage_bytes_per_item(Stage::Accumulate) == 4 + 16 + 4 + 4 + 3 * 2 * 16);
     CHECK(stage_bytes_per_item(Stage::Transfer) == 0);
+    // shade: the AOV rows are listed (the source names them) but, written only
+    // with --aov and only at a camera ray's hit, not counted per item.
+    std::uint64_t shade = 0;
+    int aov_rows = 0;
+    for (const BufferAccess& a : stage_buffer_accesses(Stage::Shade)) {
+        const bool aov = a.buffer.substr(0, 4) == "aov_";
+        aov_rows += aov;
+        if (!aov)
+            shade += path_buffer_element_bytes(a.buffer) * (a.access == Access::ReadWrite ? 2 : 1);
+    }
+    CHECK(aov_rows == 3);
+    CHECK(stage_bytes_per_item(Stage::Shade) == shade);
 }
