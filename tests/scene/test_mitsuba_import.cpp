@@ -229,6 +229,10 @@ TEST_CASE("mitsuba import: bad input is one line with the file, line and column"
          head + "<shape type=\"cube\"><bsdf type=\"diffuse\">\n"
                 "<rgb name=\"reflectance\" value=\"2\"/></bsdf></shape></scene>",
          "3:1", "must be in [0, 1], got 2"},
+        {"thinlens without aperture_radius",
+         head + "<sensor type=\"thinlens\"><float name=\"focus_distance\" value=\"2\"/>"
+                "</sensor></scene>",
+         "2:1", "needs aperture_radius"},
         {"no sensor", head + "<shape type=\"cube\"/></scene>", "1:1", "has no <sensor>"},
         {"emitting sphere",
          head + "<shape type=\"sphere\"><emitter type=\"area\">"

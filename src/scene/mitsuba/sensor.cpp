@@ -146,14 +146,16 @@ Camera read_sensor(const Object& sensor, std::vector<std::string>& warnings) {
     p.ignore("near_clip");
     p.ignore("far_clip");
     if (lens) {
-        c.aperture_radius = p.number("aperture_radius").value_or(1.0); // Mitsuba's default
+        // As Mitsuba 3.9.1 (measured with mi.load_dict): aperture_radius is
+        // required, focus_distance defaults to 10000.
+        const std::optional<double> aperture = p.number("aperture_radius");
+        if (!aperture)
+            p.fail("a thinlens sensor needs aperture_radius (the lens radius in scene units)");
+        c.aperture_radius = *aperture;
         if (!(c.aperture_radius >= 0.0) || c.aperture_radius > scene_limits::max_coordinate)
             p.fail("aperture_radius",
                    "must be in [0, 1e30], got " + number_text(c.aperture_radius));
-        const std::optional<double> focus = p.number("focus_distance");
-        if (!focus)
-            p.fail("a thinlens sensor needs focus_distance (the distance to the plane in focus)");
-        c.focus_distance = *focus;
+        c.focus_distance = p.number("focus_distance").value_or(10000.0);
         if (!(c.focus_distance > 0.0) || c.focus_distance > scene_limits::max_coordinate)
             p.fail("focus_distance", "must be in (0, 1e30], got " + number_text(c.focus_distance));
     } else {
