@@ -16,23 +16,25 @@ seconds=${3:-600}
 jobs=${4:-2}
 shift $(($# < 4 ? $# : 4))
 targets=("$@")
-((${#targets[@]})) || targets=(scene obj ply exr pfm)
+((${#targets[@]})) || targets=(scene xml obj ply exr pfm)
 dicts=$(realpath fuzz/dictionaries)
 
 bash fuzz/make-corpora.sh "$build" "$out"
 
 # Longest input per target: a few times the largest seed, so that mutations
 # can grow a file, without letting the fuzzer spend its time on huge inputs.
-declare -A max_len=([scene]=16384 [obj]=8192 [ply]=8192 [exr]=16384 [pfm]=4096)
+declare -A max_len=([scene]=16384 [xml]=16384 [obj]=8192 [ply]=8192 [exr]=16384 [pfm]=4096)
 
 run_one() {
   local target=$1
   mkdir -p "$out/corpus/$target" "$out/artifacts/$target" "$out/logs"
   local dict=()
   [ -f "$dicts/$target.dict" ] && dict=(-dict="$dicts/$target.dict")
-  # scene_fuzzer names mesh files relative to its working directory.
+  # scene_fuzzer and xml_fuzzer name mesh files relative to their working
+  # directory (xml_fuzzer writes its input there as fuzz.xml).
   local cwd=$out
   [ "$target" = scene ] && cwd=$out/scene-cwd
+  [ "$target" = xml ] && cwd=$out/xml-cwd && mkdir -p "$cwd" && cp "$out"/scene-cwd/* "$cwd/"
   (cd "$cwd" && nice -n 10 "$build/fuzz/${target}_fuzzer" \
      -max_total_time="$seconds" -rss_limit_mb=2048 -timeout=10 -max_len="${max_len[$target]}" \
      -print_final_stats=1 -artifact_prefix="$out/artifacts/$target/" "${dict[@]}" \

@@ -53,6 +53,15 @@ void check_near(const glm::dvec3& a, const glm::dvec3& b) {
     CHECK(glm::length(a - b) < 1e-12);
 }
 
+std::string repeated(const std::string& text, int times) {
+    std::string out;
+    for (int i = 0; i < times; ++i)
+        out += text;
+    return out;
+}
+
+constexpr const char* kNested = "<bsdf type=\"twosided\">";
+
 std::string error_of(const wp::test::TempDir& dir, const std::string& text) {
     write(dir / "bad.xml", text);
     try {
@@ -233,6 +242,9 @@ TEST_CASE("mitsuba import: bad input is one line with the file, line and column"
          head + "<sensor type=\"thinlens\"><float name=\"focus_distance\" value=\"2\"/>"
                 "</sensor></scene>",
          "2:1", "needs aperture_radius"},
+        {"objects nested too deep (a hostile file: 10^5 levels overflowed the stack)",
+         head + repeated(kNested, 100000) + repeated("</bsdf>", 100000) + "</scene>",
+         "2:" + std::to_string(1 + 64 * std::string(kNested).size()), "nested more than 64 deep"},
         {"no sensor", head + "<shape type=\"cube\"/></scene>", "1:1", "has no <sensor>"},
         {"emitting sphere",
          head + "<shape type=\"sphere\"><emitter type=\"area\">"

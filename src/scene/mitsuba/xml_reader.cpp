@@ -328,7 +328,20 @@ class Reader {
         include_stack_.pop_back();
     }
 
+    // Objects nested deeper than this are refused: a real scene nests a few
+    // levels (a twosided BSDF in a shape in a scene), and a hostile file of
+    // 10^5 nested elements overflowed the stack (reading, and destroying the
+    // chain of objects) before this limit.
+    static constexpr int kMaxNesting = 64;
+
     std::shared_ptr<const Object> read_object(const SourceFile& file, const pugi::xml_node& node) {
+        if (nesting_ >= kMaxNesting)
+            fail(file, node, "objects nested more than " + std::to_string(kMaxNesting) + " deep");
+        ++nesting_;
+        struct Leave {
+            int& depth;
+            ~Leave() { --depth; }
+        } leave{nesting_};
         auto object = std::make_shared<Object>();
         object->tag = node.name();
         object->where = file.at(node);
@@ -499,6 +512,7 @@ class Reader {
     std::map<std::string, std::string> parameters_;
     std::map<std::string, std::shared_ptr<const Object>, std::less<>> ids_;
     std::vector<std::filesystem::path> include_stack_;
+    int nesting_ = 0;              // read_object's depth
     std::deque<SourceFile> files_; // stable addresses: Locations are made as files are read
     std::vector<std::string> files_read_;
 };
