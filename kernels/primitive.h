@@ -88,7 +88,45 @@ typedef struct {
      * vertex normals describe (wp_terminator_point). */
     float3 spawn_front; /* for a ray leaving by the front side */
     float3 spawn_back;
+#if WP_HAS_TEXTURES
+    /* Texture coordinates, as Mitsuba 3 parameterises each shape (measured
+     * with its ray_intersect): a triangle's interpolated vertex (u, v), or
+     * without them its barycentrics (b1, b2); a sphere's
+     * (phi / 2 pi, theta / pi) about its centre, phi from +x towards +y in
+     * [0, 2 pi), theta from +z. */
+    float2 uv;
+#endif
 } WpSurface;
+
+#if WP_HAS_TEXTURES
+/* The barycentric coordinates (b1, b2) of `position`, a point on the
+ * triangle's plane, from the sub-triangles' areas. */
+static inline float2 wp_triangle_barycentrics(const WpTriangle* t, float3 position) {
+    float3 e1 = t->v1.xyz - t->v0.xyz, e2 = t->v2.xyz - t->v0.xyz, w = position - t->v0.xyz;
+    float3 ng = cross(e1, e2);
+    float inverse_area = 1.0f / dot(ng, ng);
+    return (float2)(dot(cross(w, e2), ng) * inverse_area, dot(cross(e1, w), ng) * inverse_area);
+}
+
+static inline float2 wp_triangle_uv(const WpSceneView* scene, const WpTriangle* t,
+                                    float3 position) {
+    float2 b = wp_triangle_barycentrics(t, position);
+    wp_uint uvs = wp_triangle_uvs(t);
+    if (uvs == 0u)
+        return b;
+    WpTriangleUvs c = scene->triangle_uvs[uvs - 1u];
+    float b0 = 1.0f - b.x - b.y;
+    return (float2)(b0 * c.u.x + b.x * c.u.y + b.y * c.u.z, b0 * c.v.x + b.x * c.v.y + b.y * c.v.z);
+}
+
+/* A sphere's texture coordinates at unit normal n (the direction from its
+ * centre). */
+static inline float2 wp_sphere_uv(float3 n) {
+    float phi = atan2(n.y, n.x);
+    phi = phi < 0.0f ? phi + 2.0f * M_PI_F : phi;
+    return (float2)(phi * (0.5f * M_1_PI_F), acos(clamp(n.z, -1.0f, 1.0f)) * M_1_PI_F);
+}
+#endif
 
 #if WP_HAS_SHADING_NORMALS
 /* The shadow terminator fix (Hanika, "Hacking the shadow terminator", Ray
@@ -153,6 +191,9 @@ static inline void wp_surface_at(const WpSceneView* scene, wp_uint primitive, fl
         s.scale = wp_sphere_scale(sphere.center_radius);
         s.material = sphere.material;
         s.inside_solid = dot(direction, s.normal) >= 0.0f;
+#if WP_HAS_TEXTURES
+        s.uv = wp_sphere_uv(s.normal);
+#endif
     } else
 #endif
     {
@@ -161,6 +202,9 @@ static inline void wp_surface_at(const WpSceneView* scene, wp_uint primitive, fl
         s.position = position - dot(position - triangle.v0.xyz, s.normal) * s.normal;
         s.scale = wp_triangle_scale(&triangle);
         s.material = wp_triangle_material(&triangle);
+#if WP_HAS_TEXTURES
+        s.uv = wp_triangle_uv(scene, &triangle, s.position);
+#endif
 #if WP_HAS_SHADING_NORMALS
         if (wp_triangle_normals(&triangle) != 0u) {
             s.front_face = dot(direction, s.normal) < 0.0f;

@@ -62,6 +62,21 @@ enum { WP_MATERIALS(WP_MATERIAL_FEATURE_CHECK) wp_material_features_checked };
     WP_IF(sampled)(wp_has_##name##_filter_is_defined = WP_HAS_##KIND##_FILTER, )
 enum { WP_FILTERS(WP_FILTER_FEATURE_CHECK) wp_filter_features_checked };
 #undef WP_FILTER_FEATURE_CHECK
+/* Textures in use: one switch per kind (the rows of WP_TEXTURES, wp_shared.h;
+ * checked like the materials'). WP_HAS_TEXTURES, any of them, brings in the
+ * texture coordinates of the hit point (primitive.h). */
+#ifndef WP_HAS_BITMAP_TEXTURE
+#define WP_HAS_BITMAP_TEXTURE 1
+#endif
+#ifndef WP_HAS_CHECKERBOARD_TEXTURE
+#define WP_HAS_CHECKERBOARD_TEXTURE 1
+#endif
+#define WP_TEXTURE_FEATURE_CHECK(KIND, Name, name, value)                                          \
+    wp_has_##name##_texture_is_defined = WP_HAS_##KIND##_TEXTURE,
+enum { WP_TEXTURES(WP_TEXTURE_FEATURE_CHECK) wp_texture_features_checked };
+#undef WP_TEXTURE_FEATURE_CHECK
+#define WP_TEXTURE_FEATURE_TERM(KIND, Name, name, value) || WP_HAS_##KIND##_TEXTURE
+#define WP_HAS_TEXTURES (0 WP_TEXTURES(WP_TEXTURE_FEATURE_TERM))
 #ifndef WP_HAS_SHADING_NORMALS /* triangles with vertex normals */
 #define WP_HAS_SHADING_NORMALS 1
 #endif

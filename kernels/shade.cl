@@ -43,6 +43,7 @@
 #include "primitive.h"
 #include "rng.h"
 #include "stage.h"
+#include "textures/texture.h"
 
 /* The random numbers of one bounce of one path. */
 typedef struct {
@@ -170,6 +171,9 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
     WpSurface surface;
     wp_surface_at(&scene, primitive, ray_origin[slot].xyz, direction, t, &surface);
     WpMaterial material = materials[surface.material];
+#if WP_HAS_TEXTURES
+    wp_apply_textures(&scene, surface.uv, &material);
+#endif
 #if WP_AOV
     if (path_depth[slot] == 0u) /* the camera ray's first hit */
         wp_shade_aovs(&material, &surface, t, path_pixel[slot], aov_albedo, aov_normal, aov_depth);

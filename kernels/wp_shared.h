@@ -147,7 +147,9 @@ enum { WP_MATERIALS(WP_MATERIAL_ENUMERATOR) WP_MATERIAL_KIND_COUNT };
  * (read and written only through the accessors below; exact up to
  * WP_TRIANGLE_INDEX_LIMIT = 2^24, which the host checks): v0.w its material,
  * v1.w `normals`, 0 or k + 1 for shading normals in triangle_normals[k]; v2.w
- * is 0. A 0.0f lane is 0, so material 0 without normals is the default.
+ * `uvs`, 0 or k + 1 for texture coordinates in triangle_uvs[k] (set only in
+ * scenes with textures). A 0.0f lane is 0, so material 0 without normals or
+ * texture coordinates is the default.
  *
  * Not the uints' bits: small uints read as floats are denormals, and the
  * vector code that loads a vertex as a float4 carries its w lane through
@@ -168,6 +170,9 @@ static inline wp_uint wp_triangle_material(const WpTriangle* t) {
 static inline wp_uint wp_triangle_normals(const WpTriangle* t) {
     return (wp_uint)t->v1.w;
 }
+static inline wp_uint wp_triangle_uvs(const WpTriangle* t) {
+    return (wp_uint)t->v2.w;
+}
 #else
 static inline wp_uint wp_triangle_material(const WpTriangle* t) {
     return (wp_uint)t->v0.s[3];
@@ -182,6 +187,9 @@ static inline void wp_set_triangle_material(WpTriangle* t, wp_uint material) {
 static inline void wp_set_triangle_normals(WpTriangle* t, wp_uint normals) {
     t->v1.s[3] = (wp_float)normals;
 }
+static inline void wp_set_triangle_uvs(WpTriangle* t, wp_uint uvs) {
+    t->v2.s[3] = (wp_float)uvs;
+}
 #endif
 
 /* A triangle's vertex normals for shading (unit, xyz), in vertex order. */
@@ -190,6 +198,13 @@ typedef struct {
     wp_float4 n1;
     wp_float4 n2;
 } WpShadingNormals;
+
+/* A triangle's texture coordinates, in vertex order: vertex i has (u.si, v.si)
+ * (the w lanes are unused). */
+typedef struct {
+    wp_float4 u;
+    wp_float4 v;
+} WpTriangleUvs;
 
 typedef struct {
     wp_float4 center_radius; /* xyz centre, w radius */
@@ -218,7 +233,64 @@ typedef struct {
     wp_float fdr_int;         /* plastic: the coating's diffuse Fresnel reflectance from inside */
     wp_float specular_weight; /* plastic: the share of samples steered to the coating */
     wp_uint nonlinear;        /* plastic: Mitsuba's `nonlinear` */
+    /* Textured parameters (kernels/textures/texture.h): 0, the constant
+     * above; k + 1, the value of textures[k] at the hit point, which replaces
+     * it before the BSDF sees the material. Roughness takes the texture's
+     * luminance, as Mitsuba's float textures do. */
+    wp_uint reflectance_texture;
+    wp_uint specular_texture;
+    wp_uint transmittance_texture;
+    wp_uint alpha_u_texture;
+    wp_uint alpha_v_texture;
+    wp_uint pad0, pad1, pad2;
 } WpMaterial;
+
+/* The texture kinds, one row each: X(KIND, Name, name, value), Mitsuba 3's
+ * names. Each has its header kernels/textures/NAME.h and its feature switch
+ * WP_HAS_KIND_TEXTURE (kernels/scene_features.h), on only for scenes that use
+ * it; WP_TEXTURES_WITH(X, a) hands every row to X with `a` first. */
+#define WP_TEXTURES_WITH(X, a)                                                                     \
+    X(a, BITMAP, Bitmap, bitmap, 0u)                   /* an image file, filtered */               \
+    X(a, CHECKERBOARD, Checkerboard, checkerboard, 1u) /* two colours in squares of 1/2 */
+#define WP_TEXTURES(X) WP_TEXTURES_WITH(WP_MATERIAL_ROW_OF, X)
+
+#define WP_TEXTURE_ENUMERATOR(KIND, Name, name, value) WP_TEXTURE_##KIND = value,
+enum { WP_TEXTURES(WP_TEXTURE_ENUMERATOR) WP_TEXTURE_KIND_COUNT };
+#undef WP_TEXTURE_ENUMERATOR
+
+/* How a bitmap's texels are stored in texels[] (WpTexture.format). */
+#define WP_TEXELS_RGBA8 0u      /* one uint per texel: r in the low byte, then g, b (linear) */
+#define WP_TEXELS_RGBA8_SRGB 1u /* the same, sRGB-encoded: decoded to linear per texel */
+#define WP_TEXELS_RGB32F 2u     /* three uints per texel: the bits of r, g, b as floats */
+
+/* What a bitmap does outside [0, 1)^2 (WpTexture.wrap), Mitsuba's wrap_mode. */
+#define WP_TEXTURE_WRAP_REPEAT 0u
+#define WP_TEXTURE_WRAP_MIRROR 1u
+#define WP_TEXTURE_WRAP_CLAMP 2u
+
+/* How a bitmap is filtered (WpTexture.filter), Mitsuba's filter_type. */
+#define WP_TEXTURE_FILTER_BILINEAR 0u
+#define WP_TEXTURE_FILTER_NEAREST 1u
+
+/* A texture, 96 bytes. Every kind maps the hit point's (u, v) through its
+ * affine transform first (Mitsuba's to_uv): u' = dot(to_u.xyz, (u, v, 1)),
+ * v' = dot(to_v.xyz, (u, v, 1)). A bitmap's row 0 is the top of the image
+ * file and lies at v' = 0, as in Mitsuba (the OBJ reader flips the file's v,
+ * as Mitsuba's does). */
+typedef struct {
+    wp_float4 color0; /* checkerboard: the squares where u' and v' agree (rgb) */
+    wp_float4 color1; /* ... and the others */
+    wp_float4 to_u;
+    wp_float4 to_v;
+    wp_uint kind;   /* WP_TEXTURE_* */
+    wp_uint format; /* bitmap: WP_TEXELS_* */
+    wp_uint width;  /* bitmap: texels */
+    wp_uint height;
+    wp_uint first;  /* bitmap: where its texels start in texels[] (in uints) */
+    wp_uint wrap;   /* bitmap: WP_TEXTURE_WRAP_* */
+    wp_uint filter; /* bitmap: WP_TEXTURE_FILTER_* */
+    wp_uint pad0;
+} WpTexture;
 
 /* One emissive triangle, chosen with probability proportional to its area:
  * cdf is the running sum of areas up to and including this one, divided by
@@ -380,7 +452,10 @@ typedef struct {
     X(bvh_nodes, WpBvhNode)               /* with WP_USE_BVH; a dummy without */                   \
     X(mirror_groups, WpMirrorGroup)       /* planar mirrors (kernels/mirror_light.h) */            \
     X(mirror_triangles, WpTriangle)       /* their triangles */                                    \
-    X(mirror_spheres, wp_uint)            /* the mirror spheres' numbers in spheres[] */
+    X(mirror_spheres, wp_uint)            /* the mirror spheres' numbers in spheres[] */           \
+    X(triangle_uvs, WpTriangleUvs) /* texture coordinates of the triangles that have them */       \
+    X(textures, WpTexture)         /* with textures; a dummy without */                            \
+    X(texels, wp_uint)             /* the bitmaps' texels (WpTexture.format) */
 
 #define WP_PATH_BUFFERS(X)                                                                         \
     /* path state, one entry per slot (structure of arrays) */                                     \

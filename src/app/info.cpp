@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdio>
 #include <random>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -206,6 +207,20 @@ void print_scene(const std::string& path, const Scene& scene) {
                 scene.materials.size(), kinds[0], kinds[1], kinds[2], emissive_materials);
     std::printf("  lights: %zu emissive triangles, total area %.6g\n", emissive, light_area);
     std::printf("  camera: %dx%d\n", scene.camera.width, scene.camera.height);
+    if (!scene.textures.empty()) {
+        // Texels as the device holds them (8-bit files 4 bytes a texel, HDR
+        // and EXR 12), counted once per file however often it is named.
+        std::set<const TextureImage*> images;
+        std::size_t bytes = 0, bitmaps = 0;
+        for (const Texture& t : scene.textures)
+            if (t.image) {
+                ++bitmaps;
+                if (images.insert(t.image.get()).second)
+                    bytes += t.image->bytes();
+            }
+        std::printf("  textures: %zu (%zu bitmaps from %zu files, %.1f MB of texels)\n",
+                    scene.textures.size(), bitmaps, images.size(), 1e-6 * double(bytes));
+    }
     for (const std::string& warning : scene.warnings)
         std::printf("  warning: %s\n", warning.c_str());
 }

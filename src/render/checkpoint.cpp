@@ -177,6 +177,28 @@ std::uint64_t scene_content_hash(const Scene& scene) {
         if (t.has_normals)
             for (const glm::dvec3& n : t.normals)
                 h.vec(n);
+        h.u64(t.has_uvs ? 1 : 0);
+        if (t.has_uvs)
+            for (const glm::dvec2& uv : t.uvs)
+                h.vec(glm::dvec3(uv, 0.0));
+    }
+    // A texture by its values, texels included: a changed image file under
+    // the same name must not resume silently.
+    h.u64(scene.textures.size());
+    for (const Texture& t : scene.textures) {
+        h.u64(static_cast<std::uint64_t>(t.kind));
+        h.vec(t.to_u);
+        h.vec(t.to_v);
+        h.vec(t.color0);
+        h.vec(t.color1);
+        h.u64(static_cast<std::uint64_t>(t.filter));
+        h.u64(static_cast<std::uint64_t>(t.wrap));
+        if (t.image) {
+            h.u64(t.image->width);
+            h.u64(t.image->height);
+            h.u64(static_cast<std::uint64_t>(t.image->encoding));
+            h.state = fnv1a64_bytes(t.image->texels.data(), t.image->bytes(), h.state);
+        }
     }
     h.u64(scene.spheres.size());
     for (const Sphere& s : scene.spheres) {

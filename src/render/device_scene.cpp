@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
@@ -308,6 +309,13 @@ SceneFeatures analyse_features(const Scene& scene, std::uint32_t max_fixed_count
             return scene.materials[s.material].kind == MaterialKind::Mirror;
         });
     f.lens = scene.camera.aperture_radius > 0.0;
+    // One feature per texture kind: on when a material uses one.
+#define WP_TEXTURE_FEATURE_USED(features, KIND, Name, name, value)                                 \
+    features.name##_texture =                                                                      \
+        std::any_of(scene.textures.begin(), scene.textures.end(),                                  \
+                    [](const Texture& t) { return t.kind == TextureKind::Name; });
+    WP_TEXTURES_WITH(WP_TEXTURE_FEATURE_USED, f)
+#undef WP_TEXTURE_FEATURE_USED
     // One feature per filter with sampling code: on when the camera uses it.
 #define WP_FILTER_FEATURE_USED(features, KIND, Name, name, value, sampled)                         \
     WP_IF(sampled)(features.name##_filter = scene.camera.filter == FilterKind::Name;)
@@ -342,11 +350,50 @@ void check_triangle_indices(std::size_t materials, std::size_t normal_sets) {
                                  std::to_string(WP_TRIANGLE_INDEX_LIMIT) + " of each");
 }
 
+void flatten_textures(const Scene& scene, DeviceScene& out) {
+    // A file named by several textures is uploaded once.
+    std::map<const TextureImage*, wp_uint> first_texel;
+    for (const Texture& t : scene.textures) {
+        WpTexture w{};
+        w.kind = static_cast<wp_uint>(t.kind);
+        w.to_u = to_float4(t.to_u);
+        w.to_v = to_float4(t.to_v);
+        w.color0 = to_float4(t.color0);
+        w.color1 = to_float4(t.color1);
+        w.wrap = static_cast<wp_uint>(t.wrap);
+        w.filter = static_cast<wp_uint>(t.filter);
+        if (t.image) {
+            const TextureImage& image = *t.image;
+            w.width = image.width;
+            w.height = image.height;
+            w.format = image.encoding == TexelEncoding::Float32 ? WP_TEXELS_RGB32F
+                       : image.encoding == TexelEncoding::Srgb8 ? WP_TEXELS_RGBA8_SRGB
+                                                                : WP_TEXELS_RGBA8;
+            // The kernels index texels with 32-bit offsets.
+            if (out.texels.size() + image.texels.size() > std::size_t{0xffffffffu})
+                throw std::runtime_error(
+                    "the scene's textures hold more than 16 GiB of texels; the device's "
+                    "texture offsets are 32-bit");
+            if (const auto it = first_texel.find(&image); it != first_texel.end()) {
+                w.first = it->second;
+            } else {
+                w.first = static_cast<wp_uint>(out.texels.size());
+                first_texel.emplace(&image, w.first);
+                out.texels.insert(out.texels.end(), image.texels.begin(), image.texels.end());
+            }
+        }
+        out.textures.push_back(w);
+    }
+}
+
 DeviceScene flatten_scene(const Scene& scene, bool hierarchy) {
-    check_triangle_indices(
-        scene.materials.size(),
-        static_cast<std::size_t>(std::count_if(scene.triangles.begin(), scene.triangles.end(),
-                                               [](const Triangle& t) { return t.has_normals; })));
+    const auto count = [&](auto has) {
+        return static_cast<std::size_t>(
+            std::count_if(scene.triangles.begin(), scene.triangles.end(), has));
+    };
+    check_triangle_indices(scene.materials.size(),
+                           count([](const Triangle& t) { return t.has_normals; }));
+    check_triangle_indices(0, count([](const Triangle& t) { return t.has_uvs; }));
     DeviceScene out;
     out.width = scene.camera.width;
     out.height = scene.camera.height;
@@ -374,13 +421,27 @@ DeviceScene flatten_scene(const Scene& scene, bool hierarchy) {
             w.fdr_int = static_cast<float>(fresnel_diffuse_reflectance(1.0 / eta));
             // Mitsuba's specular_sampling_weight: the coating's share of the
             // mean reflectances (it steers sampling only, never the estimate).
-            const double s = (m.specular.x + m.specular.y + m.specular.z) / 3.0;
-            const double d = (m.reflectance.x + m.reflectance.y + m.reflectance.z) / 3.0;
+            // A textured reflectance counts with the texture's mean, as in Mitsuba.
+            auto mean = [&](const glm::dvec3& constant, std::uint32_t texture) {
+                const glm::dvec3 c = texture ? scene.textures[texture - 1].mean() : constant;
+                return (c.x + c.y + c.z) / 3.0;
+            };
+            const double s = mean(m.specular, m.specular_texture);
+            const double d = mean(m.reflectance, m.reflectance_texture);
             w.specular_weight = static_cast<float>(s + d > 0.0 ? s / (s + d) : 0.5);
             w.nonlinear = m.nonlinear ? 1u : 0u;
         }
+        w.reflectance_texture = m.reflectance_texture;
+        w.specular_texture = m.specular_texture;
+        w.transmittance_texture = m.transmittance_texture;
+        w.alpha_u_texture = m.alpha_u_texture;
+        w.alpha_v_texture = m.alpha_v_texture;
         out.materials.push_back(w);
     }
+    flatten_textures(scene, out);
+    // Texture coordinates only where a texture can read them: a scene
+    // without textures keeps its triangles (and images) as they were.
+    const bool uvs = !scene.textures.empty();
 
     // Coordinates in float32's comfortable range, exactly (render/float_range.hpp).
     const FloatFrame frame = float_frame(scene);
@@ -401,6 +462,15 @@ DeviceScene flatten_scene(const Scene& scene, bool hierarchy) {
             n.n2 = to_float4(t.normals[2]);
             out.triangle_normals.push_back(n);
             wp_set_triangle_normals(&w, static_cast<wp_uint>(out.triangle_normals.size())); // k + 1
+        }
+        if (uvs && t.has_uvs) {
+            WpTriangleUvs c{};
+            for (int k = 0; k < 3; ++k) {
+                c.u.s[k] = static_cast<float>(t.uvs[k].x);
+                c.v.s[k] = static_cast<float>(t.uvs[k].y);
+            }
+            out.triangle_uvs.push_back(c);
+            wp_set_triangle_uvs(&w, static_cast<wp_uint>(out.triangle_uvs.size())); // k + 1
         }
         out.triangles.push_back(w);
         if (scene.materials[t.material].is_emissive()) {

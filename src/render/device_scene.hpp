@@ -35,6 +35,11 @@ inline constexpr std::uint32_t kMinBvhPrimitives = kMaxFixedCountPrimitives + 1;
 #define WP_FILTER_FEATURE_ROW(X, KIND, Name, name, value, sampled)                                 \
     WP_IF(sampled)(X(name##_filter, WP_HAS_##KIND##_FILTER))
 #define WP_FILTER_FEATURES(X) WP_FILTERS_WITH(WP_FILTER_FEATURE_ROW, X)
+// The textures' rows come from WP_TEXTURES: one per kind, named NAME_texture,
+// set when a material uses one.
+#define WP_TEXTURE_FEATURE_ROW(X, KIND, Name, name, value)                                         \
+    X(name##_texture, WP_HAS_##KIND##_TEXTURE)
+#define WP_TEXTURE_FEATURES(X) WP_TEXTURES_WITH(WP_TEXTURE_FEATURE_ROW, X)
 #define WP_SCENE_FEATURES(X)                                                                       \
     X(triangles, WP_HAS_TRIANGLES)                                                                 \
     X(spheres, WP_HAS_SPHERES)                                                                     \
@@ -44,7 +49,8 @@ inline constexpr std::uint32_t kMinBvhPrimitives = kMaxFixedCountPrimitives + 1;
     X(planar_mirrors, WP_HAS_PLANAR_MIRRORS)   /* flat mirror triangles, and lights */             \
     X(mirror_spheres, WP_HAS_MIRROR_SPHERES)   /* spheres of a mirror material, and lights */      \
     X(lens, WP_HAS_LENS)                       /* a thin lens: aperture radius > 0 */              \
-    WP_FILTER_FEATURES(X)                      /* the pixel filter, unless the box */
+    WP_FILTER_FEATURES(X)                      /* the pixel filter, unless the box */              \
+    WP_TEXTURE_FEATURES(X)                     /* texture kinds in use */
 
 // Which kinds of primitive, material and light the scene uses.
 struct SceneFeatures {
@@ -114,6 +120,9 @@ struct DeviceScene {
     std::vector<WpMirrorGroup> mirror_groups;       // planar mirrors (render/planar_mirrors.hpp)
     std::vector<WpTriangle> mirror_triangles;       // copies of their triangles
     std::vector<wp_uint> mirror_spheres;            // with lights: the spheres of a mirror material
+    std::vector<WpTriangleUvs> triangle_uvs; // of the triangles that have them (with textures)
+    std::vector<WpTexture> textures;
+    std::vector<wp_uint> texels; // the bitmaps' (WpTexture.first)
     BvhStats bvh_stats;
     float light_area = 0.0f; // total emissive area
     WpCamera camera{};
@@ -133,6 +142,11 @@ void check_triangle_indices(std::size_t materials, std::size_t normal_sets);
 // bounding volume hierarchy over triangles and spheres; the camera basis is
 // scaled so that film coordinates in [-1, 1] span the field of view.
 DeviceScene flatten_scene(const Scene& scene, bool hierarchy = false);
+
+// The scene's textures as WpTexture rows into out.textures, their bitmaps'
+// texels one after another in out.texels (each file once); part of
+// flatten_scene.
+void flatten_textures(const Scene& scene, DeviceScene& out);
 
 // The box the hierarchy gives each primitive (the triangles' first): the
 // primitive's float32 bounds, widened so that every hit the device's

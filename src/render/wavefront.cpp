@@ -62,6 +62,31 @@ void check_device_memory(const DeviceInfo& device, int width, int height, std::u
                                  gibibytes(max_alloc) + "); use a smaller --width/--height");
 }
 
+// The same for the scene's buffers (geometry, hierarchy, textures), once
+// they are flattened and before any is uploaded.
+void check_scene_memory(const DeviceInfo& device, const DeviceScene& scene) {
+    std::uint64_t total = 0, largest = 0;
+    const char* largest_name = "";
+#define WP_SCENE_BUFFER_BYTES(name, type)                                                          \
+    {                                                                                              \
+        const std::uint64_t bytes = scene.name.size() * sizeof(type);                              \
+        total += bytes;                                                                            \
+        if (bytes > largest) {                                                                     \
+            largest = bytes;                                                                       \
+            largest_name = #name;                                                                  \
+        }                                                                                          \
+    }
+    WP_SCENE_BUFFERS(WP_SCENE_BUFFER_BYTES)
+#undef WP_SCENE_BUFFER_BYTES
+    const std::uint64_t max_alloc = device.device.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
+    if (total > device.global_memory_bytes || largest > max_alloc)
+        throw std::runtime_error("out of device memory: the scene needs " + gibibytes(total) +
+                                 " (largest buffer " + largest_name + ", " + gibibytes(largest) +
+                                 ") on " + device.name + ", which has " +
+                                 gibibytes(device.global_memory_bytes) + " (largest buffer " +
+                                 gibibytes(max_alloc) + ")");
+}
+
 } // namespace
 
 ChosenLaunchPlan choose_launch_plan(LaunchPlan requested, const DeviceInfo& device,
@@ -146,6 +171,7 @@ WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const Scene& sce
     plan_ = choose_launch_plan(options_.launch_plan, device_.info,
                                compiled.fixed_counts && !compiled.bvh, options_.regeneration);
     scene_ = flatten_scene(scene, compiled.bvh);
+    check_scene_memory(device_.info, scene_);
     program_ = build_wavefront_program(device_.context, device_.info.device, build_options,
                                        options_.program_cache);
     mirror_shadows_ = build_options.find("WP_MIRROR_NEE=1") != std::string::npos;

@@ -5,18 +5,25 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <utility>
 #include <vector>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include "image/image.hpp"
+#include "image/texture_image.hpp"
 #include "scene/camera.hpp"
 #include "scene/json_reader.hpp"
 #include "scene/material.hpp"
 #include "scene/mesh.hpp"
 #include "scene/mitsuba/load_mitsuba.hpp"
+#include "scene/texture.hpp"
 #include "scene/transform_reader.hpp"
 #include "scene/validate.hpp"
 #include "util/file.hpp"
@@ -293,8 +300,13 @@ class SceneReader : private json::Reader {
         case MaterialKind::Diffuse:
         case MaterialKind::Mirror:
             check_keys(m, pm, {"type", "reflectance", "emission"});
+            if (mat.kind == MaterialKind::Mirror && require(m, pm, "reflectance").is_object())
+                fail(pm / "reflectance",
+                     "a mirror's reflectance cannot be a texture (next-event estimation through "
+                     "mirrors takes one colour); use a conductor with a textured "
+                     "specular_reflectance");
             mat.reflectance =
-                vec3(require(m, pm, "reflectance"), pm / "reflectance", Range::Reflectance);
+                colour(require(m, pm, "reflectance"), pm / "reflectance", mat.reflectance_texture);
             read_emission(m, pm, mat);
             return;
         case MaterialKind::Emitter:
@@ -311,7 +323,8 @@ class SceneReader : private json::Reader {
             read_conductor(m, pm, mat);
             // Mitsuba's default, material "none" without eta and k: the perfect
             // mirror, which is the mirror kind (and its next-event estimation).
-            if (mat.metal == "none" && m.find("eta") == m.end() && m.find("k") == m.end())
+            if (mat.metal == "none" && m.find("eta") == m.end() && m.find("k") == m.end() &&
+                !mat.is_textured())
                 mat.kind = MaterialKind::Mirror;
             return;
         case MaterialKind::RoughConductor:
@@ -346,6 +359,120 @@ class SceneReader : private json::Reader {
         fail(pm / "type", "material kind without a reader"); // unreachable for valid kinds
     }
 
+    // --- textures --------------------------------------------------------------
+
+    // A colour parameter: [r, g, b] in [0, 1], or a texture object
+    // (read_texture), whose number k + 1 goes to `texture`; the constant is
+    // then the texture's mean, clamped to [0, 1] (the BSDF sees the texture,
+    // the host's heuristics such as plastic's sampling weight the mean).
+    glm::dvec3 colour(const Json& v, const Ptr& p, std::uint32_t& texture) {
+        if (v.is_object()) {
+            texture = read_texture(v, p);
+            return glm::clamp(scene_.textures[texture - 1].mean(), 0.0, 1.0);
+        }
+        return vec3(v, p, Range::Reflectance);
+    }
+
+    // A texture object, Mitsuba's plugins and parameters (docs/materials.md,
+    // "Textures"):
+    //   {"type": "bitmap", "filename": "wood.png", "filter_type": "bilinear",
+    //    "wrap_mode": "repeat", "raw": false, "to_uv": [transform steps]}
+    //   {"type": "checkerboard", "color0": 0.4, "color1": [0.2, 0.2, 0.2],
+    //    "to_uv": [...]}
+    // Returns its number k + 1 in Scene::textures.
+    std::uint32_t read_texture(const Json& t, const Ptr& p) {
+        const std::string& type = expect_string(require(t, p, "type"), p / "type");
+        const std::optional<TextureKind> kind = texture_kind_from_name(type);
+        if (!kind)
+            fail(p / "type", "unknown texture type '" + shorten(type, 40) + "' (expected " +
+                                 texture_kind_names() + ")");
+        Texture tex;
+        tex.kind = *kind;
+        switch (tex.kind) {
+        case TextureKind::Bitmap:
+            check_keys(t, p, {"type", "filename", "filter_type", "wrap_mode", "raw", "to_uv"});
+            read_bitmap(t, p, tex);
+            break;
+        case TextureKind::Checkerboard:
+            check_keys(t, p, {"type", "color0", "color1", "to_uv"});
+            if (const auto it = t.find("color0"); it != t.end())
+                tex.color0 = texture_colour(*it, p / "color0");
+            if (const auto it = t.find("color1"); it != t.end())
+                tex.color1 = texture_colour(*it, p / "color1");
+            break;
+        }
+        if (const auto it = t.find("to_uv"); it != t.end()) {
+            // Mitsuba's to_uv acts on (u, v, 0) as a 3D transform; the kernels
+            // keep its rows for x and y, without z.
+            const Transform to_uv = read_transform(*this, *it, p / "to_uv");
+            const glm::dmat4& m = to_uv.matrix();
+            tex.to_u = {m[0][0], m[1][0], m[3][0]};
+            tex.to_v = {m[0][1], m[1][1], m[3][1]};
+        }
+        scene_.textures.push_back(std::move(tex));
+        return static_cast<std::uint32_t>(scene_.textures.size());
+    }
+
+    // A checkerboard's colour: a number (grey) or [r, g, b], each >= 0.
+    glm::dvec3 texture_colour(const Json& v, const Ptr& p) const {
+        if (v.is_number()) {
+            const double x = number(v, p);
+            check_range(x, p, Range::Radiance);
+            return glm::dvec3(x);
+        }
+        return vec3(v, p, Range::Radiance);
+    }
+
+    void read_bitmap(const Json& t, const Ptr& p, Texture& tex) {
+        const Ptr pf = p / "filename";
+        tex.filename = expect_string(require(t, p, "filename"), pf);
+        if (tex.filename.empty())
+            fail(pf, "must name an image file (PNG, JPEG, HDR, EXR, ...)");
+        if (const auto it = t.find("raw"); it != t.end()) {
+            if (!it->is_boolean())
+                fail(p / "raw", "expected true or false, got " + describe(*it));
+            tex.raw = it->get<bool>();
+        }
+        if (const auto it = t.find("filter_type"); it != t.end()) {
+            const std::string& name = expect_string(*it, p / "filter_type");
+            const std::optional<TextureFilter> filter = texture_filter_from_name(name);
+            if (!filter)
+                fail(p / "filter_type", "unknown filter_type '" + shorten(name, 40) +
+                                            "' (expected bilinear or nearest)");
+            tex.filter = *filter;
+        }
+        if (const auto it = t.find("wrap_mode"); it != t.end()) {
+            const std::string& name = expect_string(*it, p / "wrap_mode");
+            const std::optional<TextureWrap> wrap = texture_wrap_from_name(name);
+            if (!wrap)
+                fail(p / "wrap_mode", "unknown wrap_mode '" + shorten(name, 40) +
+                                          "' (expected repeat, mirror or clamp)");
+            tex.wrap = *wrap;
+        }
+        const std::filesystem::path path = folder_ / tex.filename;
+        tex.path = path.string();
+        scene_.files.push_back(tex.path);
+        tex.image = load_texture_image(path, tex.raw, pf);
+    }
+
+    // Each file is decoded once, however many textures name it.
+    std::shared_ptr<const TextureImage> load_texture_image(const std::filesystem::path& path,
+                                                           bool raw, const Ptr& p) {
+        const auto key = std::make_pair(path.lexically_normal().string(), raw);
+        if (const auto it = texture_images_.find(key); it != texture_images_.end())
+            return it->second;
+        std::shared_ptr<const TextureImage> image;
+        try {
+            image = std::make_shared<const TextureImage>(read_texture_image(path, raw));
+        } catch (const FileError& e) {
+            fail(p, e.what());
+        } catch (const ImageError& e) {
+            fail(p, e.what());
+        }
+        texture_images_.emplace(key, image);
+        return image;
+    }
+
     void read_emission(const Json& m, const Ptr& pm, Material& mat) const {
         if (const auto it = m.find("emission"); it != m.end())
             mat.emission = vec3(*it, pm / "emission", Range::Radiance);
@@ -354,7 +481,7 @@ class SceneReader : private json::Reader {
     // Mitsuba's conductor parameters: a named metal ("material", default
     // "none": eta 0, k 1, reflectance 1) or eta and k, never both, and
     // specular_reflectance (default 1) on top.
-    void read_conductor(const Json& m, const Ptr& pm, Material& mat) const {
+    void read_conductor(const Json& m, const Ptr& pm, Material& mat) {
         mat.metal = "none";
         if (const auto it = m.find("material"); it != m.end()) {
             mat.metal = expect_string(*it, pm / "material");
@@ -383,30 +510,31 @@ class SceneReader : private json::Reader {
         }
         mat.reflectance = glm::dvec3(1.0);
         if (const auto it = m.find("specular_reflectance"); it != m.end())
-            mat.reflectance = vec3(*it, pm / "specular_reflectance", Range::Reflectance);
+            mat.reflectance = colour(*it, pm / "specular_reflectance", mat.reflectance_texture);
         read_emission(m, pm, mat);
     }
 
     // Mitsuba's dielectric parameters: int_ior and ext_ior, each a number or
     // a name of Mitsuba's table (defaults "bk7" and "air"), and
     // specular_reflectance and specular_transmittance (default 1).
-    void read_dielectric(const Json& m, const Ptr& pm, Material& mat) const {
+    void read_dielectric(const Json& m, const Ptr& pm, Material& mat) {
         if (const auto it = m.find("int_ior"); it != m.end())
             mat.int_ior = ior(*it, pm / "int_ior");
         if (const auto it = m.find("ext_ior"); it != m.end())
             mat.ext_ior = ior(*it, pm / "ext_ior");
         mat.reflectance = glm::dvec3(1.0);
         if (const auto it = m.find("specular_reflectance"); it != m.end())
-            mat.reflectance = vec3(*it, pm / "specular_reflectance", Range::Reflectance);
+            mat.reflectance = colour(*it, pm / "specular_reflectance", mat.reflectance_texture);
         if (const auto it = m.find("specular_transmittance"); it != m.end())
-            mat.transmittance = vec3(*it, pm / "specular_transmittance", Range::Reflectance);
+            mat.transmittance =
+                colour(*it, pm / "specular_transmittance", mat.transmittance_texture);
         read_emission(m, pm, mat);
     }
 
     // Mitsuba's plastic parameters: int_ior and ext_ior (defaults
     // "polypropylene" and "air"), diffuse_reflectance (default 0.5),
     // specular_reflectance (default 1) and nonlinear (default false).
-    void read_plastic(const Json& m, const Ptr& pm, Material& mat) const {
+    void read_plastic(const Json& m, const Ptr& pm, Material& mat) {
         mat.int_ior = 1.49;
         if (const auto it = m.find("int_ior"); it != m.end())
             mat.int_ior = ior(*it, pm / "int_ior");
@@ -414,9 +542,9 @@ class SceneReader : private json::Reader {
             mat.ext_ior = ior(*it, pm / "ext_ior");
         mat.reflectance = glm::dvec3(0.5);
         if (const auto it = m.find("diffuse_reflectance"); it != m.end())
-            mat.reflectance = vec3(*it, pm / "diffuse_reflectance", Range::Reflectance);
+            mat.reflectance = colour(*it, pm / "diffuse_reflectance", mat.reflectance_texture);
         if (const auto it = m.find("specular_reflectance"); it != m.end())
-            mat.specular = vec3(*it, pm / "specular_reflectance", Range::Reflectance);
+            mat.specular = colour(*it, pm / "specular_reflectance", mat.specular_texture);
         if (const auto it = m.find("nonlinear"); it != m.end()) {
             if (!it->is_boolean())
                 fail(pm / "nonlinear", "expected true or false, got " + describe(*it));
@@ -445,7 +573,7 @@ class SceneReader : private json::Reader {
     // Mitsuba's roughconductor roughness: "distribution" ("beckmann", the
     // default, or "ggx") and "alpha" (default 0.1) or "alpha_u" and "alpha_v"
     // together for an anisotropic surface.
-    void read_roughness(const Json& m, const Ptr& pm, Material& mat) const {
+    void read_roughness(const Json& m, const Ptr& pm, Material& mat) {
         if (const auto it = m.find("distribution"); it != m.end()) {
             const std::string& d = expect_string(*it, pm / "distribution");
             if (d == "beckmann")
@@ -460,16 +588,24 @@ class SceneReader : private json::Reader {
         if (m.find("alpha") != m.end()) {
             if (u || v)
                 fail(pm / "alpha", "give either alpha or alpha_u and alpha_v, not both");
-            mat.alpha_u = mat.alpha_v = roughness(m, pm, "alpha");
+            mat.alpha_u = mat.alpha_v = roughness(m, pm, "alpha", mat.alpha_u_texture);
+            mat.alpha_v_texture = mat.alpha_u_texture;
         } else if (u != v) {
             fail(pm / (u ? "alpha_v" : "alpha_u"), "alpha_u and alpha_v go together");
         } else if (u) {
-            mat.alpha_u = roughness(m, pm, "alpha_u");
-            mat.alpha_v = roughness(m, pm, "alpha_v");
+            mat.alpha_u = roughness(m, pm, "alpha_u", mat.alpha_u_texture);
+            mat.alpha_v = roughness(m, pm, "alpha_v", mat.alpha_v_texture);
         }
     }
 
-    double roughness(const Json& m, const Ptr& pm, const char* key) const {
+    // A roughness: a number in (0, 4], or a texture object whose luminance
+    // the kernels take (clamped to at least 1e-4), its number k + 1 into
+    // `texture`.
+    double roughness(const Json& m, const Ptr& pm, const char* key, std::uint32_t& texture) {
+        if (m.at(key).is_object()) {
+            texture = read_texture(m.at(key), pm / key);
+            return 0.1;
+        }
         const double a = number(m.at(key), pm / key);
         if (!(a > 0.0) || a > scene_limits::max_alpha)
             fail(pm / key, "must be in (0, 4], got " + number_text(a));
@@ -498,15 +634,43 @@ class SceneReader : private json::Reader {
     // --- shapes ---------------------------------------------------------------
 
     void add_triangle(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
-                      std::uint32_t material, const std::string& where, const char* which) {
+                      std::uint32_t material, const std::string& where, const char* which,
+                      const std::array<glm::dvec2, 3>* uvs = nullptr) {
         if (is_zero_area(a, b, c)) {
             scene_.warnings.push_back(where + ": skipped zero-area triangle" + which);
             return;
         }
-        scene_.triangles.push_back(Triangle{{a, b, c}, material});
+        Triangle t{{a, b, c}, material};
+        if (uvs) {
+            t.has_uvs = true;
+            t.uvs = *uvs;
+        }
+        scene_.triangles.push_back(t);
     }
 
-    void read_quad(const std::vector<glm::dvec3>& v, std::uint32_t material, const Ptr& p) {
+    // "uvs": one [u, v] per vertex (finite numbers), or none.
+    std::vector<glm::dvec2> read_uvs(const Json& s, const Ptr& p, std::size_t vertices) const {
+        const auto it = s.find("uvs");
+        if (it == s.end())
+            return {};
+        const Ptr pu = p / "uvs";
+        if (!it->is_array() || it->size() != vertices)
+            fail(pu, "expected an array of " + std::to_string(vertices) +
+                         " texture coordinates [u, v], one per vertex, got " + describe(*it));
+        std::vector<glm::dvec2> uvs;
+        for (std::size_t i = 0; i < vertices; ++i) {
+            const Json& uv = (*it)[i];
+            if (!uv.is_array() || uv.size() != 2)
+                fail(pu / i, "expected [u, v], got " + describe(uv));
+            uvs.emplace_back(number(uv[0], pu / i / 0), number(uv[1], pu / i / 1));
+            check_range(uvs.back().x, pu / i / 0, Range::Coordinate);
+            check_range(uvs.back().y, pu / i / 1, Range::Coordinate);
+        }
+        return uvs;
+    }
+
+    void read_quad(const Json& quad, const std::vector<glm::dvec3>& v, std::uint32_t material,
+                   const Ptr& p) {
         const bool zero1 = is_zero_area(v[0], v[1], v[2]);
         const bool zero2 = is_zero_area(v[0], v[2], v[3]);
         if (!zero1 || !zero2) {
@@ -532,13 +696,20 @@ class SceneReader : private json::Reader {
                      "the quad is folded or not convex at corner 1 or 3: its halves (0, 1, 2) and "
                      "(0, 2, 3) face opposite ways; list the corners in order around the quad");
         }
+        // Texture coordinates: the file's, or the corners of the unit square
+        // in order, as Mitsuba's rectangle has them.
+        std::vector<glm::dvec2> uv = read_uvs(quad, p, 4);
+        if (uv.empty())
+            uv = {{0.0, 0.0}, {1.0, 0.0}, {1.0, 1.0}, {0.0, 1.0}};
+        const std::array<glm::dvec2, 3> uv1{uv[0], uv[1], uv[2]}, uv2{uv[0], uv[2], uv[3]};
         const std::string where = pointer_text(p);
-        add_triangle(v[0], v[1], v[2], material, where, " (corners 0, 1, 2) of the quad");
-        add_triangle(v[0], v[2], v[3], material, where, " (corners 0, 2, 3) of the quad");
+        add_triangle(v[0], v[1], v[2], material, where, " (corners 0, 1, 2) of the quad", &uv1);
+        add_triangle(v[0], v[2], v[3], material, where, " (corners 0, 2, 3) of the quad", &uv2);
     }
 
     void read_mesh(const Json& s, std::uint32_t material, const Ptr& p) {
         const std::vector<glm::dvec3> verts = points(require(s, p, "vertices"), p / "vertices", 0);
+        const std::vector<glm::dvec2> uv = read_uvs(s, p, verts.size());
         const Ptr pt = p / "triangles";
         const Json& tris = require(s, p, "triangles");
         if (!tris.is_array())
@@ -558,8 +729,11 @@ class SceneReader : private json::Reader {
                                      std::to_string(verts.size()) + " vertices (0-based)");
                 idx[k] = static_cast<std::size_t>(x);
             }
+            const std::array<glm::dvec2, 3> uvs =
+                uv.empty() ? std::array<glm::dvec2, 3>{}
+                           : std::array<glm::dvec2, 3>{uv[idx[0]], uv[idx[1]], uv[idx[2]]};
             add_triangle(verts[idx[0]], verts[idx[1]], verts[idx[2]], material, pointer_text(pi),
-                         "");
+                         "", uv.empty() ? nullptr : &uvs);
         }
     }
 
@@ -589,6 +763,8 @@ class SceneReader : private json::Reader {
             options.normals = normal_source(*it, p / "normals");
         if (const auto it = s.find("transform"); it != s.end())
             options.transform = read_transform(*this, *it, p / "transform");
+        // Only a scene with textures reads them (materials come before shapes).
+        options.texture_coordinates = !scene_.textures.empty();
 
         TriangleMesh mesh;
         scene_.files.push_back((folder_ / file).string());
@@ -613,6 +789,10 @@ class SceneReader : private json::Reader {
             if (!mesh.normals.empty()) {
                 triangle.has_normals = true;
                 triangle.normals = {mesh.normals[a], mesh.normals[b], mesh.normals[c]};
+            }
+            if (!mesh.uvs.empty()) {
+                triangle.has_uvs = true;
+                triangle.uvs = {mesh.uvs[a], mesh.uvs[b], mesh.uvs[c]};
             }
             scene_.triangles.push_back(triangle);
         }
@@ -652,7 +832,7 @@ class SceneReader : private json::Reader {
                                        "vertices are already in scene coordinates");
         if (!s.contains("vertices") && !s.contains("triangles"))
             fail(p / "file", "missing required field 'file' (or give 'vertices' and 'triangles')");
-        check_keys(s, p, {"type", "vertices", "triangles", "material", "name"});
+        check_keys(s, p, {"type", "vertices", "uvs", "triangles", "material", "name"});
     }
 
     void read_shapes(const Json& shapes, const Ptr& p) {
@@ -666,7 +846,7 @@ class SceneReader : private json::Reader {
             expect_object(s, ps, "a shape object");
             const std::string& type = expect_string(require(s, ps, "type"), ps / "type");
             if (type == "triangle" || type == "quad") {
-                check_keys(s, ps, {"type", "vertices", "material", "name"});
+                check_keys(s, ps, {"type", "vertices", "uvs", "material", "name"});
             } else if (type == "mesh") {
                 check_mesh_keys(s, ps);
             } else if (type == "sphere") {
@@ -681,9 +861,14 @@ class SceneReader : private json::Reader {
 
             if (type == "triangle") {
                 const auto v = points(require(s, ps, "vertices"), ps / "vertices", 3);
-                add_triangle(v[0], v[1], v[2], material, pointer_text(ps), "");
+                const std::vector<glm::dvec2> uv = read_uvs(s, ps, 3);
+                const std::array<glm::dvec2, 3> uvs{uv.empty() ? glm::dvec2(0.0) : uv[0],
+                                                    uv.empty() ? glm::dvec2(0.0) : uv[1],
+                                                    uv.empty() ? glm::dvec2(0.0) : uv[2]};
+                add_triangle(v[0], v[1], v[2], material, pointer_text(ps), "",
+                             uv.empty() ? nullptr : &uvs);
             } else if (type == "quad") {
-                read_quad(points(require(s, ps, "vertices"), ps / "vertices", 4), material, ps);
+                read_quad(s, points(require(s, ps, "vertices"), ps / "vertices", 4), material, ps);
             } else if (type == "mesh") {
                 if (s.contains("file"))
                     read_mesh_file(s, material, ps);
@@ -700,6 +885,7 @@ class SceneReader : private json::Reader {
     std::filesystem::path folder_;
     Scene scene_;
     std::unordered_map<std::string, std::uint32_t> material_index_;
+    std::map<std::pair<std::string, bool>, std::shared_ptr<const TextureImage>> texture_images_;
 };
 
 } // namespace

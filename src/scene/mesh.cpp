@@ -81,6 +81,8 @@ TriangleMesh finish(const std::filesystem::path& file, PolygonMesh&& poly,
     mesh.material_names = std::move(poly.material_names);
     mesh.warnings = std::move(poly.warnings);
     mesh.positions = std::move(poly.positions);
+    if (options.texture_coordinates)
+        mesh.uvs = std::move(poly.uvs); // one per position, which triangulation keeps
 
     // The readers rejected non-finite input; a transform can still overflow, and
     // the scene's float32 limit applies to the placed mesh.
@@ -150,7 +152,8 @@ TriangleMesh parse_mesh(const std::string& bytes, const std::filesystem::path& n
                         const MeshLoadOptions& options) {
     check_mesh_extension(name);
     PolygonMesh poly = lower_extension(name) == ".obj"
-                           ? read_obj(name, bytes, options.normals == NormalSource::File)
+                           ? read_obj(name, bytes, options.normals == NormalSource::File,
+                                      options.texture_coordinates)
                            : read_ply(name, bytes);
     return finish(name, std::move(poly), options);
 }

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "scene/scene.hpp"
@@ -56,6 +57,10 @@ struct MeshLoadOptions {
     // also reverses every triangle's winding so that front faces stay front.
     Transform transform;
     NormalSource normals = NormalSource::File;
+    // Keep the file's texture coordinates. An OBJ file's vertices are then
+    // split along texture seams too, which a scene without textures has no
+    // use for (and "smooth" normals would then differ across the seams).
+    bool texture_coordinates = true;
 };
 
 // An indexed triangle mesh. Every triangle has a non-zero area (degenerate ones
@@ -66,6 +71,10 @@ struct TriangleMesh {
     std::vector<glm::dvec3> positions;
     // Empty, or one unit-length normal per position.
     std::vector<glm::dvec3> normals;
+    // Empty, or texture coordinates per position, Mitsuba's way: a PLY
+    // file's (u, v) as they are, an OBJ file's vt as (u, 1 - v) (Mitsuba's
+    // OBJ reader flips v so that an image's top row is at v = 0 for both).
+    std::vector<glm::dvec2> uvs;
     std::vector<std::array<std::uint32_t, 3>> triangles;
     // Material names in order of first use. Entry 0 is always "", meaning "the
     // object's own material": faces before any OBJ `usemtl`, and every PLY face.

@@ -6,6 +6,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <map>
 
 #include <glm/geometric.hpp>
@@ -84,7 +85,7 @@ void append_vector(std::vector<unsigned char>& out, const glm::dvec3& v) {
 // (0, 1, 2), (3, 4, 5), ... that keep each triangle's winding, hence its
 // front face, which is the side Mitsuba's area emitters emit on.
 std::vector<unsigned char> encode_ply(const Scene& scene, const std::vector<std::size_t>& triangles,
-                                      bool with_normals) {
+                                      bool with_normals, bool with_uvs) {
     const std::size_t vertices = 3 * triangles.size();
     const Material& material = scene.materials[scene.triangles[triangles.front()].material];
     std::string header = "ply\nformat binary_little_endian 1.0\n";
@@ -94,20 +95,31 @@ std::vector<unsigned char> encode_ply(const Scene& scene, const std::vector<std:
     header += "property float x\nproperty float y\nproperty float z\n";
     if (with_normals)
         header += "property float nx\nproperty float ny\nproperty float nz\n";
+    if (with_uvs)
+        header += "property float u\nproperty float v\n";
     header += "element face " + std::to_string(triangles.size()) + "\n";
     header += "property list uchar int vertex_indices\nend_header\n";
 
     std::vector<unsigned char> out(header.begin(), header.end());
-    out.reserve(out.size() + vertices * (with_normals ? 24 : 12) + triangles.size() * 13);
+    out.reserve(out.size() + vertices * (12 + (with_normals ? 12 : 0) + (with_uvs ? 8 : 0)) +
+                triangles.size() * 13);
     for (std::size_t index : triangles) {
         const Triangle& t = scene.triangles[index];
         // A flat triangle among smooth ones keeps its facet: all three vertex
         // normals are the winding normal.
         const glm::dvec3 facet = glm::normalize(glm::cross(t.v[1] - t.v[0], t.v[2] - t.v[0]));
+        const glm::dvec2 corners[3] = {{0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}};
         for (std::size_t k = 0; k < 3; ++k) {
             append_vector(out, t.v[k]);
             if (with_normals)
                 append_vector(out, t.has_normals ? t.normals[k] : facet);
+            if (with_uvs) {
+                // Without texture coordinates wavepath's textures see the
+                // barycentrics (b1, b2), which these corners reproduce.
+                const glm::dvec2 uv = t.has_uvs ? t.uvs[k] : corners[k];
+                append_float(out, uv.x);
+                append_float(out, uv.y);
+            }
         }
     }
     for (std::size_t f = 0; f < triangles.size(); ++f) {
@@ -128,24 +140,62 @@ std::string material_id(std::size_t index) {
     return "material-" + std::to_string(index);
 }
 
+// A texture as Mitsuba's plugin of the same name, for parameter `name`.
+std::string texture_xml(const Texture& t, const std::string& name, const std::string& in) {
+    std::string x =
+        "<texture type=\"" + std::string(texture_kind_name(t.kind)) + "\" name=\"" + name + "\">\n";
+    if (t.kind == TextureKind::Bitmap) {
+        x += in + "    <string name=\"filename\" value=\"" +
+             xml_escape(std::filesystem::absolute(t.path).string()) + "\"/>\n";
+        x += in + "    <string name=\"filter_type\" value=\"" + texture_filter_name(t.filter) +
+             "\"/>\n";
+        x += in + "    <string name=\"wrap_mode\" value=\"" + texture_wrap_name(t.wrap) + "\"/>\n";
+        x += in + "    <boolean name=\"raw\" value=\"" + (t.raw ? "true" : "false") + "\"/>\n";
+    } else {
+        x += in + "    " + rgb("color0", t.color0) + "\n";
+        x += in + "    " + rgb("color1", t.color1) + "\n";
+    }
+    // (u, v) -> (to_u . (u, v, 1), to_v . (u, v, 1)) as a 4x4 matrix on (u, v, 0, 1).
+    x += in + "    <transform name=\"to_uv\"><matrix value=\"" + number(t.to_u.x) + " " +
+         number(t.to_u.y) + " 0 " + number(t.to_u.z) + " " + number(t.to_v.x) + " " +
+         number(t.to_v.y) + " 0 " + number(t.to_v.z) + " 0 0 1 0 0 0 0 1\"/></transform>\n";
+    return x + in + "</texture>";
+}
+
+// A colour parameter: its constant, or its texture.
+std::string colour_xml(const Scene& scene, const std::string& name, const glm::dvec3& value,
+                       std::uint32_t texture, const std::string& in) {
+    return texture ? texture_xml(scene.textures[texture - 1], name, in) : rgb(name, value);
+}
+
 // A rough material's distribution and roughness, as Mitsuba's parameters.
-std::string roughness_xml(const Material& m, const std::string& in) {
+std::string roughness_xml(const Scene& scene, const Material& m, const std::string& in) {
+    auto alpha = [&](const char* name, double value, std::uint32_t texture) {
+        return texture
+                   ? texture_xml(scene.textures[texture - 1], name, in + "    ")
+                   : "<float name=\"" + std::string(name) + "\" value=\"" + number(value) + "\"/>";
+    };
     return "    <string name=\"distribution\" value=\"" +
            std::string(m.distribution == MicrofacetDistribution::Ggx ? "ggx" : "beckmann") +
-           "\"/>\n" + in + "    <float name=\"alpha_u\" value=\"" + number(m.alpha_u) + "\"/>\n" +
-           in + "    <float name=\"alpha_v\" value=\"" + number(m.alpha_v) + "\"/>\n";
+           "\"/>\n" + in + "    " + alpha("alpha_u", m.alpha_u, m.alpha_u_texture) + "\n" + in +
+           "    " + alpha("alpha_v", m.alpha_v, m.alpha_v_texture) + "\n";
 }
 
 // A material's BSDF. wavepath's diffuse and mirror surfaces reflect alike on
 // both sides (kernels/shade.cl flips the normal to the side the ray came
 // from); Mitsuba's reflect on the front only unless wrapped in `twosided`.
-std::string bsdf(const Material& m, std::size_t index) {
+std::string bsdf(const Scene& scene, const Material& m, std::size_t index) {
     const std::string in = "    ";
     std::string inner;
+    const auto colour = [&](const std::string& name, const glm::dvec3& value, std::uint32_t texture,
+                            const std::string& indent) {
+        return colour_xml(scene, name, value, texture, indent);
+    };
     switch (m.kind) {
     case MaterialKind::Diffuse:
         inner = in + "    <bsdf type=\"diffuse\">\n" + in + "        " +
-                rgb("reflectance", m.reflectance) + "\n" + in + "    </bsdf>\n";
+                colour("reflectance", m.reflectance, m.reflectance_texture, in + "        ") +
+                "\n" + in + "    </bsdf>\n";
         break;
     case MaterialKind::Mirror:
         // Material "none": the perfect mirror (reflectance 1 at every angle,
@@ -162,9 +212,12 @@ std::string bsdf(const Material& m, std::size_t index) {
         inner = in + "    <bsdf type=\"" + std::string(material_kind_name(m.kind)) + "\">\n";
         inner += in + "        " + rgb("eta", m.eta) + "\n";
         inner += in + "        " + rgb("k", m.k) + "\n";
-        inner += in + "        " + rgb("specular_reflectance", m.reflectance) + "\n";
+        inner +=
+            in + "        " +
+            colour("specular_reflectance", m.reflectance, m.reflectance_texture, in + "        ") +
+            "\n";
         if (rough)
-            inner += in + "    " + roughness_xml(m, in + "    ");
+            inner += in + "    " + roughness_xml(scene, m, in + "    ");
         inner += in + "    </bsdf>\n";
         break;
     }
@@ -172,8 +225,13 @@ std::string bsdf(const Material& m, std::size_t index) {
         inner = in + "    <bsdf type=\"plastic\">\n";
         inner += in + "        <float name=\"int_ior\" value=\"" + number(m.int_ior) + "\"/>\n";
         inner += in + "        <float name=\"ext_ior\" value=\"" + number(m.ext_ior) + "\"/>\n";
-        inner += in + "        " + rgb("diffuse_reflectance", m.reflectance) + "\n";
-        inner += in + "        " + rgb("specular_reflectance", m.specular) + "\n";
+        inner +=
+            in + "        " +
+            colour("diffuse_reflectance", m.reflectance, m.reflectance_texture, in + "        ") +
+            "\n";
+        inner += in + "        " +
+                 colour("specular_reflectance", m.specular, m.specular_texture, in + "        ") +
+                 "\n";
         inner += in + "        <boolean name=\"nonlinear\" value=\"" +
                  (m.nonlinear ? "true" : "false") + "\"/>\n";
         inner += in + "    </bsdf>\n";
@@ -185,11 +243,14 @@ std::string bsdf(const Material& m, std::size_t index) {
         // to wrap a BSDF that transmits), the front one outside.
         return in + xml_comment("material '" + m.name + "'") + "\n" + in + "<bsdf type=\"" +
                material_kind_name(m.kind) + "\" id=\"" + material_id(index) + "\">\n" +
-               (m.kind == MaterialKind::RoughDielectric ? in + roughness_xml(m, in) : "") + in +
-               "    <float name=\"int_ior\" value=\"" + number(m.int_ior) + "\"/>\n" + in +
+               (m.kind == MaterialKind::RoughDielectric ? in + roughness_xml(scene, m, in) : "") +
+               in + "    <float name=\"int_ior\" value=\"" + number(m.int_ior) + "\"/>\n" + in +
                "    <float name=\"ext_ior\" value=\"" + number(m.ext_ior) + "\"/>\n" + in + "    " +
-               rgb("specular_reflectance", m.reflectance) + "\n" + in + "    " +
-               rgb("specular_transmittance", m.transmittance) + "\n" + in + "</bsdf>\n";
+               colour("specular_reflectance", m.reflectance, m.reflectance_texture, in + "    ") +
+               "\n" + in + "    " +
+               colour("specular_transmittance", m.transmittance, m.transmittance_texture,
+                      in + "    ") +
+               "\n" + in + "</bsdf>\n";
     case MaterialKind::Emitter:
         // Reflects nothing, on either side: black, and one-sided will do.
         return in + xml_comment("material '" + m.name + "' (emitter: reflects nothing)") + "\n" +
@@ -347,7 +408,7 @@ MitsubaExport export_mitsuba(const Scene& scene, const std::string& mesh_prefix,
         mesh.material = material_index;
         mesh.triangle_count = triangles.size();
         mesh.has_normals = with_normals;
-        mesh.ply = encode_ply(scene, triangles, with_normals);
+        mesh.ply = encode_ply(scene, triangles, with_normals, !scene.textures.empty());
         out.meshes.push_back(std::move(mesh));
     }
     if (smooth_triangles > 0)
@@ -366,7 +427,7 @@ MitsubaExport export_mitsuba(const Scene& scene, const std::string& mesh_prefix,
     x += integrator();
     x += sensor(scene, options);
     for (std::size_t i = 0; i < scene.materials.size(); ++i)
-        x += bsdf(scene.materials[i], i);
+        x += bsdf(scene, scene.materials[i], i);
     for (const MitsubaMesh& mesh : out.meshes) {
         const Material& material = scene.materials[mesh.material];
         x += "    <shape type=\"ply\">\n";

@@ -103,6 +103,7 @@ class ObjCheck {
     std::vector<std::uint32_t> face_materials;
     std::vector<std::string> material_names{""};
     bool every_corner_has_normal = true;
+    bool every_corner_has_texcoord = true;
 
     // What tinyobjloader reads: the file itself, or, when the file has a
     // statement that is not used (see check_line), a carriage return inside
@@ -141,6 +142,7 @@ class ObjCheck {
                 fail(n, "normal has zero length");
             ++count[Normal];
         } else if (keyword == "vt") {
+            check_texcoord(rest, n);
             ++count[Texcoord];
         } else if (keyword == "f") {
             check_face(rest, n);
@@ -177,6 +179,23 @@ class ObjCheck {
         return length2;
     }
 
+    // Reads u [v [w]]: v defaults to 0 and w is ignored, as tinyobjloader does.
+    void check_texcoord(std::string_view rest, std::size_t n) const {
+        for (int i = 0; i < 2; ++i) {
+            const std::string_view token = next_token(rest);
+            if (token.empty()) {
+                if (i == 0)
+                    fail(n, "texture coordinate needs at least u");
+                return;
+            }
+            double x = 0.0;
+            if (!parse_double(token, x))
+                fail(n, "cannot read texture coordinate '" + excerpt(token) + "'");
+            if (!std::isfinite(x))
+                fail(n, "texture coordinate is not finite ('" + excerpt(token) + "')");
+        }
+    }
+
     void check_face(std::string_view rest, std::size_t n) {
         std::uint32_t corners = 0;
         for (std::string_view token = next_token(rest); !token.empty(); token = next_token(rest)) {
@@ -200,6 +219,8 @@ class ObjCheck {
                     check_index(part[k], static_cast<Kind>(k), token, n);
             if (parts < 3 || part[Normal].empty())
                 every_corner_has_normal = false;
+            if (parts < 2 || part[Texcoord].empty())
+                every_corner_has_texcoord = false;
             ++corners;
         }
         if (corners < 3)
@@ -232,6 +253,18 @@ class ObjCheck {
     std::string copy_;
 };
 
+// A face corner's position, texture coordinate and normal numbers.
+struct VertexKey {
+    std::uint32_t position, texcoord, normal;
+    bool operator==(const VertexKey&) const = default;
+};
+struct VertexKeyHash {
+    std::size_t operator()(const VertexKey& k) const {
+        return std::hash<std::uint64_t>()((std::uint64_t{k.position} << 32) ^
+                                          (std::uint64_t{k.texcoord} << 16) ^ k.normal);
+    }
+};
+
 // Lets tinyobjloader read the text already in memory instead of a second copy.
 class MemoryBuffer : public std::streambuf {
   public:
@@ -243,8 +276,8 @@ class MemoryBuffer : public std::streambuf {
 
 } // namespace
 
-PolygonMesh read_obj(const std::filesystem::path& file, const std::string& text,
-                     bool keep_normals) {
+PolygonMesh read_obj(const std::filesystem::path& file, const std::string& text, bool keep_normals,
+                     bool keep_uvs) {
     ObjCheck check(file, text);
     check.run();
     if (check.count[Position] > UINT32_MAX)
@@ -286,14 +319,21 @@ PolygonMesh read_obj(const std::filesystem::path& file, const std::string& text,
                              attrib.vertices[3 * i + 2]};
 
     const bool use_normals = keep_normals && check.every_corner_has_normal && corner_total > 0;
-    // With normals, a mesh vertex is a (position, normal) pair: the same position
-    // meets different normals along a crease.
-    std::unordered_map<std::uint64_t, std::uint32_t> vertex_of_pair;
-    std::vector<glm::dvec3> pair_positions;
-    if (use_normals) {
-        vertex_of_pair.reserve(mesh.positions.size() * 2);
-        pair_positions.reserve(mesh.positions.size());
-        mesh.normals.reserve(mesh.positions.size());
+    const bool use_uvs = keep_uvs && check.every_corner_has_texcoord && check.count[Texcoord] > 0 &&
+                         corner_total > 0;
+    // With normals or texture coordinates, a mesh vertex is a (position,
+    // texture coordinate, normal) triple: the same position meets different
+    // normals along a crease and different coordinates along a texture seam.
+    const bool split = use_normals || use_uvs;
+    std::unordered_map<VertexKey, std::uint32_t, VertexKeyHash> vertex_of_corner;
+    std::vector<glm::dvec3> corner_positions;
+    if (split) {
+        vertex_of_corner.reserve(mesh.positions.size() * 2);
+        corner_positions.reserve(mesh.positions.size());
+        if (use_normals)
+            mesh.normals.reserve(mesh.positions.size());
+        if (use_uvs)
+            mesh.uvs.reserve(mesh.positions.size());
     }
 
     mesh.indices.reserve(corner_total);
@@ -306,27 +346,33 @@ PolygonMesh read_obj(const std::filesystem::path& file, const std::string& text,
         for (std::uint32_t k = 0; k < check.face_sizes[f]; ++k) {
             const tinyobj::index_t& idx = *corners[next++];
             const auto v = static_cast<std::uint32_t>(idx.vertex_index);
-            if (!use_normals) {
+            if (!split) {
                 polygon.push_back(v);
                 continue;
             }
-            const auto vn = static_cast<std::uint32_t>(idx.normal_index);
-            const std::uint64_t key = (std::uint64_t{v} << 32) | vn;
-            const auto [it, inserted] =
-                vertex_of_pair.try_emplace(key, static_cast<std::uint32_t>(pair_positions.size()));
+            const auto vn = use_normals ? static_cast<std::uint32_t>(idx.normal_index) : 0u;
+            const auto vt = use_uvs ? static_cast<std::uint32_t>(idx.texcoord_index) : 0u;
+            const auto [it, inserted] = vertex_of_corner.try_emplace(
+                VertexKey{v, vt, vn}, static_cast<std::uint32_t>(corner_positions.size()));
             if (inserted) {
-                pair_positions.push_back(mesh.positions[v]);
-                const std::size_t n = 3 * std::size_t{vn};
-                mesh.normals.push_back(
-                    {attrib.normals[n], attrib.normals[n + 1], attrib.normals[n + 2]});
+                corner_positions.push_back(mesh.positions[v]);
+                if (use_normals) {
+                    const std::size_t n = 3 * std::size_t{vn};
+                    mesh.normals.push_back(
+                        {attrib.normals[n], attrib.normals[n + 1], attrib.normals[n + 2]});
+                }
+                if (use_uvs) {
+                    const std::size_t t = 2 * std::size_t{vt};
+                    mesh.uvs.push_back({attrib.texcoords[t], 1.0 - attrib.texcoords[t + 1]});
+                }
             }
             polygon.push_back(it->second);
         }
         mesh.add_polygon(polygon, check.face_materials[f]);
     }
-    if (use_normals)
-        mesh.positions = std::move(pair_positions);
-    else if (keep_normals && check.count[Normal] > 0 && corner_total > 0)
+    if (split)
+        mesh.positions = std::move(corner_positions);
+    if (!use_normals && keep_normals && check.count[Normal] > 0 && corner_total > 0)
         mesh.warnings.push_back(file.string() +
                                 ": some face corners have no normal, so the file's normals "
                                 "are not used");

@@ -2,8 +2,10 @@
 // than taken from assimp: the format is small, assimp (libassimp-dev) pulls in a
 // large library for one reader, and its messages do not name the element that is
 // wrong. Reads ASCII, binary_little_endian and binary_big_endian bodies:
-//   - vertex: x y z of any scalar type, in any order, with optional nx ny nz; other
-//     properties (colour, confidence, ...) are skipped;
+//   - vertex: x y z of any scalar type, in any order, with optional nx ny nz and
+//     texture coordinates (u v, s t, texture_u texture_v or texture_s texture_t,
+//     the names Mitsuba reads); other properties (colour, confidence, ...) are
+//     skipped;
 //   - face: a list named vertex_indices (or vertex_index) of any integer count and
 //     index types; other face properties are skipped;
 //   - tristrips: a vertex_indices list of strips separated by -1, each strip
@@ -108,7 +110,7 @@ IntegerRange integer_range(ScalarType t) {
 }
 
 // What a property means to us; everything else is read and skipped.
-enum class Role { Skip, X, Y, Z, NX, NY, NZ, FaceIndices, StripIndices };
+enum class Role { Skip, X, Y, Z, NX, NY, NZ, U, V, FaceIndices, StripIndices };
 
 struct Property {
     std::string name;
@@ -267,6 +269,24 @@ class HeaderParser {
             }
             if (normals != 0 && normals != 3)
                 fail(e.line, "vertex element has only some of nx, ny, nz");
+            // Texture coordinates under the names Mitsuba reads, as a pair.
+            const std::pair<const char*, const char*> uv_names[] = {
+                {"u", "v"}, {"s", "t"}, {"texture_u", "texture_v"}, {"texture_s", "texture_t"}};
+            for (const auto& [u_name, v_name] : uv_names) {
+                Property* u = find(e, u_name);
+                Property* v = find(e, v_name);
+                if (!u && !v)
+                    continue;
+                if (!u || !v)
+                    fail(e.line, std::string("vertex element has '") + (u ? u_name : v_name) +
+                                     "' without '" + (u ? v_name : u_name) + "'");
+                if (u->is_list || v->is_list)
+                    fail(e.line, std::string("vertex property '") + u_name + "' or '" + v_name +
+                                     "' is a list");
+                u->role = Role::U;
+                v->role = Role::V;
+                break;
+            }
         } else if (e.name == "face" || e.name == "tristrips") {
             const bool face = e.name == "face";
             e.kind = face ? ElementKind::Face : ElementKind::Strips;
@@ -487,11 +507,18 @@ template <class Source> class BodyReader {
             mesh_.positions.reserve(n);
             if (has_normals(e))
                 mesh_.normals.reserve(n);
+            if (has_uvs(e))
+                mesh_.uvs.reserve(n);
         } else if (e.kind == ElementKind::Face) {
             mesh_.offsets.reserve(n + 1);
             mesh_.polygon_materials.reserve(n);
             mesh_.indices.reserve(3 * n);
         }
+    }
+
+    static bool has_uvs(const Element& e) {
+        return std::any_of(e.properties.begin(), e.properties.end(),
+                           [](const Property& p) { return p.role == Role::U; });
     }
 
     static bool has_normals(const Element& e) {
@@ -502,13 +529,13 @@ template <class Source> class BodyReader {
     [[noreturn]] static void truncated() { throw BodyProblem{"file ends early (truncated?)"}; }
 
     void read_one(const Element& e) {
-        double slot[6] = {0, 0, 0, 0, 0, 0}; // x y z nx ny nz
+        double slot[8] = {0, 0, 0, 0, 0, 0, 0, 0}; // x y z nx ny nz u v
         for (const Property& p : e.properties) {
             if (!p.is_list) {
                 double v = 0.0;
                 if (!in_.real(p.type, v))
                     truncated();
-                if (p.role >= Role::X && p.role <= Role::NZ)
+                if (p.role >= Role::X && p.role <= Role::V)
                     slot[static_cast<int>(p.role) - static_cast<int>(Role::X)] = v;
                 continue;
             }
@@ -554,6 +581,12 @@ template <class Source> class BodyReader {
             if (n.x == 0.0 && n.y == 0.0 && n.z == 0.0)
                 throw BodyProblem{"normal has zero length"};
             mesh_.normals.push_back(n);
+        }
+        if (has_uvs(e)) {
+            const glm::dvec2 uv(slot[6], slot[7]);
+            if (!std::isfinite(uv.x) || !std::isfinite(uv.y))
+                throw BodyProblem{"texture coordinate is not finite"};
+            mesh_.uvs.push_back(uv);
         }
     }
 

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 namespace wp {
@@ -16,6 +17,7 @@ namespace wp {
 struct PolygonMesh {
     std::vector<glm::dvec3> positions;
     std::vector<glm::dvec3> normals; // empty, or one per position (any non-zero length)
+    std::vector<glm::dvec2> uvs;     // empty, or one per position: texture coordinates
     // Polygon p has the corners indices[offsets[p] .. offsets[p + 1]), at least three,
     // in the file's winding. offsets starts with 0.
     std::vector<std::uint32_t> indices;
@@ -38,8 +40,10 @@ struct PolygonMesh {
 
 // The readers, chosen by load_mesh(). `text` is the whole file; `file` names it in
 // messages. Both throw MeshError. read_obj splits vertices by normal only when
-// keep_normals is set (an OBJ corner pairs a position with a normal of its own).
-PolygonMesh read_obj(const std::filesystem::path& file, const std::string& text, bool keep_normals);
+// keep_normals is set (an OBJ corner pairs a position with a normal of its own),
+// and by texture coordinate only when keep_uvs is.
+PolygonMesh read_obj(const std::filesystem::path& file, const std::string& text, bool keep_normals,
+                     bool keep_uvs = true);
 PolygonMesh read_ply(const std::filesystem::path& file, const std::string& bytes);
 
 } // namespace wp

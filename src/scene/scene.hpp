@@ -10,7 +10,10 @@
 #include <tuple>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+
+#include "scene/texture.hpp"
 
 #include "wp_shared.h"
 
@@ -104,6 +107,19 @@ struct Material {
     // scatters there again, saturating colours).
     glm::dvec3 specular{1.0};
     bool nonlinear = false;
+    // Textured parameters: 0, the constant above; k + 1, Scene::textures[k]
+    // in its place (reflectance, specular, transmittance, alpha_u, alpha_v;
+    // a roughness takes the texture's luminance, as Mitsuba does).
+    std::uint32_t reflectance_texture = 0;
+    std::uint32_t specular_texture = 0;
+    std::uint32_t transmittance_texture = 0;
+    std::uint32_t alpha_u_texture = 0;
+    std::uint32_t alpha_v_texture = 0;
+
+    bool is_textured() const {
+        return reflectance_texture || specular_texture || transmittance_texture ||
+               alpha_u_texture || alpha_v_texture;
+    }
 
     bool is_emissive() const { return emission.x > 0.0 || emission.y > 0.0 || emission.z > 0.0; }
 
@@ -112,7 +128,8 @@ struct Material {
     // at compile time that no member is left out (scene/material.cpp).
     auto rendered_fields() const {
         return std::tie(kind, reflectance, emission, eta, k, distribution, alpha_u, alpha_v,
-                        int_ior, ext_ior, transmittance, specular, nonlinear);
+                        int_ior, ext_ior, transmittance, specular, nonlinear, reflectance_texture,
+                        specular_texture, transmittance_texture, alpha_u_texture, alpha_v_texture);
     }
 };
 
@@ -125,6 +142,10 @@ struct Triangle {
     // which side is the front is still the winding's.
     bool has_normals = false;
     std::array<glm::dvec3, 3> normals{};
+    // Texture coordinates per vertex (a mesh file's, a quad's corners);
+    // without them a texture sees the barycentrics (b1, b2), as in Mitsuba.
+    bool has_uvs = false;
+    std::array<glm::dvec2, 3> uvs{};
 };
 
 struct Sphere {
@@ -142,6 +163,7 @@ struct Scene {
     std::vector<Material> materials;
     std::vector<Triangle> triangles; // quads and meshes are split into triangles
     std::vector<Sphere> spheres;
+    std::vector<Texture> textures;     // named by materials' *_texture
     std::vector<std::string> warnings; // e.g. skipped zero-area triangles
 };
 

@@ -157,6 +157,35 @@ class Checker {
                 vec(m.transmittance, f + ".transmittance", 0.0, 1.0);
                 break;
             }
+            for (const auto& [texture, field] :
+                 {std::pair{m.reflectance_texture, ".reflectance_texture"},
+                  std::pair{m.specular_texture, ".specular_texture"},
+                  std::pair{m.transmittance_texture, ".transmittance_texture"},
+                  std::pair{m.alpha_u_texture, ".alpha_u_texture"},
+                  std::pair{m.alpha_v_texture, ".alpha_v_texture"}})
+                if (texture > scene_.textures.size())
+                    fail(f + field, "texture " + std::to_string(texture) + " out of range (" +
+                                        std::to_string(scene_.textures.size()) + " textures)");
+            // next-event estimation through mirrors takes one colour (mirror_light.h)
+            if (m.kind == MaterialKind::Mirror && m.reflectance_texture)
+                fail(f + ".reflectance_texture", "a mirror's reflectance cannot be a texture");
+        }
+
+        for (std::size_t i = 0; i < scene_.textures.size(); ++i) {
+            const Texture& t = scene_.textures[i];
+            const std::string f = "textures[" + std::to_string(i) + "]";
+            if (!texture_kind_name(t.kind))
+                fail(f + ".kind", "unknown texture kind");
+            vec(t.color0, f + ".color0", 0.0, scene_limits::max_radiance);
+            vec(t.color1, f + ".color1", 0.0, scene_limits::max_radiance);
+            vec(t.to_u, f + ".to_u", -scene_limits::max_coordinate, scene_limits::max_coordinate);
+            vec(t.to_v, f + ".to_v", -scene_limits::max_coordinate, scene_limits::max_coordinate);
+            if (t.kind == TextureKind::Bitmap &&
+                (!t.image || t.image->width == 0 || t.image->height == 0 ||
+                 t.image->texels.size() !=
+                     std::size_t{t.image->width} * t.image->height *
+                         (t.image->encoding == TexelEncoding::Float32 ? 3 : 1)))
+                fail(f + ".image", "a bitmap without texels of its size");
         }
 
         for (std::size_t i = 0; i < scene_.triangles.size(); ++i) {

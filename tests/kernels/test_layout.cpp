@@ -23,6 +23,8 @@ namespace {
     X(WpTriangle)                                                                                  \
     X(WpShadingNormals)                                                                            \
     X(WpSphere)                                                                                    \
+    X(WpTriangleUvs)                                                                               \
+    X(WpTexture)                                                                                   \
     X(WpMaterial) X(WpLight) X(WpMirrorGroup) X(WpBvhNode) X(WpCamera) X(WpFrame) X(WpLaunch)
 
 #define WP_LAYOUT_FIELDS(X)                                                                        \
@@ -51,6 +53,28 @@ namespace {
     X(WpMaterial, fdr_int)                                                                         \
     X(WpMaterial, specular_weight)                                                                 \
     X(WpMaterial, nonlinear)                                                                       \
+    X(WpMaterial, reflectance_texture)                                                             \
+    X(WpMaterial, specular_texture)                                                                \
+    X(WpMaterial, transmittance_texture)                                                           \
+    X(WpMaterial, alpha_u_texture)                                                                 \
+    X(WpMaterial, alpha_v_texture)                                                                 \
+    X(WpMaterial, pad0)                                                                            \
+    X(WpMaterial, pad1)                                                                            \
+    X(WpMaterial, pad2)                                                                            \
+    X(WpTriangleUvs, u)                                                                            \
+    X(WpTriangleUvs, v)                                                                            \
+    X(WpTexture, color0)                                                                           \
+    X(WpTexture, color1)                                                                           \
+    X(WpTexture, to_u)                                                                             \
+    X(WpTexture, to_v)                                                                             \
+    X(WpTexture, kind)                                                                             \
+    X(WpTexture, format)                                                                           \
+    X(WpTexture, width)                                                                            \
+    X(WpTexture, height)                                                                           \
+    X(WpTexture, first)                                                                            \
+    X(WpTexture, wrap)                                                                             \
+    X(WpTexture, filter)                                                                           \
+    X(WpTexture, pad0)                                                                             \
     X(WpBvhNode, lower_x)                                                                          \
     X(WpBvhNode, upper_x)                                                                          \
     X(WpBvhNode, lower_y)                                                                          \

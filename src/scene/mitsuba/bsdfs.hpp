@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "scene/mitsuba/textures.hpp"
 #include "scene/mitsuba/xml_reader.hpp"
 #include "scene/scene.hpp"
 
@@ -16,6 +17,7 @@ namespace wp::mitsuba {
 // wavepath's reflecting materials reflect alike on both sides; Mitsuba's do
 // only inside `twosided`, so a bare one that reflects anything adds a line
 // to `warnings`. Throws SceneError.
-Material read_bsdf(const Object& bsdf, std::vector<std::string>& warnings);
+// Textures the BSDF uses go to `textures` (the material names them by number).
+Material read_bsdf(const Object& bsdf, TextureTable& textures, std::vector<std::string>& warnings);
 
 } // namespace wp::mitsuba

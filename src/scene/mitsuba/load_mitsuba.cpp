@@ -97,6 +97,10 @@ class SceneAssembler {
                         "integrator, shape, and bsdf with an id)");
             }
         }
+        scene_.textures = textures_.take();
+        for (const Texture& t : scene_.textures)
+            if (t.kind == TextureKind::Bitmap)
+                scene_.files.push_back(t.path);
         if (!root.parameters.empty())
             fail_at(root.parameters.front().where, root.parameters.front().element,
                     "a value outside any plugin");
@@ -143,7 +147,7 @@ class SceneAssembler {
         if (cached == bsdfs_.end()) {
             Material m;
             if (bsdf) {
-                m = read_bsdf(*bsdf, scene_.warnings);
+                m = read_bsdf(*bsdf, textures_, scene_.warnings);
                 m.name = bsdf->id.empty() ? "bsdf at " + bsdf->where.text() : bsdf->id;
             } else {
                 m.kind = MaterialKind::Diffuse;
@@ -156,7 +160,8 @@ class SceneAssembler {
         if (emission != glm::dvec3(0.0)) {
             m.name += " emitting " + number_text(emission.x) + " " + number_text(emission.y) + " " +
                       number_text(emission.z);
-            if (m.kind == MaterialKind::Diffuse && m.reflectance == glm::dvec3(0.0))
+            if (m.kind == MaterialKind::Diffuse && m.reflectance == glm::dvec3(0.0) &&
+                !m.is_textured())
                 m.kind = MaterialKind::Emitter;
             m.emission = emission;
         }
@@ -167,6 +172,7 @@ class SceneAssembler {
     }
 
     Scene scene_;
+    TextureTable textures_;
     std::map<const Object*, Material> bsdfs_;
     std::map<std::tuple<const Object*, double, double, double>, std::uint32_t> materials_;
 };

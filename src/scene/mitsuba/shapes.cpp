@@ -15,14 +15,39 @@
 namespace wp::mitsuba {
 namespace {
 
-using Corners = std::array<glm::dvec3, 3>;
+// A triangle of an analytic shape in its own space, with the texture
+// coordinates Mitsuba gives its corners.
+struct Corners {
+    std::array<glm::dvec3, 3> p;
+    std::array<glm::dvec2, 3> uv;
+};
+
+// (x, y) of [-1, 1]^2 as [0, 1]^2: the rectangle's texture coordinates.
+glm::dvec2 unit_square(double x, double y) {
+    return {0.5 * (x + 1.0), 0.5 * (y + 1.0)};
+}
 
 // Triangles of Mitsuba's analytic shapes in their own space, each facing
 // its front (the side of cross(v1 - v0, v2 - v0)).
 std::vector<Corners> rectangle() {
     // [-1, 1]^2 in the plane z = 0, facing +z.
     const glm::dvec3 a{-1, -1, 0}, b{1, -1, 0}, c{1, 1, 0}, d{-1, 1, 0};
-    return {{a, b, c}, {a, c, d}};
+    auto uv = [](const glm::dvec3& q) { return unit_square(q.x, q.y); };
+    return {{{a, b, c}, {uv(a), uv(b), uv(c)}}, {{a, c, d}, {uv(a), uv(c), uv(d)}}};
+}
+
+// Mitsuba 3.9.1's cube: each face's texture coordinates as a function of the
+// point (measured with ray_intersect, two points a face).
+glm::dvec2 cube_uv(int axis, double side, const glm::dvec3& q) {
+    const double x = q.x, y = q.y, z = q.z;
+    switch (axis) {
+    case 0:
+        return side < 0.0 ? unit_square(y, z) : unit_square(y, -z);
+    case 1:
+        return side < 0.0 ? unit_square(z, x) : unit_square(-x, -z);
+    default:
+        return side < 0.0 ? unit_square(-y, x) : unit_square(y, x);
+    }
 }
 
 std::vector<Corners> cube() {
@@ -37,21 +62,27 @@ std::vector<Corners> cube() {
             u[(axis + 1) % 3] = 1.0;
             v[(axis + 2) % 3] = side;
             const glm::dvec3 a = n - u - v, b = n + u - v, c = n + u + v, d = n - u + v;
-            out.push_back({a, b, c});
-            out.push_back({a, c, d});
+            auto uv = [&](const glm::dvec3& q) { return cube_uv(axis, side, q); };
+            out.push_back({{a, b, c}, {uv(a), uv(b), uv(c)}});
+            out.push_back({{a, c, d}, {uv(a), uv(c), uv(d)}});
         }
     return out;
 }
 
 std::vector<Corners> disk() {
     // The unit disk in the plane z = 0, facing +z, as a fan about its centre.
+    // Mitsuba's texture coordinates are polar, (r, phi / 2 pi): linear along
+    // each fan triangle's radii, nearly so across its 1/256 of a turn.
     std::vector<Corners> out;
     for (int i = 0; i < kDiskSegments; ++i) {
         const double a0 = 2.0 * M_PI * i / kDiskSegments;
         const double a1 = 2.0 * M_PI * (i + 1) / kDiskSegments;
-        out.push_back({glm::dvec3(0.0),
-                       {std::cos(a0), std::sin(a0), 0.0},
-                       {std::cos(a1), std::sin(a1), 0.0}});
+        const double v0 = static_cast<double>(i) / kDiskSegments;
+        const double v1 = static_cast<double>(i + 1) / kDiskSegments;
+        out.push_back(
+            {{glm::dvec3(0.0), glm::dvec3(std::cos(a0), std::sin(a0), 0.0),
+              glm::dvec3(std::cos(a1), std::sin(a1), 0.0)},
+             {glm::dvec2(0.0, 0.5 * (v0 + v1)), glm::dvec2(1.0, v0), glm::dvec2(1.0, v1)}});
     }
     return out;
 }
@@ -85,11 +116,15 @@ void add_triangles(Parameters& p, const std::vector<Corners>& local, bool keep_f
     for (const Corners& t : local) {
         Triangle out{};
         for (std::size_t k = 0; k < 3; ++k) {
-            out.v[k] = to_world.apply_to_point(t[k]);
+            out.v[k] = to_world.apply_to_point(t.p[k]);
             check_coordinates(p, out.v[k]);
         }
-        if (reverse)
+        out.has_uvs = true;
+        out.uvs = t.uv;
+        if (reverse) {
             std::swap(out.v[1], out.v[2]);
+            std::swap(out.uvs[1], out.uvs[2]);
+        }
         out.material = material;
         if (is_zero_area(out.v[0], out.v[1], out.v[2]))
             p.fail("to_world", "flattens the shape to zero area");
@@ -111,7 +146,10 @@ void add_mesh_file(Parameters& p, const Object& shape, std::uint32_t material, S
     const bool face_normals = p.boolean("face_normals").value_or(false);
     const bool flip = p.boolean("flip_normals").value_or(false);
     options.normals = face_normals ? NormalSource::None : NormalSource::File;
-    p.ignore("flip_tex_coords"); // wavepath has no textures yet
+    options.texture_coordinates = scene.materials[material].is_textured();
+    // The OBJ reader flips v as Mitsuba does by default (mesh.hpp); a file
+    // that asks not to keeps the file's v.
+    const bool flip_tex_coords = p.boolean("flip_tex_coords").value_or(true);
 
     const std::filesystem::path path = shape.folder() / *filename;
     scene.files.push_back(path.string());
@@ -132,9 +170,17 @@ void add_mesh_file(Parameters& p, const Object& shape, std::uint32_t material, S
             t.has_normals = true;
             t.normals = {mesh.normals[a], mesh.normals[b], mesh.normals[c]};
         }
+        if (!mesh.uvs.empty()) {
+            t.has_uvs = true;
+            t.uvs = {mesh.uvs[a], mesh.uvs[b], mesh.uvs[c]};
+            if (shape.type == "obj" && !flip_tex_coords)
+                for (glm::dvec2& uv : t.uvs)
+                    uv.y = 1.0 - uv.y;
+        }
         if (reverse) {
             std::swap(t.v[1], t.v[2]);
             std::swap(t.normals[1], t.normals[2]);
+            std::swap(t.uvs[1], t.uvs[2]);
         }
         if (flip && t.has_normals)
             for (glm::dvec3& n : t.normals)
@@ -164,6 +210,15 @@ void add_sphere(Parameters& p, std::uint32_t material, Scene& scene) {
             std::abs(glm::dot(y, z)) > tolerance)
             p.fail("to_world", "a sphere's to_world must scale uniformly (a non-uniform scale or "
                                "a shear makes an ellipsoid, which wavepath has not)");
+        // wavepath's sphere has no orientation: its texture coordinates are
+        // about the world's axes, so a textured one may not turn.
+        const double turned = 1e-9 * scale;
+        if (scene.materials[material].is_textured() &&
+            (std::abs(x.y) > turned || std::abs(x.z) > turned || std::abs(y.x) > turned ||
+             std::abs(y.z) > turned || x.x < 0.0 || y.y < 0.0 || z.z < 0.0))
+            p.fail("to_world", "a textured sphere's to_world may scale and translate but not "
+                               "rotate or mirror (wavepath's sphere keeps the world's axes for "
+                               "its texture coordinates)");
         s.center = to_world->apply_to_point(s.center);
         s.radius *= scale;
     }
