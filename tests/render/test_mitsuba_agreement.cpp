@@ -137,3 +137,17 @@ TEST_CASE("Mitsuba 3 agreement: a hand-written XML scene (rectangles, cubes, two
           "[render][mitsuba][statistical]") {
     check_agreement("boxes", load_scene(kDir + "boxes.xml"), 1024);
 }
+
+TEST_CASE("Mitsuba 3 agreement: textures (bitmap, checkerboard, to_uv, wrap modes, roughness)",
+          "[render][materials][textures][statistical]") {
+    check_agreement("textures", 1024);
+}
+
+TEST_CASE("Mitsuba 3 agreement through XML: textures", "[render][mitsuba][textures][statistical]") {
+    check_agreement_through_xml("textures", 1024);
+}
+
+TEST_CASE("Mitsuba 3 agreement: textures on a cube, rectangles, a disk and an OBJ mesh",
+          "[render][mitsuba][textures][statistical]") {
+    check_agreement("textures-shapes", load_scene(kDir + "textures-shapes.xml"), 1024);
+}

@@ -23,8 +23,9 @@ struct BsdfContext {
 
     // The <texture> nested or referred to under `name`, if any.
     const Object* texture(Parameters& p, const std::string& name) {
-        for (const auto& child : bsdf.children)
-            if (child->tag == "texture" && child->name == name) {
+        for (std::size_t i = 0; i < bsdf.children.size(); ++i)
+            if (const auto& child = bsdf.children[i];
+                child->tag == "texture" && bsdf.child_names[i] == name) {
                 if (p.find(name))
                     p.fail(name, "given twice: as a value and as a <texture>");
                 taken.push_back(child.get());
@@ -158,19 +159,30 @@ void read_roughness(Parameters& p, BsdfContext& c, Material& m) {
     p.ignore("sample_visible");
 }
 
+// The name `child` fills in `parent`.
+std::string child_name(const Object& parent, const Object& child) {
+    for (std::size_t i = 0; i < parent.children.size(); ++i)
+        if (parent.children[i].get() == &child)
+            return parent.child_names[i];
+    return child.name;
+}
+
 // Every child a BSDF's reader did not take (a texture for a parameter that
 // takes none, any other plugin) is refused.
 void refuse_children(const BsdfContext& c) {
     for (const auto& child : c.bsdf.children) {
         if (std::find(c.taken.begin(), c.taken.end(), child.get()) != c.taken.end())
             continue;
-        fail_at(child->where, child->element(),
-                child->tag == "texture"
-                    ? "'" + child->name + "' of " + c.bsdf.element() +
-                          " cannot be a texture in wavepath (textures go to reflectances, "
-                          "transmittances and roughness)"
-                    : "wavepath does not support a <" + child->tag + "> inside " +
-                          c.bsdf.element());
+        std::string problem;
+        if (child->tag == "texture") {
+            const std::string name = child_name(c.bsdf, *child);
+            problem = "parameter '" + name + "' of " + c.bsdf.element() +
+                      " cannot be a texture in wavepath (textures go to reflectances, "
+                      "transmittances and roughness)";
+        } else {
+            problem = "wavepath does not support a <" + child->tag + "> inside " + c.bsdf.element();
+        }
+        fail_at(child->where, child->element(), problem);
     }
 }
 

@@ -289,9 +289,12 @@ class Reader {
                     fail(file, child,
                          "refers to id '" + clip(id) + "', which no earlier element declares");
                 object.children.push_back(it->second);
+                // A <ref> may name the parameter it fills: <ref id="grid" name="reflectance"/>.
+                object.child_names.push_back(attribute(file, child, "name", false));
             } else if (kObjectTags.contains(tag) ||
                        (tag == "spectrum" && child.attribute("type"))) {
                 object.children.push_back(read_object(file, child));
+                object.child_names.push_back(object.children.back()->name);
             } else if (const auto kind = value_kind(tag)) {
                 Parameter p = read_parameter(file, child, *kind);
                 if (!names.insert(p.name).second)

@@ -66,6 +66,9 @@ struct Object {
     Location where;
     std::vector<Parameter> parameters;
     std::vector<std::shared_ptr<const Object>> children;
+    // The name each child fills here (children[i]'s own `name`, or that of
+    // the <ref> that brought it), empty when none.
+    std::vector<std::string> child_names;
 
     // How messages quote it: <bsdf type="diffuse" id="white">
     std::string element() const;
