@@ -51,6 +51,7 @@ namespace {
     X(WpMaterial, fdr_int)                                                                         \
     X(WpMaterial, specular_weight)                                                                 \
     X(WpMaterial, nonlinear)                                                                       \
+    X(WpMaterial, rough_transmittance)                                                             \
     X(WpBvhNode, lower_x)                                                                          \
     X(WpBvhNode, upper_x)                                                                          \
     X(WpBvhNode, lower_y)                                                                          \

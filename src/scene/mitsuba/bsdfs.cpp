@@ -143,17 +143,24 @@ Material read_plain(const Object& bsdf) {
         m.transmittance = albedo(p, "specular_transmittance", glm::dvec3(1.0));
         if (m.kind == MaterialKind::RoughDielectric)
             read_roughness(p, m);
-    } else if (type == "plastic") {
-        m.kind = MaterialKind::Plastic;
+    } else if (type == "plastic" || type == "roughplastic") {
+        m.kind = type == "plastic" ? MaterialKind::Plastic : MaterialKind::RoughPlastic;
         m.int_ior = ior(p, "int_ior", 1.49);
         m.ext_ior = ior(p, "ext_ior", 1.000277);
         m.reflectance = albedo(p, "diffuse_reflectance", glm::dvec3(0.5));
         m.specular = albedo(p, "specular_reflectance", glm::dvec3(1.0));
         m.nonlinear = p.boolean("nonlinear").value_or(false);
+        if (m.kind == MaterialKind::RoughPlastic) {
+            if (p.find("alpha_u") || p.find("alpha_v"))
+                p.fail(p.find("alpha_u") ? "alpha_u" : "alpha_v",
+                       "roughplastic's roughness is isotropic (Mitsuba refuses alpha_u and "
+                       "alpha_v too): give alpha");
+            read_roughness(p, m);
+        }
     } else {
         p.fail("unsupported BSDF type '" + json::shorten(type, 40) +
                "' (wavepath reads diffuse, conductor, roughconductor, dielectric, "
-               "thindielectric, roughdielectric, plastic and twosided)");
+               "thindielectric, roughdielectric, plastic, roughplastic and twosided)");
     }
     refuse_children(bsdf);
     p.finish();
