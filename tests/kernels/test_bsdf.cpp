@@ -1262,7 +1262,7 @@ TEST_CASE("roughplastic: white furnace (the albedo is the integral of f cos, at 
     // keep all the light in this model (the coating's multiple scattering
     // is dropped, and R_int is Mitsuba's coarse estimate): its albedo is
     // Mitsuba 3.9.1's own, measured as the mean of its sample() weights
-    // (400000 samples each, scalar_rgb; the script is in docs/materials.md).
+    // (400000 samples each, scalar_rgb: `python3 tools/mitsuba_roughplastic.py albedo`).
     constexpr std::size_t kSamples = 1u << 16;
     struct Case {
         RoughPlastic p;

@@ -59,9 +59,10 @@ TEST_CASE("materials: the diffuse Fresnel reflectance fits the integral of Fresn
 TEST_CASE("materials: the rough coating's tables are Mitsuba 3's", "[scene][material]") {
     // Mitsuba 3.9.1 (scalar_rgb), read back through its roughplastic's eval:
     // with specular_reflectance 0, eval(mu, mu) = rho' T(mu)^2 mu / (pi eta^2),
-    // and R_int from the nonlinear base at two diffuse reflectances (the
-    // script is in docs/materials.md). Mitsuba integrates in float, so its
-    // values carry about 1e-6 of rounding; they are given to 6 places.
+    // and R_int from the nonlinear base at two diffuse reflectances
+    // (`python3 tools/mitsuba_roughplastic.py tables`). Mitsuba integrates in
+    // float, so its values carry about 1e-6 of rounding; they are given to 6
+    // places.
     struct Case {
         wp::MicrofacetDistribution distribution;
         double alpha, int_ior, internal_reflectance;
