@@ -248,7 +248,7 @@ TEST_CASE("features: describe() names the features and the compiled-in counts") 
           "triangles spheres diffuse mirror lights planar_mirrors mirror_spheres; bvh");
     CHECK(SceneFeatures::all().describe() ==
           "triangles spheres diffuse mirror conductor roughconductor dielectric thindielectric "
-          "plastic roughdielectric shading_normals lights "
+          "plastic roughdielectric roughplastic shading_normals lights "
           "planar_mirrors mirror_spheres lens tent_filter gaussian_filter");
 }
 
