@@ -19,6 +19,7 @@
 #include "bsdf/plastic.h"
 #include "bsdf/roughconductor.h"
 #include "bsdf/roughdielectric.h"
+#include "bsdf/roughplastic.h"
 #include "bsdf/thindielectric.h"
 #include "scene_features.h"
 

@@ -42,6 +42,9 @@
 #ifndef WP_HAS_ROUGHDIELECTRIC
 #define WP_HAS_ROUGHDIELECTRIC 1
 #endif
+#ifndef WP_HAS_ROUGHPLASTIC
+#define WP_HAS_ROUGHPLASTIC 1
+#endif
 #define WP_MATERIAL_FEATURE_CHECK(KIND, Name, name, value, bsdf, glossy)                           \
     WP_IF(bsdf)(wp_has_##name##_is_defined = WP_HAS_##KIND, )
 enum { WP_MATERIALS(WP_MATERIAL_FEATURE_CHECK) wp_material_features_checked };

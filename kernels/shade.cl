@@ -273,7 +273,12 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
         flags |= WP_PATH_SPECULAR;
     else
         flags &= ~WP_PATH_SPECULAR;
-    if (scattered.flags & WP_BSDF_GLOSSY)
+    /* Emission that a non-delta sample finds is weighed against the light
+     * sample made here wherever that one was weighed by MIS: a property of
+     * the material, not of the lobe sampled (roughplastic's diffuse lobe
+     * is part of the density MIS used; keyed on the glossy flag, its hits
+     * were dropped and the image came out 0.3 % dark). */
+    if (!delta && wp_bsdf_weighs_light(&material))
         flags |= WP_PATH_GLOSSY;
     else
         flags &= ~WP_PATH_GLOSSY;

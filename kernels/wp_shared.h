@@ -61,7 +61,8 @@ typedef cl_float4 wp_float4;
     X(a, DIELECTRIC, Dielectric, dielectric, 5u, 1, 0)             /* smooth glass, water */       \
     X(a, THINDIELECTRIC, ThinDielectric, thindielectric, 6u, 1, 0) /* a pane of no thickness */    \
     X(a, PLASTIC, Plastic, plastic, 7u, 1, 0)                      /* diffuse under a coating */   \
-    X(a, ROUGHDIELECTRIC, RoughDielectric, roughdielectric, 8u, 1, 1) /* frosted glass */
+    X(a, ROUGHDIELECTRIC, RoughDielectric, roughdielectric, 8u, 1, 1) /* frosted glass */          \
+    X(a, ROUGHPLASTIC, RoughPlastic, roughplastic, 9u, 1, 1) /* diffuse under a rough coating */
 #define WP_MATERIALS(X) WP_MATERIALS_WITH(WP_MATERIAL_ROW_OF, X)
 #define WP_MATERIAL_ROW_OF(X, ...) X(__VA_ARGS__)
 
@@ -83,6 +84,10 @@ enum { WP_MATERIALS(WP_MATERIAL_ENUMERATOR) WP_MATERIAL_KIND_COUNT };
 #define WP_BSDF_DIFFUSE 4u
 #define WP_BSDF_GLOSSY 8u
 #define WP_BSDF_DELTA 16u /* next-event estimation cannot reach it */
+
+/* Entries of a roughplastic's transmittance table (Mitsuba's
+ * MI_ROUGH_TRANSMITTANCE_RES). */
+#define WP_ROUGH_TRANSMITTANCE_RES 64
 
 /* Microfacet distributions (WpMaterial.distribution), Mitsuba's names. */
 #define WP_MICROFACET_BECKMANN 0u
@@ -230,9 +235,9 @@ typedef struct {
     wp_uint fresnel;          /* conductors: 1, the Fresnel term of eta and k; 0, F = 1 ("none") */
     wp_float alpha_u;         /* rough kinds: roughness along the tangent, > 0 */
     wp_float alpha_v;         /* ... and along the bitangent */
-    wp_float fdr_int;         /* plastic: the coating's diffuse Fresnel reflectance from inside */
-    wp_float specular_weight; /* plastic: the share of samples steered to the coating */
-    wp_uint nonlinear;        /* plastic: Mitsuba's `nonlinear` */
+    wp_float fdr_int;         /* plastics: the coating's diffuse Fresnel reflectance from inside */
+    wp_float specular_weight; /* plastics: the share of samples steered to the coating */
+    wp_uint nonlinear;        /* plastics: Mitsuba's `nonlinear` */
     /* Textured parameters (kernels/textures/texture.h): 0, the constant
      * above; k + 1, the value of textures[k] at the hit point, which replaces
      * it before the BSDF sees the material. Roughness takes the texture's
@@ -243,6 +248,13 @@ typedef struct {
     wp_uint alpha_u_texture;
     wp_uint alpha_v_texture;
     wp_uint pad0, pad1, pad2;
+    /* roughplastic: the rough coating's transmittance from outside at incidence
+     * cosines i / (WP_ROUGH_TRANSMITTANCE_RES - 1), interpolated linearly as
+     * Mitsuba does (computed by the host, src/scene/material.cpp). Carried by
+     * every material rather than in a buffer of its own, because a BSDF sees
+     * its WpMaterial alone (kernels/bsdf/interface.h); a kernel that never
+     * reads it (roughplastic compiled out) never loads it. */
+    wp_float rough_transmittance[WP_ROUGH_TRANSMITTANCE_RES];
 } WpMaterial;
 
 /* The texture kinds, one row each: X(KIND, Name, name, value), Mitsuba 3's

@@ -25,15 +25,18 @@ static inline float wp_luminance(float3 c) {
     return 0.212671f * c.x + 0.715160f * c.y + 0.072169f * c.z;
 }
 
-/* textures[index] at texture coordinates uv (texels: the bitmaps'). */
+/* textures[index] at texture coordinates uv (texels: the bitmaps'), as a
+ * colour, or with as_float as Mitsuba looks up a float parameter (whose
+ * luminance the caller takes; checkerboard.h says what differs). */
 static inline float3 wp_texture_lookup(__global const WpTexture* textures,
-                                       __global const wp_uint* texels, wp_uint index, float2 uv) {
+                                       __global const wp_uint* texels, wp_uint index, float2 uv,
+                                       int as_float) {
     WpTexture t = textures[index];
     float2 mapped = (float2)(t.to_u.x * uv.x + t.to_u.y * uv.y + t.to_u.z,
                              t.to_v.x * uv.x + t.to_v.y * uv.y + t.to_v.z);
 #if WP_HAS_CHECKERBOARD_TEXTURE
     if (t.kind == WP_TEXTURE_CHECKERBOARD)
-        return wp_checkerboard_eval(&t, mapped);
+        return as_float ? wp_checkerboard_eval_float(&t, mapped) : wp_checkerboard_eval(&t, mapped);
 #endif
 #if WP_HAS_BITMAP_TEXTURE
     if (t.kind == WP_TEXTURE_BITMAP)
@@ -44,7 +47,12 @@ static inline float3 wp_texture_lookup(__global const WpTexture* textures,
 }
 
 static inline float3 wp_texture_eval(const WpSceneView* scene, wp_uint index, float2 uv) {
-    return wp_texture_lookup(scene->textures, scene->texels, index, uv);
+    return wp_texture_lookup(scene->textures, scene->texels, index, uv, 0);
+}
+
+/* A float parameter: the luminance of the lookup. */
+static inline float wp_texture_eval_float(const WpSceneView* scene, wp_uint index, float2 uv) {
+    return wp_luminance(wp_texture_lookup(scene->textures, scene->texels, index, uv, 1));
 }
 
 /* The material as it is at texture coordinates uv: each textured parameter
@@ -63,9 +71,9 @@ static inline void wp_apply_textures(const WpSceneView* scene, float2 uv, WpMate
         m->transmittance.xyz =
             clamp(wp_texture_eval(scene, m->transmittance_texture - 1u, uv), 0.0f, 1.0f);
     if (m->alpha_u_texture != 0u)
-        m->alpha_u = fmax(wp_luminance(wp_texture_eval(scene, m->alpha_u_texture - 1u, uv)), 1e-4f);
+        m->alpha_u = fmax(wp_texture_eval_float(scene, m->alpha_u_texture - 1u, uv), 1e-4f);
     if (m->alpha_v_texture != 0u)
-        m->alpha_v = fmax(wp_luminance(wp_texture_eval(scene, m->alpha_v_texture - 1u, uv)), 1e-4f);
+        m->alpha_v = fmax(wp_texture_eval_float(scene, m->alpha_v_texture - 1u, uv), 1e-4f);
 }
 
 #endif /* WP_HAS_TEXTURES */

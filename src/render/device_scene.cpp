@@ -414,11 +414,20 @@ DeviceScene flatten_scene(const Scene& scene, bool hierarchy) {
         w.transmittance = to_float4(m.transmittance);
         w.specular = to_float4(m.specular);
         if (m.kind == MaterialKind::Dielectric || m.kind == MaterialKind::ThinDielectric ||
-            m.kind == MaterialKind::RoughDielectric || m.kind == MaterialKind::Plastic)
+            m.kind == MaterialKind::RoughDielectric || m.kind == MaterialKind::Plastic ||
+            m.kind == MaterialKind::RoughPlastic)
             w.eta = to_float4(glm::dvec3(m.int_ior / m.ext_ior));
-        if (m.kind == MaterialKind::Plastic) {
+        if (m.kind == MaterialKind::Plastic || m.kind == MaterialKind::RoughPlastic) {
             const double eta = m.int_ior / m.ext_ior;
-            w.fdr_int = static_cast<float>(fresnel_diffuse_reflectance(1.0 / eta));
+            if (m.kind == MaterialKind::Plastic) {
+                w.fdr_int = static_cast<float>(fresnel_diffuse_reflectance(1.0 / eta));
+            } else {
+                const RoughCoating coating = rough_coating(m.distribution, m.alpha_u, eta);
+                w.fdr_int = static_cast<float>(coating.internal_reflectance);
+                for (int i = 0; i < WP_ROUGH_TRANSMITTANCE_RES; ++i)
+                    w.rough_transmittance[i] =
+                        static_cast<float>(coating.transmittance[static_cast<std::size_t>(i)]);
+            }
             // Mitsuba's specular_sampling_weight: the coating's share of the
             // mean reflectances (it steers sampling only, never the estimate).
             // A textured reflectance counts with the texture's mean, as in Mitsuba.

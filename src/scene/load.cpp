@@ -280,6 +280,12 @@ class SceneReader : private json::Reader {
             expect_object(m, pm, "a material object");
             const std::string& type = expect_string(require(m, pm, "type"), pm / "type");
             const std::optional<MaterialKind> kind = material_kind_from_name(type);
+            // Mitsuba's wrapper has nothing to do here: every reflecting kind
+            // reflects alike on both sides (docs/materials.md), so say so
+            // rather than only that the type is unknown.
+            if (type == "twosided")
+                fail(pm / "type", "wavepath's reflecting materials are two-sided already: give "
+                                  "the material itself (e.g. \"type\": \"roughplastic\")");
             if (!kind)
                 fail(pm / "type", "unknown material type '" + shorten(type, 40) + "' (expected " +
                                       material_kind_names() + ")");
@@ -347,6 +353,22 @@ class SceneReader : private json::Reader {
                        {"type", "int_ior", "ext_ior", "diffuse_reflectance", "specular_reflectance",
                         "nonlinear", "emission"});
             read_plastic(m, pm, mat);
+            return;
+        case MaterialKind::RoughPlastic:
+            check_keys(m, pm,
+                       {"type", "int_ior", "ext_ior", "diffuse_reflectance", "specular_reflectance",
+                        "nonlinear", "emission", "distribution", "alpha", "alpha_u", "alpha_v"});
+            // Mitsuba's roughplastic refuses anisotropic roughness too.
+            for (const char* key : {"alpha_u", "alpha_v"})
+                if (m.find(key) != m.end())
+                    fail(pm / key, "roughplastic's roughness is isotropic (as in Mitsuba): give "
+                                   "'alpha'");
+            read_plastic(m, pm, mat);
+            read_roughness(m, pm, mat);
+            // Its coating's transmittance table is computed for one alpha.
+            if (mat.alpha_u_texture)
+                fail(pm / "alpha", "roughplastic's roughness cannot be a texture (its coating's "
+                                   "transmittance table is computed once per material)");
             return;
         case MaterialKind::Dielectric:
         case MaterialKind::ThinDielectric:

@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
 #include "scene/scene.hpp"
@@ -41,6 +42,18 @@ struct NamedIor {
 // cosine) that the interface reflects. Mitsuba 3's fits (render/fresnel.h):
 // Egan and Hilgeman (1973) below 1, d'Eon and Irving (2011) above.
 double fresnel_diffuse_reflectance(double eta);
+
+// A roughplastic's rough coating, integrated over its microfacets as Mitsuba
+// 3's roughplastic integrates it (its parameters_changed(), with
+// eval_transmittance and eval_reflectance of render/microfacet.h): the
+// transmittance from outside at incidence cosines max(1e-6, i / (RES - 1))
+// (RES = WP_ROUGH_TRANSMITTANCE_RES), and the hemispherical reflectance seen
+// from inside. Isotropic roughness alpha > 0, eta = int_ior / ext_ior > 0.
+struct RoughCoating {
+    std::vector<double> transmittance; // RES values
+    double internal_reflectance = 0.0;
+};
+RoughCoating rough_coating(MicrofacetDistribution distribution, double alpha, double eta);
 
 // The named indices of refraction, and the one of that name (nullptr when none).
 const std::vector<NamedIor>& named_iors();

@@ -222,7 +222,16 @@ std::string bsdf(const Scene& scene, const Material& m, std::size_t index) {
         break;
     }
     case MaterialKind::Plastic:
-        inner = in + "    <bsdf type=\"plastic\">\n";
+    case MaterialKind::RoughPlastic:
+        inner = in + "    <bsdf type=\"" + std::string(material_kind_name(m.kind)) + "\">\n";
+        // Mitsuba's roughplastic takes `alpha` alone (it refuses alpha_u and
+        // alpha_v); wavepath's are equal for it (validate.cpp).
+        if (m.kind == MaterialKind::RoughPlastic)
+            inner +=
+                in + "        <string name=\"distribution\" value=\"" +
+                std::string(m.distribution == MicrofacetDistribution::Ggx ? "ggx" : "beckmann") +
+                "\"/>\n" + in + "        <float name=\"alpha\" value=\"" + number(m.alpha_u) +
+                "\"/>\n";
         inner += in + "        <float name=\"int_ior\" value=\"" + number(m.int_ior) + "\"/>\n";
         inner += in + "        <float name=\"ext_ior\" value=\"" + number(m.ext_ior) + "\"/>\n";
         inner +=

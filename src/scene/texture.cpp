@@ -3,6 +3,7 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <utility>
 
 #include <glm/geometric.hpp>
 
@@ -142,6 +143,18 @@ glm::dvec3 Texture::eval(double u, double v) const {
     const glm::dvec3 top = (1.0 - ax) * texel(img, xa, ya) + ax * texel(img, xb, ya);
     const glm::dvec3 bottom = (1.0 - ax) * texel(img, xa, yb) + ax * texel(img, xb, yb);
     return (1.0 - ay) * top + ay * bottom;
+}
+
+double Texture::eval_float(double u, double v) const {
+    glm::dvec3 c;
+    if (kind == TextureKind::Checkerboard) {
+        Texture swapped = *this;
+        std::swap(swapped.color0, swapped.color1);
+        c = swapped.eval(u, v);
+    } else {
+        c = eval(u, v);
+    }
+    return 0.212671 * c.x + 0.715160 * c.y + 0.072169 * c.z;
 }
 
 glm::dvec3 Texture::mean() const {

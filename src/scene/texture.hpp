@@ -73,6 +73,10 @@ struct Texture {
     // The value at (u, v) in double precision, by the kernels' rules: the
     // host reference of kernels/textures/ (tests/kernels/test_textures.cpp).
     glm::dvec3 eval(double u, double v) const;
+    // The value as a float parameter (a roughness): the luminance of the
+    // colour, with a checkerboard's colours swapped, as Mitsuba 3.9.1's
+    // eval_1 has them (kernels/textures/checkerboard.h).
+    double eval_float(double u, double v) const;
 };
 
 } // namespace wp

@@ -143,11 +143,18 @@ class Checker {
                 vec(m.k, f + ".k", 0.0, scene_limits::max_index);
                 break;
             case MaterialKind::RoughDielectric:
+            case MaterialKind::RoughPlastic:
+                if (m.distribution != MicrofacetDistribution::Beckmann &&
+                    m.distribution != MicrofacetDistribution::Ggx)
+                    fail(f + ".distribution", "unknown microfacet distribution");
                 positive(m.alpha_u, f + ".alpha_u", scene_limits::max_alpha);
                 positive(m.alpha_v, f + ".alpha_v", scene_limits::max_alpha);
+                // The coating's tables are integrated for one roughness.
+                if (m.kind == MaterialKind::RoughPlastic && m.alpha_u != m.alpha_v)
+                    fail(f + ".alpha_v", "must equal alpha_u (roughplastic is isotropic)");
                 [[fallthrough]];
             case MaterialKind::Plastic:
-                if (m.kind == MaterialKind::Plastic)
+                if (m.kind == MaterialKind::Plastic || m.kind == MaterialKind::RoughPlastic)
                     vec(m.specular, f + ".specular", 0.0, 1.0);
                 [[fallthrough]];
             case MaterialKind::Dielectric:

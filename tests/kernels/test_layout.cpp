@@ -75,6 +75,7 @@ namespace {
     X(WpTexture, wrap)                                                                             \
     X(WpTexture, filter)                                                                           \
     X(WpTexture, pad0)                                                                             \
+    X(WpMaterial, rough_transmittance)                                                             \
     X(WpBvhNode, lower_x)                                                                          \
     X(WpBvhNode, upper_x)                                                                          \
     X(WpBvhNode, lower_y)                                                                          \

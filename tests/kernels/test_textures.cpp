@@ -31,7 +31,7 @@ __kernel void lookups(__global const WpTexture* textures, __global const uint* t
     uint i = get_global_id(0);
     if (i >= count)
         return;
-    out[i] = (float4)(wp_texture_lookup(textures, texels, which[i], uv[i]), 0.0f);
+    out[i] = (float4)(wp_texture_lookup(textures, texels, which[i], uv[i], 0), 0.0f);
 }
 )CL";
 
@@ -120,6 +120,34 @@ TEST_CASE("texture reference: Mitsuba 3's checkerboard", "[textures]") {
                        {0.7, 0.7, glm::dvec3(0.4)},
                        {1.25, 0.25, glm::dvec3(0.4)},
                        {-0.25, 0.25, glm::dvec3(0.2)}});
+}
+
+TEST_CASE("texture reference: float lookups as Mitsuba 3's eval_1", "[textures]") {
+    // A bitmap's: the luminance of its colour (Mitsuba's eval_1 at the same
+    // points as above).
+    const Texture grid = bitmap(two_by_two(), TextureFilter::Bilinear, TextureWrap::Repeat);
+    CHECK(grid.eval_float(0.1, 0.9) == Approx(0.38472).margin(1e-5));
+    CHECK(grid.eval_float(-0.1, 0.3) == Approx(0.16049).margin(1e-5));
+    CHECK(grid.eval_float(1.2, 0.3) == Approx(0.08423).margin(1e-5));
+    // A checkerboard's: its colours swapped (to_uv scale (4, 2), color0 0.05,
+    // color1 0.4; eval and eval_1 measured at each point).
+    Texture checker;
+    checker.color0 = glm::dvec3(0.05);
+    checker.color1 = glm::dvec3(0.4);
+    checker.to_u = {4.0, 0.0, 0.0};
+    checker.to_v = {0.0, 2.0, 0.0};
+    const struct {
+        double u, v, eval, eval_1;
+    } measured[] = {{0.1, 0.1, 0.05, 0.4},
+                    {0.2, 0.1, 0.4, 0.05},
+                    {0.1, 0.3, 0.4, 0.05},
+                    {0.3, 0.3, 0.4, 0.05},
+                    {0.05, 0.6, 0.05, 0.4}};
+    for (const auto& m : measured) {
+        INFO("uv (" << m.u << ", " << m.v << ")");
+        CHECK(checker.eval(m.u, m.v).x == Approx(m.eval));
+        CHECK(checker.eval_float(m.u, m.v) == Approx(m.eval_1));
+    }
 }
 
 TEST_CASE("textures on the device match the double-precision reference", "[kernels][textures]") {

@@ -331,6 +331,22 @@ TEST_CASE("checkpoint: the scene hash sees every change that alters the image", 
     other = scene;
     other.triangles.pop_back();
     CHECK(scene_content_hash(other) != h);
+    // A rough plastic's every parameter, its kind included (table value 9).
+    other = scene;
+    other.materials[0].kind = MaterialKind::RoughPlastic;
+    const std::uint64_t rough_plastic = scene_content_hash(other);
+    CHECK(rough_plastic != h);
+    const auto changed = [&](auto&& change) {
+        Scene s = other;
+        change(s.materials[0]);
+        return scene_content_hash(s) != rough_plastic;
+    };
+    CHECK(changed([](Material& m) { m.alpha_u = m.alpha_v = 0.3; }));
+    CHECK(changed([](Material& m) { m.distribution = MicrofacetDistribution::Ggx; }));
+    CHECK(changed([](Material& m) { m.int_ior = 1.7; }));
+    CHECK(changed([](Material& m) { m.ext_ior = 1.1; }));
+    CHECK(changed([](Material& m) { m.specular.z = 0.5; }));
+    CHECK(changed([](Material& m) { m.nonlinear = true; }));
 }
 
 TEST_CASE("checkpoint: a render resumed from a checkpoint has the uninterrupted render's sums",

@@ -118,3 +118,15 @@ TEST_CASE("materials: rough dielectrics' two-sided light sampling with MIS equal
             m.alpha_u = m.alpha_v = 0.8;
     check_same_estimate(scene, 1024, 8192);
 }
+
+TEST_CASE("materials: rough plastics' MIS estimate equals BSDF sampling alone",
+          "[render][materials][statistical]") {
+    // Next-event estimation lights both of a rough plastic's lobes, the
+    // coating and the base, weighed against the BSDF's mixture density by
+    // the power heuristic; BSDF sampling alone is the reference.
+    Scene scene =
+        load_scene(std::string(WAVEPATH_SOURCE_DIR) + "/tests/data/mitsuba/roughplastic.json");
+    scene.camera.width = 24;
+    scene.camera.height = 16;
+    check_same_estimate(scene, 512, 2048);
+}

@@ -117,6 +117,11 @@ TEST_CASE("Mitsuba 3 agreement: rough dielectrics", "[render][materials][statist
     check_agreement("roughglass", 2048);
 }
 
+TEST_CASE("Mitsuba 3 agreement: rough plastic, GGX and Beckmann, linear and nonlinear",
+          "[render][materials][statistical]") {
+    check_agreement("roughplastic", 1024);
+}
+
 TEST_CASE("Mitsuba 3 agreement through XML: conductors", "[render][mitsuba][statistical]") {
     check_agreement_through_xml("metals", 1024);
 }
@@ -131,6 +136,10 @@ TEST_CASE("Mitsuba 3 agreement through XML: plastic", "[render][mitsuba][statist
 
 TEST_CASE("Mitsuba 3 agreement through XML: rough dielectrics", "[render][mitsuba][statistical]") {
     check_agreement_through_xml("roughglass", 2048);
+}
+
+TEST_CASE("Mitsuba 3 agreement through XML: rough plastic", "[render][mitsuba][statistical]") {
+    check_agreement_through_xml("roughplastic", 1024);
 }
 
 TEST_CASE("Mitsuba 3 agreement: a hand-written XML scene (rectangles, cubes, twosided, ref)",

@@ -375,6 +375,47 @@ TEST_CASE("loader: every validation error names its field", "[scene][load][error
         {"plastic diffuse_reflectance above 1",
          with_materials(R"({"white": {"type": "plastic", "diffuse_reflectance": [2, 1, 1]}})"),
          "/materials/white/diffuse_reflectance/0", "[0, 1], got 2"},
+        // roughplastic (Mitsuba's roughplastic parameters)
+        {"roughplastic alpha zero",
+         with_materials(R"({"white": {"type": "roughplastic", "alpha": 0}})"),
+         "/materials/white/alpha", "must be in (0, 4], got 0"},
+        {"roughplastic alpha negative",
+         with_materials(R"({"white": {"type": "roughplastic", "alpha": -0.2}})"),
+         "/materials/white/alpha", "must be in (0, 4], got -0.2"},
+        {"roughplastic alpha not finite",
+         with_materials(R"({"white": {"type": "roughplastic", "alpha": 1e999}})"),
+         "/materials/white/alpha", "out of range"},
+        {"roughplastic anisotropic",
+         with_materials(R"({"white": {"type": "roughplastic", "alpha_u": 0.1, "alpha_v": 0.2}})"),
+         "/materials/white/alpha_u", "isotropic"},
+        {"roughplastic index of refraction zero",
+         with_materials(R"({"white": {"type": "roughplastic", "int_ior": 0}})"),
+         "/materials/white/int_ior", "must be in (0, 1e4], got 0"},
+        {"roughplastic negative exterior index",
+         with_materials(R"({"white": {"type": "roughplastic", "ext_ior": -1}})"),
+         "/materials/white/ext_ior", "must be in (0, 1e4]"},
+        {"roughplastic index of refraction not finite",
+         with_materials(R"({"white": {"type": "roughplastic", "int_ior": -1e999}})"),
+         "/materials/white/int_ior", "out of range"},
+        {"roughplastic unknown index of refraction",
+         with_materials(R"({"white": {"type": "roughplastic", "int_ior": "glass"}})"),
+         "/materials/white/int_ior", "unknown index of refraction 'glass'"},
+        {"roughplastic diffuse_reflectance not finite",
+         with_materials(
+             R"({"white": {"type": "roughplastic", "diffuse_reflectance": [0.5, 1e999, 0.5]}})"),
+         "/materials/white/diffuse_reflectance/1", "out of range"},
+        {"roughplastic specular_reflectance above 1",
+         with_materials(
+             R"({"white": {"type": "roughplastic", "specular_reflectance": [1, 1, 1.5]}})"),
+         "/materials/white/specular_reflectance/2", "[0, 1], got 1.5"},
+        {"roughplastic unknown distribution",
+         with_materials(R"({"white": {"type": "roughplastic", "distribution": "phong"}})"),
+         "/materials/white/distribution", "unknown distribution 'phong'"},
+        {"roughplastic nonlinear not a boolean",
+         with_materials(R"({"white": {"type": "roughplastic", "nonlinear": "yes"}})"),
+         "/materials/white/nonlinear", "expected true or false"},
+        {"twosided is no material of its own", with_materials(R"({"white": {"type": "twosided"}})"),
+         "/materials/white/type", "two-sided already"},
         {"specular_transmittance above 1",
          with_materials(
              R"({"white": {"type": "dielectric", "specular_transmittance": [1, 1, 1.5]}})"),
@@ -631,6 +672,20 @@ TEST_CASE("validate_scene: rejects bad hand-built scenes", "[scene][validate]") 
         bad.materials[0].kind = static_cast<wp::MaterialKind>(99);
         CHECK(message(bad).find("materials[0] ('white').kind: unknown material kind") !=
               std::string::npos);
+    }
+    {
+        wp::Scene bad = s;
+        bad.materials[0].kind = wp::MaterialKind::RoughPlastic;
+        bad.materials[0].alpha_u = bad.materials[0].alpha_v = 0.3;
+        REQUIRE_NOTHROW(wp::validate_scene(bad));
+        bad.materials[0].alpha_v = 0.2;
+        CHECK(message(bad).find("materials[0] ('white').alpha_v: must equal alpha_u") !=
+              std::string::npos);
+        bad.materials[0].alpha_u = bad.materials[0].alpha_v = std::nan("");
+        CHECK(message(bad).find("materials[0] ('white').alpha_u") != std::string::npos);
+        bad.materials[0].alpha_u = bad.materials[0].alpha_v = 0.3;
+        bad.materials[0].int_ior = -1.0;
+        CHECK(message(bad).find("materials[0] ('white').int_ior") != std::string::npos);
     }
     {
         wp::Scene bad = s;

@@ -55,3 +55,48 @@ TEST_CASE("materials: the diffuse Fresnel reflectance fits the integral of Fresn
         CHECK(std::fabs(wp::fresnel_diffuse_reflectance(eta) / diffuse_fresnel(eta) - 1.0) <= 6e-3);
     }
 }
+
+TEST_CASE("materials: the rough coating's tables are Mitsuba 3's", "[scene][material]") {
+    // Mitsuba 3.9.1 (scalar_rgb), read back through its roughplastic's eval:
+    // with specular_reflectance 0, eval(mu, mu) = rho' T(mu)^2 mu / (pi eta^2),
+    // and R_int from the nonlinear base at two diffuse reflectances
+    // (`python3 tools/mitsuba_roughplastic.py tables`). Mitsuba integrates in
+    // float, so its values carry about 1e-6 of rounding; they are given to 6
+    // places.
+    struct Case {
+        wp::MicrofacetDistribution distribution;
+        double alpha, int_ior, internal_reflectance;
+        double t[4]; // at mu = 1/63, 16/63, 40/63 and 1
+    };
+    const Case cases[] = {
+        {wp::MicrofacetDistribution::Ggx,
+         0.1,
+         1.49,
+         0.545523,
+         {0.570511, 0.769269, 0.938501, 0.960893}},
+        {wp::MicrofacetDistribution::Beckmann,
+         0.3,
+         1.49,
+         0.523425,
+         {0.687316, 0.809928, 0.933796, 0.961102}},
+        {wp::MicrofacetDistribution::Ggx,
+         0.7,
+         2.4,
+         0.409113,
+         {0.459692, 0.582523, 0.710584, 0.783007}},
+        // A coating of lower index than outside: grazing light is reflected
+        // totally at every microfacet.
+        {wp::MicrofacetDistribution::Beckmann, 0.05, 0.8, 0.050579, {0.0, 0.0, 0.714863, 0.987626}},
+    };
+    for (const Case& c : cases) {
+        INFO("alpha " << c.alpha << ", int_ior " << c.int_ior);
+        const wp::RoughCoating coating =
+            wp::rough_coating(c.distribution, c.alpha, c.int_ior / 1.000277);
+        REQUIRE(coating.transmittance.size() == WP_ROUGH_TRANSMITTANCE_RES);
+        CHECK(coating.internal_reflectance == Approx(c.internal_reflectance).margin(5e-6));
+        const int index[] = {1, 16, 40, 63};
+        for (int i = 0; i < 4; ++i)
+            CHECK(coating.transmittance[static_cast<std::size_t>(index[i])] ==
+                  Approx(c.t[i]).margin(1e-5));
+    }
+}

@@ -199,6 +199,12 @@ TEST_CASE("mitsuba import: bad input is one line with the file, line and column"
         {"unsupported BSDF",
          head + kSensor + "\n<shape type=\"cube\"><bsdf type=\"hair\"/></shape></scene>", "7:20",
          "unsupported BSDF type 'hair' (wavepath reads diffuse"},
+        {"anisotropic roughplastic",
+         head + kSensor +
+             "\n<shape type=\"cube\"><bsdf type=\"roughplastic\">\n"
+             "<float name=\"alpha_u\" value=\"0.1\"/><float name=\"alpha_v\" value=\"0.2\"/>"
+             "</bsdf></shape></scene>",
+         "8:1", "roughplastic's roughness is isotropic"},
         {"unsupported emitter", head + "<emitter type=\"constant\"/>\n</scene>\n", "2:1",
          "unsupported emitter at the scene's top level"},
         {"unknown parameter",

@@ -110,7 +110,7 @@ void check_round_trip(const std::string& json) {
 
 TEST_CASE("mitsuba import: the agreement scenes survive JSON -> XML -> scene",
           "[scene][mitsuba][import]") {
-    for (const char* name : {"metals", "glass", "plastic"})
+    for (const char* name : {"metals", "glass", "plastic", "roughplastic"})
         check_round_trip(std::string("tests/data/mitsuba/") + name + ".json");
 }
 

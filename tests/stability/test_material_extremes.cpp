@@ -125,4 +125,30 @@ TEST_CASE("materials: extreme indices, trapped paths and roughness render finite
                          "roughness " + std::to_string(alpha) + ", level with the spheres");
         }
     }
+    {
+        // The rough plastic at the same extremes: its coating's indices of
+        // 1e4 (the base's 1 / (1 - R_int) near a division by 0), 1.0001 and
+        // 0.5 (a coating less dense than outside), its roughness at 1e-4 and
+        // 4, from above and level with the spheres.
+        const char* const names[] = {"floor", "default", "red", "blue"};
+        for (double ior : {1e4, 1.0001, 0.5}) {
+            Scene plastic = agreement_scene("roughplastic", 16, 12);
+            for (const char* name : names)
+                named(plastic, name).int_ior = ior;
+            check_finite(test::render(plastic, 16, 3),
+                         "roughplastic, int_ior " + std::to_string(ior));
+        }
+        for (double alpha : {1e-4, 4.0}) {
+            Scene plastic = agreement_scene("roughplastic", 16, 12);
+            for (const char* name : names)
+                named(plastic, name).alpha_u = named(plastic, name).alpha_v = alpha;
+            check_finite(test::render(plastic, 16, 7),
+                         "roughplastic, roughness " + std::to_string(alpha));
+            plastic.camera.eye = glm::dvec3(0.0, 0.9, 6.5);
+            plastic.camera.look_at = glm::dvec3(0.0, 0.9, 0.0);
+            check_finite(test::render(plastic, 16, 7), "roughplastic, roughness " +
+                                                           std::to_string(alpha) +
+                                                           ", level with the spheres");
+        }
+    }
 }

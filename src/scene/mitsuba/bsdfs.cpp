@@ -224,17 +224,28 @@ Material read_plain(const Object& bsdf, TextureTable& textures) {
             albedo(p, c, "specular_transmittance", glm::dvec3(1.0), m.transmittance_texture);
         if (m.kind == MaterialKind::RoughDielectric)
             read_roughness(p, c, m);
-    } else if (type == "plastic") {
-        m.kind = MaterialKind::Plastic;
+    } else if (type == "plastic" || type == "roughplastic") {
+        m.kind = type == "plastic" ? MaterialKind::Plastic : MaterialKind::RoughPlastic;
         m.int_ior = ior(p, "int_ior", 1.49);
         m.ext_ior = ior(p, "ext_ior", 1.000277);
         m.reflectance = albedo(p, c, "diffuse_reflectance", glm::dvec3(0.5), m.reflectance_texture);
         m.specular = albedo(p, c, "specular_reflectance", glm::dvec3(1.0), m.specular_texture);
         m.nonlinear = p.boolean("nonlinear").value_or(false);
+        if (m.kind == MaterialKind::RoughPlastic) {
+            if (p.find("alpha_u") || p.find("alpha_v"))
+                p.fail(p.find("alpha_u") ? "alpha_u" : "alpha_v",
+                       "roughplastic's roughness is isotropic (Mitsuba refuses alpha_u and "
+                       "alpha_v too): give alpha");
+            read_roughness(p, c, m);
+            // Its coating's transmittance table depends on alpha: one per material.
+            if (m.alpha_u_texture)
+                p.fail("alpha", "roughplastic's roughness cannot be a texture in wavepath (its "
+                                "coating's transmittance table is computed once per material)");
+        }
     } else {
         p.fail("unsupported BSDF type '" + json::shorten(type, 40) +
                "' (wavepath reads diffuse, conductor, roughconductor, dielectric, "
-               "thindielectric, roughdielectric, plastic and twosided)");
+               "thindielectric, roughdielectric, plastic, roughplastic and twosided)");
     }
     refuse_children(c);
     p.finish();
