@@ -136,7 +136,8 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D "
           "WP_HAS_LENS=0 -D "
-          "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D "
+          "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D WP_HAS_BITMAP_TEXTURE=0 -D "
+          "WP_HAS_CHECKERBOARD_TEXTURE=0 -D "
           "WP_TRIANGLE_COUNT=26 -D "
           "WP_SPHERE_COUNT=2 -D WP_LIGHT_COUNT=2 -D "
           "WP_MIRROR_GROUP_TRIANGLES=2 -D WP_SHADOW_OCCLUDER_COUNT=5 -D "
@@ -149,7 +150,8 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=0 -D "
           "WP_HAS_LENS=0 -D "
-          "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D "
+          "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D WP_HAS_BITMAP_TEXTURE=0 -D "
+          "WP_HAS_CHECKERBOARD_TEXTURE=0 -D "
           "WP_TRIANGLE_COUNT=26 -D "
           "WP_SPHERE_COUNT=0 -D WP_LIGHT_COUNT=2 -D "
           "WP_MIRROR_GROUP_TRIANGLES=2 -D WP_SHADOW_OCCLUDER_COUNT=5 -D "
@@ -162,7 +164,8 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=0 -D WP_HAS_PLANAR_MIRRORS=0 -D WP_HAS_MIRROR_SPHERES=0 -D "
           "WP_HAS_LENS=0 -D "
-          "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D "
+          "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D WP_HAS_BITMAP_TEXTURE=0 -D "
+          "WP_HAS_CHECKERBOARD_TEXTURE=0 -D "
           "WP_TRIANGLE_COUNT=0 -D "
           "WP_SPHERE_COUNT=4 -D WP_LIGHT_COUNT=0 -D "
           "WP_MIRROR_GROUP_TRIANGLES=0");
@@ -174,7 +177,8 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=0 -D WP_HAS_MIRROR_SPHERES=0 -D "
           "WP_HAS_LENS=0 -D "
-          "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D "
+          "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D WP_HAS_BITMAP_TEXTURE=0 -D "
+          "WP_HAS_CHECKERBOARD_TEXTURE=0 -D "
           "WP_TRIANGLE_COUNT=26 -D "
           "WP_SPHERE_COUNT=2 -D WP_LIGHT_COUNT=2 -D "
           "WP_MIRROR_GROUP_TRIANGLES=0 -D WP_SHADOW_OCCLUDER_COUNT=5 -D "
@@ -187,7 +191,8 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=0 -D WP_HAS_PLANAR_MIRRORS=0 -D WP_HAS_MIRROR_SPHERES=0 -D "
           "WP_HAS_LENS=0 -D "
-          "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D "
+          "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D WP_HAS_BITMAP_TEXTURE=0 -D "
+          "WP_HAS_CHECKERBOARD_TEXTURE=0 -D "
           "WP_TRIANGLE_COUNT=24 -D "
           "WP_SPHERE_COUNT=2 -D WP_LIGHT_COUNT=0 -D "
           "WP_MIRROR_GROUP_TRIANGLES=0 -D WP_SHADOW_OCCLUDER_COUNT=3 -D "
@@ -201,7 +206,8 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D "
           "WP_HAS_LENS=0 -D "
-          "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D WP_USE_BVH=1");
+          "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D WP_HAS_BITMAP_TEXTURE=0 -D "
+          "WP_HAS_CHECKERBOARD_TEXTURE=0 -D WP_USE_BVH=1");
     // The general kernels: every feature, runtime counts, the scene's hierarchy.
     CHECK(SceneFeatures::general_for(analyse_features(large())).build_options() ==
           "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 -D "
@@ -211,7 +217,8 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_SHADING_NORMALS=1 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D "
           "WP_HAS_LENS=1 -D "
-          "WP_HAS_TENT_FILTER=1 -D WP_HAS_GAUSSIAN_FILTER=1 -D WP_USE_BVH=1");
+          "WP_HAS_TENT_FILTER=1 -D WP_HAS_GAUSSIAN_FILTER=1 -D WP_HAS_BITMAP_TEXTURE=1 -D "
+          "WP_HAS_CHECKERBOARD_TEXTURE=1 -D WP_USE_BVH=1");
     CHECK(SceneFeatures::general_for(analyse_features(hexroom())).build_options() ==
           SceneFeatures::all().build_options());
     CHECK(SceneFeatures::all().build_options() ==
@@ -222,7 +229,8 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_SHADING_NORMALS=1 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D "
           "WP_HAS_LENS=1 -D "
-          "WP_HAS_TENT_FILTER=1 -D WP_HAS_GAUSSIAN_FILTER=1");
+          "WP_HAS_TENT_FILTER=1 -D WP_HAS_GAUSSIAN_FILTER=1 -D WP_HAS_BITMAP_TEXTURE=1 -D "
+          "WP_HAS_CHECKERBOARD_TEXTURE=1");
 }
 
 TEST_CASE("features: fixed counts stop at the limit, and 0 turns them off") {
@@ -249,7 +257,8 @@ TEST_CASE("features: describe() names the features and the compiled-in counts") 
     CHECK(SceneFeatures::all().describe() ==
           "triangles spheres diffuse mirror conductor roughconductor dielectric thindielectric "
           "plastic roughdielectric roughplastic shading_normals lights "
-          "planar_mirrors mirror_spheres lens tent_filter gaussian_filter");
+          "planar_mirrors mirror_spheres lens tent_filter gaussian_filter bitmap_texture "
+          "checkerboard_texture");
 }
 
 // The program's options begin with the features' (estimator options may follow).
