@@ -161,6 +161,41 @@ void add_device_list_option(CLI::App& command, std::string& devices) {
                        "first CPU)");
 }
 
+namespace {
+
+// One command runs per process, so its -D values can live here rather than
+// in each command's struct, where every loader call would have to pass them.
+std::map<std::string, std::string>& defines() {
+    static std::map<std::string, std::string> values;
+    return values;
+}
+
+} // namespace
+
+void add_scene_define_option(CLI::App& command) {
+    command
+        .add_option_function<std::vector<std::string>>(
+            "-D,--define",
+            [](const std::vector<std::string>& given) {
+                for (const std::string& text : given) {
+                    const std::size_t equals = text.find('=');
+                    defines()[text.substr(0, equals)] = text.substr(equals + 1);
+                }
+            },
+            "name=value: sets $name in a Mitsuba XML scene, as Mitsuba's -D does (over the "
+            "file's <default>); repeatable")
+        ->check([](const std::string& text) -> std::string {
+            const std::size_t equals = text.find('=');
+            if (equals == std::string::npos || equals == 0)
+                return "expected name=value, got '" + text + "'";
+            return "";
+        });
+}
+
+const std::map<std::string, std::string>& scene_defines() {
+    return defines();
+}
+
 void add_image_size_options(CLI::App& command, int& width, int& height) {
     const auto size = CLI::Range(1, scene_limits::max_resolution);
     command.add_option("--width", width, "Image width (default: the scene's)")->check(size);

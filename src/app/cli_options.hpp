@@ -3,6 +3,7 @@
 // every command spells, documents and bounds them the same way.
 #pragma once
 
+#include <map>
 #include <string>
 
 #include "render/integrator_options.hpp"
@@ -43,5 +44,12 @@ void add_device_list_option(CLI::App& command, std::string& devices);
 // --width and --height, each within the scene loader's resolution limit; 0
 // (not given) keeps the scene's resolution.
 void add_image_size_options(CLI::App& command, int& width, int& height);
+
+// -D name=value (repeatable): a Mitsuba XML scene's `$name`, as Mitsuba's own
+// -D sets it (docs/mitsuba-import.md). The values go to scene_defines().
+void add_scene_define_option(CLI::App& command);
+
+// The -D values of this run's command, for load_scene.
+const std::map<std::string, std::string>& scene_defines();
 
 } // namespace wp

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "app/cli_options.hpp"
 #include "cl/device.hpp"
 #include "report/device_profile.hpp"
 #ifdef WAVEPATH_HAVE_MPI
@@ -18,7 +19,7 @@ std::optional<int> run_render_as_mpi_worker(const RenderCommand& command) {
         return run_mpi_worker(
             job,
             [&] {
-                Scene scene = load_scene(command.scene);
+                Scene scene = load_scene(command.scene, scene_defines());
                 if (command.width > 0)
                     scene.camera.width = command.width;
                 if (command.height > 0)

@@ -922,8 +922,17 @@ Scene parse_scene(std::string_view json_text, const std::string& source_name) {
 }
 
 Scene load_scene(const std::filesystem::path& path) {
+    return load_scene(path, {});
+}
+
+Scene load_scene(const std::filesystem::path& path,
+                 const std::map<std::string, std::string>& defines) {
     if (lower_extension(path) == ".xml")
-        return load_mitsuba_scene(path);
+        return load_mitsuba_scene(path, defines);
+    if (!defines.empty())
+        throw SceneError(one_line("-D " + defines.begin()->first + "=...: '" + path.string() +
+                                  "' is a JSON scene, which has no $names to set (-D is for "
+                                  "Mitsuba XML scenes)"));
     const std::string name = path.string();
     std::string text;
     try {

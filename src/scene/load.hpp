@@ -7,6 +7,7 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <string>
 #include <string_view>
 
@@ -20,6 +21,12 @@ namespace wp {
 // when the file cannot be opened or read, and whatever parse_scene throws otherwise.
 // Scene::source is the path as given.
 Scene load_scene(const std::filesystem::path& path);
+
+// The same with values for a Mitsuba scene's `$name`s, as Mitsuba's -D gives
+// them (they win over the file's <default>s). A JSON scene has no `$name`s:
+// defines given for one are a SceneError that says so.
+Scene load_scene(const std::filesystem::path& path,
+                 const std::map<std::string, std::string>& defines);
 
 // Parses and validates a scene from JSON text. source_name is used in messages
 // and stored in Scene::source; mesh files named by the scene are found relative
