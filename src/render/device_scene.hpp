@@ -44,7 +44,11 @@ inline constexpr std::uint32_t kMinBvhPrimitives = kMaxFixedCountPrimitives + 1;
     X(planar_mirrors, WP_HAS_PLANAR_MIRRORS)   /* flat mirror triangles, and lights */             \
     X(mirror_spheres, WP_HAS_MIRROR_SPHERES)   /* spheres of a mirror material, and lights */      \
     X(lens, WP_HAS_LENS)                       /* a thin lens: aperture radius > 0 */              \
-    WP_FILTER_FEATURES(X)                      /* the pixel filter, unless the box */
+    X(point_light, WP_HAS_POINT_LIGHT)         /* emitters by kind (Scene::emitters) */            \
+    X(spot_light, WP_HAS_SPOT_LIGHT)                                                               \
+    X(directional_light, WP_HAS_DIRECTIONAL_LIGHT)                                                 \
+    X(constant_light, WP_HAS_CONSTANT_LIGHT)                                                       \
+    WP_FILTER_FEATURES(X) /* the pixel filter, unless the box */
 
 // Which kinds of primitive, material and light the scene uses.
 struct SceneFeatures {
@@ -114,8 +118,13 @@ struct DeviceScene {
     std::vector<WpMirrorGroup> mirror_groups;       // planar mirrors (render/planar_mirrors.hpp)
     std::vector<WpTriangle> mirror_triangles;       // copies of their triangles
     std::vector<wp_uint> mirror_spheres;            // with lights: the spheres of a mirror material
+    std::vector<WpEmitter> emitters; // point, spot, directional, constant; a constant
+                                     // one first
     BvhStats bvh_stats;
     float light_area = 0.0f; // total emissive area
+    // The probability that next-event estimation chooses the emissive
+    // triangles rather than an emitter (by emitted power; 1 without emitters).
+    float area_light_pick = 1.0f;
     WpCamera camera{};
     int width = 0;
     int height = 0;

@@ -23,7 +23,8 @@ namespace {
     X(WpTriangle)                                                                                  \
     X(WpShadingNormals)                                                                            \
     X(WpSphere)                                                                                    \
-    X(WpMaterial) X(WpLight) X(WpMirrorGroup) X(WpBvhNode) X(WpCamera) X(WpFrame) X(WpLaunch)
+    X(WpMaterial)                                                                                  \
+    X(WpLight) X(WpEmitter) X(WpMirrorGroup) X(WpBvhNode) X(WpCamera) X(WpFrame) X(WpLaunch)
 
 #define WP_LAYOUT_FIELDS(X)                                                                        \
     X(WpTriangle, v0)                                                                              \
@@ -63,6 +64,17 @@ namespace {
     X(WpLight, cdf)                                                                                \
     X(WpLight, pad0)                                                                               \
     X(WpLight, pad1)                                                                               \
+    X(WpEmitter, position)                                                                         \
+    X(WpEmitter, direction)                                                                        \
+    X(WpEmitter, radiance)                                                                         \
+    X(WpEmitter, kind)                                                                             \
+    X(WpEmitter, pick)                                                                             \
+    X(WpEmitter, cdf)                                                                              \
+    X(WpEmitter, reach)                                                                            \
+    X(WpEmitter, cos_cutoff)                                                                       \
+    X(WpEmitter, cos_beam)                                                                         \
+    X(WpEmitter, cutoff)                                                                           \
+    X(WpEmitter, inv_transition)                                                                   \
     X(WpMirrorGroup, plane)                                                                        \
     X(WpMirrorGroup, first)                                                                        \
     X(WpMirrorGroup, count)                                                                        \
@@ -93,8 +105,8 @@ namespace {
     X(WpFrame, mirror_group_count)                                                                 \
     X(WpFrame, mirror_sphere_count)                                                                \
     X(WpFrame, path_types)                                                                         \
-    X(WpFrame, pad1)                                                                               \
-    X(WpFrame, pad2)                                                                               \
+    X(WpFrame, emitter_count)                                                                      \
+    X(WpFrame, area_light_pick)                                                                    \
     X(WpLaunch, count)                                                                             \
     X(WpLaunch, ray_queue)                                                                         \
     X(WpLaunch, from_finished)                                                                     \
