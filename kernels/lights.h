@@ -265,7 +265,7 @@ static inline int wp_sample_emitter(__global const WpEmitter* e, float3 position
 
 /* Next-event estimation's light sample over every light of the scene: with
  * emitters other than triangles (WP_HAS_EMITTERS), first the choice between
- * the emissive triangles (probability scene->area_light_pick, then one of
+ * the emissive triangles (probability 1 - scene->emitter_pick, then one of
  * them by area as wp_sample_light does, its number u_pick rescaled) and each
  * emitter (its `pick`), by emitted power (src/render/device_scene.cpp); the
  * sample's irradiance is divided by the probability and its pdf multiplied,
@@ -275,7 +275,7 @@ static inline int wp_sample_lights(const WpSceneView* scene, float3 position, fl
                                    float3 origin_behind, int two_sided, float3 normal, float u_pick,
                                    float u, float v, WpLightSample* out) {
 #if WP_HAS_EMITTERS
-    float area_pick = scene->area_light_pick;
+    float area_pick = 1.0f - scene->emitter_pick;
     if (u_pick < area_pick) {
 #if WP_HAS_LIGHTS
         if (!wp_sample_light(scene, position, origin, origin_behind, two_sided, normal,

@@ -223,7 +223,7 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
         WpTriangle light = scene.triangles[primitive];
         float light_pdf = wp_light_pdf(&scene, &light, vertex.xyz, surface.position);
 #if WP_HAS_EMITTERS /* the triangles are chosen with this probability (lights.h) */
-        light_pdf *= scene.area_light_pick;
+        light_pdf *= 1.0f - scene.emitter_pick;
 #endif
         beta_emission *= wp_mis_power(vertex.w, light_pdf);
     }

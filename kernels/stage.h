@@ -34,7 +34,7 @@ typedef struct {
     wp_uint mirror_group_count;
     wp_uint mirror_sphere_count;
     wp_uint emitter_count;
-    float area_light_pick; /* the probability of choosing the emissive triangles (lights.h) */
+    float emitter_pick; /* the probability of choosing an emitter, not a triangle (lights.h) */
 } WpSceneView;
 
 #define WP_SCENE_ASSIGN(name, type) view->name = name;
@@ -50,7 +50,7 @@ static inline void wp_scene_view(WpSceneView* view,
     view->mirror_group_count = frame.mirror_group_count;
     view->mirror_sphere_count = frame.mirror_sphere_count;
     view->emitter_count = frame.emitter_count;
-    view->area_light_pick = frame.area_light_pick;
+    view->emitter_pick = frame.emitter_pick;
 }
 
 /* The stages' per-item work lives in functions that take the stage's own

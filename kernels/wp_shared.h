@@ -238,7 +238,7 @@ typedef struct {
 
 /* One such emitter, 80 bytes. Lights are chosen by emitted power
  * (src/render/device_scene.cpp): the emissive triangles together with
- * probability WpFrame.area_light_pick (then one by area, WpLight), each
+ * probability 1 - WpFrame.emitter_pick (then one by area, WpLight), each
  * emitter here with probability `pick`; `cdf` is the running sum of the
  * area lights' and the emitters' probabilities up to and including this one
  * (the last 1). A constant emitter, if any, is emitters[0], so that a ray
@@ -368,7 +368,9 @@ typedef struct {
     wp_uint mirror_sphere_count; /* mirror spheres (mirror_spheres) */
     wp_uint path_types;          /* the path types a render adds, with WP_PATH_TYPES */
     wp_uint emitter_count;       /* WpEmitter entries */
-    wp_float area_light_pick;    /* the probability of choosing the emissive triangles */
+    wp_float emitter_pick;       /* the probability of choosing an emitter rather than the
+                                    emissive triangles: 0 without emitters, so that a frame
+                                    left zero samples the triangles alone */
 } WpFrame;
 
 /* What changes from one launch of a stage to the next, passed by value after

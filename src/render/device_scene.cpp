@@ -322,7 +322,7 @@ void flatten_emitters(const Scene& scene, const FloatFrame& frame, double triang
     double total = area_power;
     for (double p : power)
         total += p;
-    out.area_light_pick = static_cast<float>(area_power / total);
+    out.emitter_pick = static_cast<float>((total - area_power) / total);
     double running = area_power;
     for (std::size_t i = 0; i < emitters.size(); ++i) {
         emitters[i].pick = static_cast<float>(power[i] / total);

@@ -122,9 +122,9 @@ struct DeviceScene {
                                      // one first
     BvhStats bvh_stats;
     float light_area = 0.0f; // total emissive area
-    // The probability that next-event estimation chooses the emissive
-    // triangles rather than an emitter (by emitted power; 1 without emitters).
-    float area_light_pick = 1.0f;
+    // The probability that next-event estimation chooses an emitter rather
+    // than the emissive triangles (by emitted power; 0 without emitters).
+    float emitter_pick = 0.0f;
     WpCamera camera{};
     int width = 0;
     int height = 0;

@@ -106,7 +106,7 @@ namespace {
     X(WpFrame, mirror_sphere_count)                                                                \
     X(WpFrame, path_types)                                                                         \
     X(WpFrame, emitter_count)                                                                      \
-    X(WpFrame, area_light_pick)                                                                    \
+    X(WpFrame, emitter_pick)                                                                       \
     X(WpLaunch, count)                                                                             \
     X(WpLaunch, ray_queue)                                                                         \
     X(WpLaunch, from_finished)                                                                     \
