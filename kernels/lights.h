@@ -11,6 +11,7 @@
 #include "estimator.h"
 #include "ray_offset.h"
 #include "sampling.h"
+#include "scene_features.h" /* WP_HAS_EMITTERS and the kinds' switches */
 #include "stage.h"
 #include "triangle.h"
 
@@ -64,7 +65,9 @@ typedef struct {
     float3 direction;  /* unit, from the shadow-ray origin towards the light */
     float length;      /* how far the shadow ray must stay unblocked */
     float3 irradiance; /* Le * cos_surface * cos_light / d^2 / pdf: multiply by the BRDF */
-    float pdf;         /* the solid-angle density of direction (for MIS) */
+    float pdf;         /* the solid-angle density of direction (for MIS); INFINITY: a delta light */
+    int weigh_always;  /* weighed against BSDF sampling at every non-delta vertex (the constant
+                          emitter, which a BSDF sample finds by escaping) */
 } WpLightSample;
 
 /* The power heuristic's weight of the strategy of density `own` against
@@ -184,6 +187,121 @@ static inline float wp_light_pdf(const WpSceneView* scene, const WpTriangle* lig
     }
 #endif
     return distance * distance / (cos_light * scene->light_area);
+}
+
+#if WP_HAS_EMITTERS
+/* Mitsuba 3's spot falloff, as 3.9.1 computes it (measured with its
+ * scalar_rgb variant, docs/lights-and-camera.md): 1 within beam_width of the
+ * axis, then linear in the angle down to 0 at cutoff_angle, 0 from there on.
+ * `cos_theta` is the cosine between the axis and the direction leaving the
+ * light. */
+static inline float wp_spot_falloff(__global const WpEmitter* e, float cos_theta) {
+    if (!(cos_theta > e->cos_cutoff))
+        return 0.0f;
+    if (cos_theta >= e->cos_beam)
+        return 1.0f;
+    return (e->cutoff - acos(fmin(cos_theta, 1.0f))) * e->inv_transition;
+}
+
+/* Samples emitter `e` (not an emissive triangle) from the surface point
+ * `position`, as wp_sample_light samples a triangle: the irradiance is
+ * divided by the probability of choosing the emitter (e->pick). Point, spot
+ * and directional emitters are delta lights, reached by this sample alone:
+ * their pdf is INFINITY, which gives them the power heuristic's weight 1. The
+ * constant emitter samples a direction uniformly on the sphere (pdf
+ * pick / (4 pi), what a ray that escapes weighs itself against, shade.cl). */
+static inline int wp_sample_emitter(__global const WpEmitter* e, float3 position, float3 origin,
+                                    float3 origin_behind, int two_sided, float3 normal, float u,
+                                    float v, WpLightSample* out) {
+    wp_uint kind = e->kind;
+    float3 wi;
+    float length_to_test;
+    float3 arriving = e->radiance.xyz * (1.0f / e->pick); /* at normal incidence, over the pdf */
+    float pdf = INFINITY;
+    out->weigh_always = 0;
+    if (kind == WP_EMITTER_CONSTANT || kind == WP_EMITTER_DIRECTIONAL) {
+        /* Nothing to stop short of: the shadow ray must only leave the scene. */
+        length_to_test = e->reach;
+        wi = -e->direction.xyz;
+#if WP_HAS_CONSTANT_LIGHT
+        if (kind == WP_EMITTER_CONSTANT) {
+            wi = wp_sample_uniform_sphere(u, v);
+            pdf = e->pick * (1.0f / (4.0f * WP_PI));
+            arriving = e->radiance.xyz * (1.0f / pdf);
+            out->weigh_always = 1;
+        }
+#endif
+    } else { /* point, spot: intensity over the squared distance */
+        float3 to_light = e->position.xyz - position;
+        float distance_squared = dot(to_light, to_light);
+        float distance = sqrt(distance_squared);
+        if (!(distance > 0.0f))
+            return 0;
+        wi = to_light / distance;
+        arriving *= 1.0f / distance_squared;
+#if WP_HAS_SPOT_LIGHT
+        if (kind == WP_EMITTER_SPOT)
+            arriving *= wp_spot_falloff(e, -dot(wi, e->direction.xyz));
+#endif
+        length_to_test = distance - wp_shadow_end_margin(e->position.xyz, 0.0f, distance);
+    }
+    (void)u, (void)v;
+    float cos_surface = dot(normal, wi);
+    float3 from = origin;
+    if (two_sided && cos_surface < 0.0f) {
+        cos_surface = -cos_surface;
+        from = origin_behind;
+    }
+    if (!(cos_surface > 0.0f && length_to_test > 0.0f))
+        return 0;
+    out->origin = from;
+    out->direction = wi;
+    out->length = length_to_test;
+    out->irradiance = arriving * cos_surface;
+    out->pdf = pdf;
+    return 1;
+}
+#endif
+
+/* Next-event estimation's light sample over every light of the scene: with
+ * emitters other than triangles (WP_HAS_EMITTERS), first the choice between
+ * the emissive triangles (probability 1 - scene->emitter_pick, then one of
+ * them by area as wp_sample_light does, its number u_pick rescaled) and each
+ * emitter (its `pick`), by emitted power (src/render/device_scene.cpp); the
+ * sample's irradiance is divided by the probability and its pdf multiplied,
+ * so that multiple importance sampling weighs it with the density it really
+ * had. Without emitters, wp_sample_light itself, unchanged. */
+static inline int wp_sample_lights(const WpSceneView* scene, float3 position, float3 origin,
+                                   float3 origin_behind, int two_sided, float3 normal, float u_pick,
+                                   float u, float v, WpLightSample* out) {
+#if WP_HAS_EMITTERS
+    float area_pick = 1.0f - scene->emitter_pick;
+    if (u_pick < area_pick) {
+#if WP_HAS_LIGHTS
+        if (!wp_sample_light(scene, position, origin, origin_behind, two_sided, normal,
+                             u_pick / area_pick, u, v, out))
+            return 0;
+        out->irradiance *= 1.0f / area_pick;
+        out->pdf *= area_pick;
+        out->weigh_always = 0;
+        return 1;
+#else
+        return 0;
+#endif
+    }
+    if (scene->emitter_count == 0u) /* general kernels may meet a scene without emitters */
+        return 0;
+    /* A few emitters: a linear search of their cumulative probabilities. */
+    wp_uint i = 0u;
+    while (i + 1u < scene->emitter_count && scene->emitters[i].cdf <= u_pick)
+        ++i;
+    return wp_sample_emitter(&scene->emitters[i], position, origin, origin_behind, two_sided,
+                             normal, u, v, out);
+#else
+    out->weigh_always = 0;
+    return wp_sample_light(scene, position, origin, origin_behind, two_sided, normal, u_pick, u, v,
+                           out);
+#endif
 }
 
 #endif /* WP_LIGHTS_H */

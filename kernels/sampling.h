@@ -62,6 +62,18 @@ static inline float3 wp_sample_cosine_hemisphere(float3 n, float u1, float u2) {
     return normalize(t * (r * cos_phi) + b * (r * sin_phi) + n * z);
 }
 
+/* A direction uniformly distributed on the unit sphere: pdf 1 / (4 pi). The
+ * constant emitter's light sample (lights.h): its pdf is the same at every
+ * vertex, so a ray that escapes after a BSDF sample weighs itself against it
+ * without knowing the surface it left. */
+static inline float3 wp_sample_uniform_sphere(float u1, float u2) {
+    float z = 1.0f - 2.0f * u1;
+    float r = sqrt(fmax(0.0f, 1.0f - z * z));
+    float sin_phi, cos_phi; /* phi = 2 pi u2 */
+    wp_sincos_2pi(u2, &sin_phi, &cos_phi);
+    return (float3)(r * cos_phi, r * sin_phi, z);
+}
+
 /* A uniform point of the unit disk by Shirley and Chiu's concentric map
  * ("A Low Distortion Map Between Disk and Square", 1997): each square ring
  * [-r, r]^2 minus [-r', r']^2 goes to the annulus between r' and r, so

@@ -86,6 +86,23 @@ enum { WP_TEXTURES(WP_TEXTURE_FEATURE_CHECK) wp_texture_features_checked };
 #ifndef WP_HAS_LIGHTS /* emissive triangles to sample by next-event estimation */
 #define WP_HAS_LIGHTS 1
 #endif
+/* The emitters that are not surfaces (WpEmitter, wp_shared.h), one switch
+ * per kind, on when the scene has one; WP_HAS_EMITTERS, any of them, compiles
+ * the choice between them and the emissive triangles (lights.h). */
+#ifndef WP_HAS_POINT_LIGHT
+#define WP_HAS_POINT_LIGHT 1
+#endif
+#ifndef WP_HAS_SPOT_LIGHT
+#define WP_HAS_SPOT_LIGHT 1
+#endif
+#ifndef WP_HAS_DIRECTIONAL_LIGHT
+#define WP_HAS_DIRECTIONAL_LIGHT 1
+#endif
+#ifndef WP_HAS_CONSTANT_LIGHT
+#define WP_HAS_CONSTANT_LIGHT 1
+#endif
+#define WP_HAS_EMITTERS                                                                            \
+    (WP_HAS_POINT_LIGHT || WP_HAS_SPOT_LIGHT || WP_HAS_DIRECTIONAL_LIGHT || WP_HAS_CONSTANT_LIGHT)
 #ifndef WP_HAS_PLANAR_MIRRORS /* flat mirror triangles and lights (kernels/mirror_light.h) */
 #define WP_HAS_PLANAR_MIRRORS 1
 #endif

@@ -71,16 +71,18 @@ static inline void wp_shade_next_event(const WpSceneView* scene, const WpMateria
                                        const WpShadingPoint* point, float3 origin,
                                        float3 origin_behind, float3 beta, float u_pick, float u,
                                        float v, WpShadowRay* shadow) {
-#if WP_HAS_LIGHTS && WP_USE_NEE
+#if (WP_HAS_LIGHTS || WP_HAS_EMITTERS) && WP_USE_NEE
     WpLightSample light;
     /* A transmitting BSDF sees lights on both sides. */
-    if (!wp_sample_light(scene, surface->position, origin, origin_behind,
-                         wp_bsdf_transmits(material), point->n, u_pick, u, v, &light))
+    if (!wp_sample_lights(scene, surface->position, origin, origin_behind,
+                          wp_bsdf_transmits(material), point->n, u_pick, u, v, &light))
         return;
     float3 contribution = beta * wp_bsdf_eval_pi(material, wo, light.direction, point) *
                           light.irradiance * (1.0f / WP_PI);
-#if WP_HAS_GLOSSY
-    if (wp_bsdf_weighs_light(material))
+#if WP_HAS_GLOSSY || WP_HAS_CONSTANT_LIGHT
+    /* Glossy BSDFs weigh every light sample; the constant emitter is weighed
+     * at every vertex (a diffuse one too), as the ray that escapes is. */
+    if (wp_bsdf_weighs_light(material) || light.weigh_always)
         contribution *= wp_mis_power(light.pdf, wp_bsdf_pdf(material, wo, light.direction, point));
 #endif
     if (wp_is_black(contribution))
@@ -163,8 +165,25 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
 #if WP_MIRROR_NEE
     shadow->mirror_made = 0;
 #endif
-    if (primitive == WP_NO_HIT) /* the ray left the scene: the path ends with what it has */
+    if (primitive == WP_NO_HIT) { /* the ray left the scene: the path ends with what it has */
+#if WP_HAS_CONSTANT_LIGHT
+        /* ... and the constant emitter's radiance (emitters[0], if any),
+         * weighed after a non-delta bounce against the light sample that
+         * could have found the same direction (wp_sample_emitter's pdf). */
+        wp_uint escaped_flags = path_flags[slot];
+        if (frame.emitter_count > 0u && emitters[0].kind == WP_EMITTER_CONSTANT &&
+            WP_PATH_EMISSION_SELECTED(frame.path_types, escaped_flags)) {
+            float3 found = throughput[slot].xyz * emitters[0].radiance.xyz;
+#if WP_USE_NEE
+            if (!(escaped_flags & WP_PATH_SPECULAR))
+                found *=
+                    wp_mis_power(mirror_vertex[slot].w, emitters[0].pick * (1.0f / (4.0f * WP_PI)));
+#endif
+            radiance[slot] = (float4)(radiance[slot].xyz + found, 0.0f);
+        }
+#endif
         return WP_SHADED_ENDS;
+    }
 
     WP_SCENE_VIEW(scene);
     float3 direction = ray_direction[slot].xyz;
@@ -206,8 +225,11 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
         wp_primitive_kind(&scene, primitive) == WP_PRIMITIVE_TRIANGLE) {
         float4 vertex = mirror_vertex[slot];
         WpTriangle light = scene.triangles[primitive];
-        beta_emission *=
-            wp_mis_power(vertex.w, wp_light_pdf(&scene, &light, vertex.xyz, surface.position));
+        float light_pdf = wp_light_pdf(&scene, &light, vertex.xyz, surface.position);
+#if WP_HAS_EMITTERS /* the triangles are chosen with this probability (lights.h) */
+        light_pdf *= 1.0f - scene.emitter_pick;
+#endif
+        beta_emission *= wp_mis_power(vertex.w, light_pdf);
     }
 #endif
 #if WP_MIRROR_NEE /* weighed against the mirrored light sample (mirror_light.h) */
@@ -229,7 +251,7 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
     if (wp_bsdf_transmits(&material))
         origin_behind = wp_offset_ray_origin(
             surface.front_face ? surface.spawn_back : surface.spawn_front, -normal, surface.scale);
-#if WP_HAS_LIGHTS && WP_USE_NEE
+#if (WP_HAS_LIGHTS || WP_HAS_EMITTERS) && WP_USE_NEE
     if (!wp_bsdf_is_delta(&material)) {
         /* One light point's numbers serve the light seen directly and, with
          * WP_MIRROR_NEE, by way of a planar mirror (two legs). */
@@ -261,7 +283,8 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
     if (transmitted) /* the new ray leaves by the other side */
         origin = origin_behind;
     int delta = wp_bsdf_sample_is_delta(&scattered);
-#if WP_MIRROR_NEE || WP_HAS_GLOSSY /* what the emission weight at the next vertex needs */
+/* What the emission weight at the next vertex (or the escape) needs. */
+#if WP_MIRROR_NEE || WP_HAS_GLOSSY || WP_HAS_CONSTANT_LIGHT
     if (!delta)
         mirror_vertex[slot] = (float4)(surface.position, scattered.pdf);
 #endif

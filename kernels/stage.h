@@ -33,6 +33,8 @@ typedef struct {
     float light_area; /* total emissive area: 1 / pdf of uniform area sampling */
     wp_uint mirror_group_count;
     wp_uint mirror_sphere_count;
+    wp_uint emitter_count;
+    float emitter_pick; /* the probability of choosing an emitter, not a triangle (lights.h) */
 } WpSceneView;
 
 #define WP_SCENE_ASSIGN(name, type) view->name = name;
@@ -47,6 +49,8 @@ static inline void wp_scene_view(WpSceneView* view,
     view->light_area = frame.light_area;
     view->mirror_group_count = frame.mirror_group_count;
     view->mirror_sphere_count = frame.mirror_sphere_count;
+    view->emitter_count = frame.emitter_count;
+    view->emitter_pick = frame.emitter_pick;
 }
 
 /* The stages' per-item work lives in functions that take the stage's own

@@ -313,6 +313,36 @@ typedef struct {
     wp_uint pad0, pad1;
 } WpLight;
 
+/* The emitters that are not emitting surfaces (Mitsuba 3's plugins of the
+ * same names, docs/lights-and-camera.md): WpEmitter.kind. */
+#define WP_EMITTER_POINT 0u       /* intensity from a point, in every direction */
+#define WP_EMITTER_SPOT 1u        /* a point's intensity within a cone, linear falloff */
+#define WP_EMITTER_DIRECTIONAL 2u /* irradiance from one direction: a sun */
+#define WP_EMITTER_CONSTANT 3u    /* uniform radiance from every direction: a sky */
+
+/* One such emitter, 80 bytes. Lights are chosen by emitted power
+ * (src/render/device_scene.cpp): the emissive triangles together with
+ * probability 1 - WpFrame.emitter_pick (then one by area, WpLight), each
+ * emitter here with probability `pick`; `cdf` is the running sum of the
+ * area lights' and the emitters' probabilities up to and including this one
+ * (the last 1). A constant emitter, if any, is emitters[0], so that a ray
+ * that escapes finds it without a search. */
+typedef struct {
+    wp_float4 position;  /* point, spot: xyz (in the device's float frame) */
+    wp_float4 direction; /* spot: unit axis it shines along; directional: unit direction the
+                            light travels */
+    wp_float4 radiance;  /* rgb: point, spot: intensity (scaled to the float frame's lengths);
+                            directional: irradiance; constant: radiance */
+    wp_uint kind;        /* WP_EMITTER_* */
+    wp_float pick;       /* the probability next-event estimation chooses it */
+    wp_float cdf;
+    wp_float reach;      /* directional, constant: a shadow ray's length that leaves the scene */
+    wp_float cos_cutoff; /* spot: cos(cutoff_angle) */
+    wp_float cos_beam;   /* spot: cos(beam_width) */
+    wp_float cutoff;     /* spot: cutoff_angle, radians */
+    wp_float inv_transition; /* spot: 1 / (cutoff_angle - beam_width), radians */
+} WpEmitter;
+
 /* A planar mirror: coplanar mirror triangles (without vertex normals) found
  * by the host (src/render/planar_mirrors.hpp), for next-event estimation
  * through it (kernels/mirror_light.h). plane: unit normal xyz, offset w
@@ -421,7 +451,10 @@ typedef struct {
     wp_uint mirror_group_count;  /* planar mirrors (WpMirrorGroup) */
     wp_uint mirror_sphere_count; /* mirror spheres (mirror_spheres) */
     wp_uint path_types;          /* the path types a render adds, with WP_PATH_TYPES */
-    wp_uint pad1, pad2;
+    wp_uint emitter_count;       /* WpEmitter entries */
+    wp_float emitter_pick;       /* the probability of choosing an emitter rather than the
+                                    emissive triangles: 0 without emitters, so that a frame
+                                    left zero samples the triangles alone */
 } WpFrame;
 
 /* What changes from one launch of a stage to the next, passed by value after
@@ -467,7 +500,8 @@ typedef struct {
     X(mirror_spheres, wp_uint)            /* the mirror spheres' numbers in spheres[] */           \
     X(triangle_uvs, WpTriangleUvs) /* texture coordinates of the triangles that have them */       \
     X(textures, WpTexture)         /* with textures; a dummy without */                            \
-    X(texels, wp_uint)             /* the bitmaps' texels (WpTexture.format) */
+    X(texels, wp_uint)             /* the bitmaps' texels (WpTexture.format) */                    \
+    X(emitters, WpEmitter)         /* point, spot, directional, constant emitters */
 
 #define WP_PATH_BUFFERS(X)                                                                         \
     /* path state, one entry per slot (structure of arrays) */                                     \

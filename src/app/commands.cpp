@@ -179,7 +179,7 @@ Scene load_scene_for_render(const std::string& path, int width, int height) {
     if (!has_emitter(scene))
         std::cerr << "wavepath: warning: " << path
                   << ": no shape emits light (no triangle has an emitter material or one with "
-                     "emission), so the image will be black\n";
+                     "emission, and no emitter is lit), so the image will be black\n";
     if (width > 0)
         scene.camera.width = width;
     if (height > 0)

@@ -206,6 +206,13 @@ std::uint64_t scene_content_hash(const Scene& scene) {
         h.f64(s.radius);
         h.u64(s.material);
     }
+    // Only when there are any, so that the hash of a scene without emitters
+    // (every checkpoint written before they existed) is unchanged.
+    if (!scene.emitters.empty()) {
+        h.u64(scene.emitters.size());
+        for (const Emitter& e : scene.emitters)
+            std::apply([&](const auto&... field) { (h.field(field), ...); }, e.rendered_fields());
+    }
     return h.state;
 }
 

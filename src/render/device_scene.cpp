@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <stdexcept>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include "render/float_range.hpp"
@@ -231,6 +233,107 @@ void build_hierarchy(DeviceScene& scene) {
     scene.bvh_stats = bvh.stats;
 }
 
+// The mean of a colour's channels: what a light's power is compared by.
+double channel_mean(const glm::dvec3& c) {
+    return (c.x + c.y + c.z) / 3.0;
+}
+
+// The emitters in the float frame, and the probabilities of choosing them
+// and the emissive triangles: proportional to an estimate of the power each
+// emits (the mean of its channels), so that a faint light takes few samples.
+// Point, 4 pi I; spot, 2 pi (1 - cos cutoff) I (its cone at full
+// intensity); triangles, pi L A summed; directional, E through the disk of
+// the scene's bounding sphere (pi R^2 E) and constant, L through that sphere
+// (4 pi^2 R^2 L), which is what of them can reach the scene. Any choice
+// with every light's probability > 0 is unbiased: the kernels divide by the
+// probability and multiple importance sampling weighs by it (lights.h,
+// shade.cl). Emitters of zero power are left out. A constant emitter comes
+// first (shade.cl finds it there for an escaping ray).
+void flatten_emitters(const Scene& scene, const FloatFrame& frame, double triangle_area_power,
+                      DeviceScene& out) {
+    if (scene.emitters.empty())
+        return;
+    // The scene's bounding box in the float frame: its diagonal gives the
+    // radius for the infinite emitters' power and their shadow rays' reach.
+    glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
+    for (const Triangle& t : scene.triangles)
+        for (const glm::dvec3& v : t.v) {
+            lo = glm::min(lo, frame.point(v));
+            hi = glm::max(hi, frame.point(v));
+        }
+    for (const Sphere& s : scene.spheres) {
+        lo = glm::min(lo, frame.point(s.center) - glm::dvec3(frame.scale * s.radius));
+        hi = glm::max(hi, frame.point(s.center) + glm::dvec3(frame.scale * s.radius));
+    }
+    const double diagonal = glm::length(hi - lo);
+    const double radius = 0.5 * diagonal / frame.scale; // scene units, for the power
+    std::vector<double> power;
+    std::vector<WpEmitter> emitters;
+    for (const Emitter& e : scene.emitters) {
+        WpEmitter w{};
+        w.kind = static_cast<wp_uint>(e.kind);
+        const double mean = channel_mean(e.value);
+        double p = 0.0;
+        switch (e.kind) {
+        case EmitterKind::Point:
+        case EmitterKind::Spot: {
+            // Intensity over a squared distance: lengths in the float frame
+            // are scale times longer, so the intensity is scale^2 larger.
+            w.position = to_float4(frame.point(e.position));
+            w.direction = to_float4(glm::normalize(e.direction));
+            w.radiance = to_float4(e.value * (frame.scale * frame.scale));
+            const double cutoff = e.cutoff_angle * M_PI / 180.0;
+            const double beam = e.beam_width * M_PI / 180.0;
+            w.cos_cutoff = static_cast<float>(std::cos(cutoff));
+            w.cos_beam = static_cast<float>(std::cos(beam));
+            w.cutoff = static_cast<float>(cutoff);
+            // A beam as wide as the cutoff has no falloff (the kernel's
+            // first test takes every direction inside): no 1 / 0.
+            w.inv_transition = beam < cutoff ? static_cast<float>(1.0 / (cutoff - beam)) : 0.0f;
+            p = e.kind == EmitterKind::Point ? 4.0 * M_PI * mean
+                                             : 2.0 * M_PI * (1.0 - std::cos(cutoff)) * mean;
+            break;
+        }
+        case EmitterKind::Directional:
+            w.direction = to_float4(glm::normalize(e.direction));
+            w.radiance = to_float4(e.value);
+            p = M_PI * radius * radius * mean;
+            break;
+        case EmitterKind::Constant:
+            w.radiance = to_float4(e.value);
+            p = 4.0 * M_PI * M_PI * radius * radius * mean;
+            break;
+        }
+        // Twice the diagonal, so that a shadow ray from anywhere inside
+        // leaves the box whatever its direction.
+        w.reach = static_cast<float>(std::max(2.0 * diagonal, 1.0));
+        if (!(p > 0.0))
+            continue;
+        if (e.kind == EmitterKind::Constant) {
+            emitters.insert(emitters.begin(), w);
+            power.insert(power.begin(), p);
+        } else {
+            emitters.push_back(w);
+            power.push_back(p);
+        }
+    }
+    if (emitters.empty())
+        return;
+    const double area_power = M_PI * triangle_area_power;
+    double total = area_power;
+    for (double p : power)
+        total += p;
+    out.emitter_pick = static_cast<float>((total - area_power) / total);
+    double running = area_power;
+    for (std::size_t i = 0; i < emitters.size(); ++i) {
+        emitters[i].pick = static_cast<float>(power[i] / total);
+        running += power[i];
+        emitters[i].cdf = static_cast<float>(running / total);
+    }
+    emitters.back().cdf = 1.0f; // never let rounding leave u in no bin
+    out.emitters = std::move(emitters);
+}
+
 } // namespace
 
 std::string SceneFeatures::build_options() const {
@@ -301,11 +404,23 @@ SceneFeatures analyse_features(const Scene& scene, std::uint32_t max_fixed_count
             return scene.materials[t.material].is_emissive();
         }));
     f.lights = lights > 0;
+    auto has_emitter = [&](EmitterKind kind) {
+        return std::any_of(scene.emitters.begin(), scene.emitters.end(),
+                           [&](const Emitter& e) { return e.kind == kind; });
+    };
+    f.point_light = has_emitter(EmitterKind::Point);
+    f.spot_light = has_emitter(EmitterKind::Spot);
+    f.directional_light = has_emitter(EmitterKind::Directional);
+    f.constant_light = has_emitter(EmitterKind::Constant);
     // Next-event estimation through planar mirrors needs both (kernels/mirror_light.h).
+    // Its estimator picks among the emissive triangles alone, so a scene
+    // with other emitters goes without it (flatten_scene leaves its tables
+    // empty): light by way of a mirror is then found by the path itself.
+    const bool mirror_nee = f.lights && scene.emitters.empty();
     const std::vector<PlanarMirror> mirrors = find_planar_mirrors(scene);
-    f.planar_mirrors = f.lights && !mirrors.empty();
+    f.planar_mirrors = mirror_nee && !mirrors.empty();
     f.mirror_spheres =
-        f.lights && std::any_of(scene.spheres.begin(), scene.spheres.end(), [&](const Sphere& s) {
+        mirror_nee && std::any_of(scene.spheres.begin(), scene.spheres.end(), [&](const Sphere& s) {
             return scene.materials[s.material].kind == MaterialKind::Mirror;
         });
     f.lens = scene.camera.aperture_radius > 0.0;
@@ -336,7 +451,10 @@ SceneFeatures analyse_features(const Scene& scene, std::uint32_t max_fixed_count
         // The occluders are chosen by the side of each plane the eye is on;
         // a lens's camera rays leave anywhere on its aperture, so it keeps
         // every occluder.
-        f.shadow_culling = !f.lens && f.shadow_occluders.size() < scene.triangles.size();
+        // Nor can emitters keep it: a sun, the sky or a point outside must be
+        // blocked by the very bounding faces culling leaves out.
+        f.shadow_culling =
+            !f.lens && scene.emitters.empty() && f.shadow_occluders.size() < scene.triangles.size();
     }
     return f;
 }
@@ -457,6 +575,7 @@ DeviceScene flatten_scene(const Scene& scene, bool hierarchy) {
 
     std::vector<double> areas;
     double total_area = 0.0;
+    double triangle_power = 0.0; // sum of mean radiance x area: the triangles' power / pi
     for (std::size_t i = 0; i < scene.triangles.size(); ++i) {
         const Triangle& t = scene.triangles[i];
         WpTriangle w{};
@@ -491,6 +610,7 @@ DeviceScene flatten_scene(const Scene& scene, bool hierarchy) {
             out.lights.push_back(light);
             areas.push_back(area);
             total_area += area;
+            triangle_power += channel_mean(scene.materials[t.material].emission) * area;
         }
     }
     double running = 0.0;
@@ -502,8 +622,12 @@ DeviceScene flatten_scene(const Scene& scene, bool hierarchy) {
         out.lights.back().cdf = 1.0f; // never let rounding leave u in no bin
     out.light_area = static_cast<float>(total_area);
 
-    // Planar mirrors in the float frame: the plane from the frame's vertices.
-    for (const PlanarMirror& mirror : find_planar_mirrors(scene)) {
+    flatten_emitters(scene, frame, triangle_power / (frame.scale * frame.scale), out);
+
+    // Planar mirrors in the float frame: the plane from the frame's vertices
+    // (none with emitters, analyse_features says why).
+    for (const PlanarMirror& mirror :
+         scene.emitters.empty() ? find_planar_mirrors(scene) : std::vector<PlanarMirror>{}) {
         WpMirrorGroup g{};
         const Triangle& first = scene.triangles[mirror.triangles.front()];
         g.plane = to_float4(mirror.normal, glm::dot(mirror.normal, frame.point(first.v[0])));
@@ -557,7 +681,7 @@ DeviceScene flatten_scene(const Scene& scene, bool hierarchy) {
     if (hierarchy)
         build_hierarchy(out);
     // After the hierarchy, which may reorder the spheres.
-    if (!out.lights.empty())
+    if (!out.lights.empty() && scene.emitters.empty())
         for (std::size_t i = 0; i < out.spheres.size(); ++i)
             if (scene.materials[out.spheres[i].material].kind == MaterialKind::Mirror)
                 out.mirror_spheres.push_back(static_cast<wp_uint>(i));

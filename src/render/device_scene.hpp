@@ -49,8 +49,12 @@ inline constexpr std::uint32_t kMinBvhPrimitives = kMaxFixedCountPrimitives + 1;
     X(planar_mirrors, WP_HAS_PLANAR_MIRRORS)   /* flat mirror triangles, and lights */             \
     X(mirror_spheres, WP_HAS_MIRROR_SPHERES)   /* spheres of a mirror material, and lights */      \
     X(lens, WP_HAS_LENS)                       /* a thin lens: aperture radius > 0 */              \
-    WP_FILTER_FEATURES(X)                      /* the pixel filter, unless the box */              \
-    WP_TEXTURE_FEATURES(X)                     /* texture kinds in use */
+    X(point_light, WP_HAS_POINT_LIGHT)         /* emitters by kind (Scene::emitters) */            \
+    X(spot_light, WP_HAS_SPOT_LIGHT)                                                               \
+    X(directional_light, WP_HAS_DIRECTIONAL_LIGHT)                                                 \
+    X(constant_light, WP_HAS_CONSTANT_LIGHT)                                                       \
+    WP_FILTER_FEATURES(X)  /* the pixel filter, unless the box */                                  \
+    WP_TEXTURE_FEATURES(X) /* texture kinds in use */
 
 // Which kinds of primitive, material and light the scene uses.
 struct SceneFeatures {
@@ -122,9 +126,14 @@ struct DeviceScene {
     std::vector<wp_uint> mirror_spheres;            // with lights: the spheres of a mirror material
     std::vector<WpTriangleUvs> triangle_uvs; // of the triangles that have them (with textures)
     std::vector<WpTexture> textures;
-    std::vector<wp_uint> texels; // the bitmaps' (WpTexture.first)
+    std::vector<wp_uint> texels;     // the bitmaps' (WpTexture.first)
+    std::vector<WpEmitter> emitters; // point, spot, directional, constant; a constant
+                                     // one first
     BvhStats bvh_stats;
     float light_area = 0.0f; // total emissive area
+    // The probability that next-event estimation chooses an emitter rather
+    // than the emissive triangles (by emitted power; 0 without emitters).
+    float emitter_pick = 0.0f;
     WpCamera camera{};
     int width = 0;
     int height = 0;

@@ -191,6 +191,8 @@ WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const Scene& sce
     frame_.light_area = scene_.light_area;
     frame_.mirror_group_count = static_cast<wp_uint>(scene_.mirror_groups.size());
     frame_.mirror_sphere_count = static_cast<wp_uint>(scene_.mirror_spheres.size());
+    frame_.emitter_count = static_cast<wp_uint>(scene_.emitters.size());
+    frame_.emitter_pick = scene_.emitter_pick;
     frame_.max_depth = options_.max_depth;
     frame_.path_types = options_.path_types;
 

@@ -66,12 +66,14 @@ class SceneReader : private json::Reader {
     Scene read(const Json& root) {
         const Ptr top;
         expect_object(root, top, "a scene object with camera, materials and shapes");
-        check_keys(root, top, {"camera", "materials", "shapes", "description"});
+        check_keys(root, top, {"camera", "materials", "shapes", "emitters", "description"});
         if (const auto it = root.find("description"); it != root.end())
             expect_string(*it, top / "description");
         read_camera(require(root, top, "camera"), top / "camera");
         read_materials(require(root, top, "materials"), top / "materials");
         read_shapes(require(root, top, "shapes"), top / "shapes");
+        if (const auto it = root.find("emitters"); it != root.end())
+            read_emitters(*it, top / "emitters");
         return std::move(scene_);
     }
 
@@ -902,6 +904,85 @@ class SceneReader : private json::Reader {
         }
         if (scene_.triangles.empty() && scene_.spheres.empty())
             fail(p, "every shape was skipped (all triangles have zero area): nothing to render");
+    }
+
+    // --- emitters -------------------------------------------------------------
+
+    // "emitters": lights that are not surfaces, named and parameterised as
+    // Mitsuba 3's plugins (docs/scene-format.md#emitters): point (position,
+    // intensity), spot (position, direction, intensity, cutoff_angle,
+    // beam_width), directional (direction, irradiance), constant (radiance).
+    void read_emitters(const Json& list, const Ptr& p) {
+        if (!list.is_array())
+            fail(p, "expected an array of emitters, got " + describe(list));
+        for (std::size_t i = 0; i < list.size(); ++i) {
+            const Ptr pe = p / i;
+            const Json& e = list[i];
+            expect_object(e, pe, "an emitter object");
+            const std::string& type = expect_string(require(e, pe, "type"), pe / "type");
+            Emitter out;
+            if (type == "point") {
+                check_keys(e, pe, {"type", "position", "intensity"});
+                out.kind = EmitterKind::Point;
+                out.position = vec3(require(e, pe, "position"), pe / "position", Range::Coordinate);
+                out.value = vec3(require(e, pe, "intensity"), pe / "intensity", Range::Radiance);
+            } else if (type == "spot") {
+                check_keys(
+                    e, pe,
+                    {"type", "position", "direction", "intensity", "cutoff_angle", "beam_width"});
+                out.kind = EmitterKind::Spot;
+                out.position = vec3(require(e, pe, "position"), pe / "position", Range::Coordinate);
+                out.direction = unit_direction(e, pe);
+                out.value = vec3(require(e, pe, "intensity"), pe / "intensity", Range::Radiance);
+                read_spot_angles(e, pe, out);
+            } else if (type == "directional") {
+                check_keys(e, pe, {"type", "direction", "irradiance"});
+                out.kind = EmitterKind::Directional;
+                out.direction = unit_direction(e, pe);
+                out.value = vec3(require(e, pe, "irradiance"), pe / "irradiance", Range::Radiance);
+            } else if (type == "constant") {
+                check_keys(e, pe, {"type", "radiance"});
+                out.kind = EmitterKind::Constant;
+                out.value = vec3(require(e, pe, "radiance"), pe / "radiance", Range::Radiance);
+                for (const Emitter& other : scene_.emitters)
+                    if (other.kind == EmitterKind::Constant)
+                        fail(pe, "a second constant emitter (the background is one radiance; "
+                                 "add the two)");
+            } else {
+                fail(pe / "type", "unknown emitter type '" + shorten(type, 40) +
+                                      "' (expected point, spot, directional or constant)");
+            }
+            scene_.emitters.push_back(out);
+        }
+    }
+
+    // An emitter's "direction": any length but zero, made unit.
+    glm::dvec3 unit_direction(const Json& e, const Ptr& pe) const {
+        const glm::dvec3 d = vec3(require(e, pe, "direction"), pe / "direction", Range::Coordinate);
+        const double length = glm::length(d);
+        if (!(length > 0.0) || !std::isfinite(length))
+            fail(pe / "direction", "must be a non-zero vector of finite length");
+        return d / length;
+    }
+
+    // A spot's angles in degrees: cutoff_angle in (0, 180] (0 would light
+    // nothing: Mitsuba renders it black; here it is an error), beam_width in
+    // [0, 180], by default 3/4 of the cutoff, as in Mitsuba.
+    void read_spot_angles(const Json& e, const Ptr& pe, Emitter& out) const {
+        if (const auto it = e.find("cutoff_angle"); it != e.end()) {
+            out.cutoff_angle = number(*it, pe / "cutoff_angle");
+            if (!(out.cutoff_angle > 0.0 && out.cutoff_angle <= 180.0))
+                fail(pe / "cutoff_angle",
+                     "must be in (0, 180] degrees (a zero cutoff lights nothing), got " +
+                         number_text(out.cutoff_angle));
+        }
+        out.beam_width = 0.75 * out.cutoff_angle;
+        if (const auto it = e.find("beam_width"); it != e.end()) {
+            out.beam_width = number(*it, pe / "beam_width");
+            if (!(out.beam_width >= 0.0 && out.beam_width <= 180.0))
+                fail(pe / "beam_width",
+                     "must be in [0, 180] degrees, got " + number_text(out.beam_width));
+        }
     }
 
     std::filesystem::path folder_;

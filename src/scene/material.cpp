@@ -22,6 +22,20 @@ const char* material_kind_name(MaterialKind kind) {
     }
 }
 
+const char* emitter_kind_name(EmitterKind kind) {
+    switch (kind) {
+    case EmitterKind::Point:
+        return "point";
+    case EmitterKind::Spot:
+        return "spot";
+    case EmitterKind::Directional:
+        return "directional";
+    case EmitterKind::Constant:
+        return "constant";
+    }
+    return nullptr;
+}
+
 std::optional<MaterialKind> material_kind_from_name(std::string_view name) {
 #define WP_MATERIAL_FROM_NAME(KIND, Name, name_, value, bsdf, glossy)                              \
     if (name == #name_)                                                                            \

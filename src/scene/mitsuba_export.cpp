@@ -291,6 +291,39 @@ std::string integrator() {
            "    </integrator>\n";
 }
 
+// A point, spot, directional or constant emitter as Mitsuba 3's plugin of
+// that name, which the XML reader reads back to the same Emitter. A spot is
+// placed by a lookat along its axis (its roll changes nothing).
+std::string scene_emitter(const Emitter& e) {
+    std::string s = std::string("    <emitter type=\"") + emitter_kind_name(e.kind) + "\">\n";
+    switch (e.kind) {
+    case EmitterKind::Point:
+        s += "        <point name=\"position\" value=\"" + triple(e.position) + "\"/>\n";
+        s += "        " + rgb("intensity", e.value) + "\n";
+        break;
+    case EmitterKind::Spot: {
+        const glm::dvec3 up =
+            std::abs(e.direction.y) < 0.9 ? glm::dvec3(0.0, 1.0, 0.0) : glm::dvec3(1.0, 0.0, 0.0);
+        s += "        " + rgb("intensity", e.value) + "\n";
+        s += "        <float name=\"cutoff_angle\" value=\"" + number(e.cutoff_angle) + "\"/>\n";
+        s += "        <float name=\"beam_width\" value=\"" + number(e.beam_width) + "\"/>\n";
+        s += "        <transform name=\"to_world\">\n";
+        s += "            <lookat origin=\"" + triple(e.position) + "\" target=\"" +
+             triple(e.position + e.direction) + "\" up=\"" + triple(up) + "\"/>\n";
+        s += "        </transform>\n";
+        break;
+    }
+    case EmitterKind::Directional:
+        s += "        <vector name=\"direction\" value=\"" + triple(e.direction) + "\"/>\n";
+        s += "        " + rgb("irradiance", e.value) + "\n";
+        break;
+    case EmitterKind::Constant:
+        s += "        " + rgb("radiance", e.value) + "\n";
+        break;
+    }
+    return s + "    </emitter>\n";
+}
+
 std::string sensor(const Scene& scene, const MitsubaExportOptions& options) {
     const MitsubaCamera c = mitsuba_camera(scene);
     std::string s =
@@ -456,6 +489,8 @@ MitsubaExport export_mitsuba(const Scene& scene, const std::string& mesh_prefix,
         x += "        <ref id=\"" + material_id(s.material) + "\"/>\n";
         x += "    </shape>\n";
     }
+    for (const Emitter& e : scene.emitters)
+        x += scene_emitter(e);
     x += "</scene>\n";
     return out;
 }

@@ -154,6 +154,39 @@ struct Sphere {
     std::uint32_t material = 0;
 };
 
+// The emitters that are not emitting surfaces, Mitsuba 3's plugins of the
+// same names (docs/lights-and-camera.md), with the kernels' values
+// (WP_EMITTER_*, kernels/wp_shared.h).
+enum class EmitterKind : std::uint32_t {
+    Point = WP_EMITTER_POINT,
+    Spot = WP_EMITTER_SPOT,
+    Directional = WP_EMITTER_DIRECTIONAL,
+    Constant = WP_EMITTER_CONSTANT,
+};
+
+// The kind's name in scene files ("point", ...), or null for no kind.
+const char* emitter_kind_name(EmitterKind kind);
+
+struct Emitter {
+    EmitterKind kind = EmitterKind::Point;
+    // point, spot: where it is
+    glm::dvec3 position{0.0};
+    // spot: the unit axis it shines along; directional: the unit direction
+    // its light travels (Mitsuba's `direction`)
+    glm::dvec3 direction{0.0, 0.0, 1.0};
+    // rgb, >= 0: point and spot, `intensity` (W/sr); directional,
+    // `irradiance` (W/m^2); constant, `radiance`
+    glm::dvec3 value{1.0};
+    // spot, degrees: where the light ends, and where its linear falloff
+    // starts (Mitsuba's defaults: 20, and 3/4 of the cutoff)
+    double cutoff_angle = 20.0;
+    double beam_width = 15.0;
+
+    auto rendered_fields() const {
+        return std::tie(kind, position, direction, value, cutoff_angle, beam_width);
+    }
+};
+
 struct Scene {
     std::string source; // file name the scene came from, for messages
     // The other files it read (its meshes), as opened, in order: outputs
@@ -164,6 +197,7 @@ struct Scene {
     std::vector<Triangle> triangles; // quads and meshes are split into triangles
     std::vector<Sphere> spheres;
     std::vector<Texture> textures;     // named by materials' *_texture
+    std::vector<Emitter> emitters;     // point, spot, directional, constant: at most one constant
     std::vector<std::string> warnings; // e.g. skipped zero-area triangles
 };
 

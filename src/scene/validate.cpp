@@ -221,6 +221,29 @@ class Checker {
                 fail(f + ".material", "spheres cannot be emitters: use triangles");
         }
 
+        int constants = 0;
+        for (std::size_t i = 0; i < scene_.emitters.size(); ++i) {
+            const Emitter& e = scene_.emitters[i];
+            const std::string f = "emitters[" + std::to_string(i) + "]";
+            if (!emitter_kind_name(e.kind))
+                fail(f + ".kind", "unknown emitter kind");
+            vec(e.value, f + ".value", 0.0, scene_limits::max_radiance);
+            point(e.position, f + ".position");
+            const double length = glm::length(e.direction);
+            if (!(std::abs(length - 1.0) < 1e-9))
+                fail(f + ".direction", "must be a unit vector, got length " + fmt(length));
+            if (e.kind == EmitterKind::Spot) {
+                if (!(e.cutoff_angle > 0.0 && e.cutoff_angle <= 180.0))
+                    fail(f + ".cutoff_angle",
+                         "must be in (0, 180] degrees, got " + fmt(e.cutoff_angle));
+                if (!(e.beam_width >= 0.0 && e.beam_width <= 180.0))
+                    fail(f + ".beam_width",
+                         "must be in [0, 180] degrees, got " + fmt(e.beam_width));
+            }
+            if (e.kind == EmitterKind::Constant && ++constants > 1)
+                fail(f, "a second constant emitter (at most one)");
+        }
+
         if (scene_.triangles.empty() && scene_.spheres.empty())
             fail("shapes", "the scene has no shapes");
         extent();
@@ -263,6 +286,9 @@ class Checker {
 } // namespace
 
 bool has_emitter(const Scene& scene) {
+    for (const Emitter& e : scene.emitters) // a point, spot, sun or sky that is not black
+        if (e.value.x > 0.0 || e.value.y > 0.0 || e.value.z > 0.0)
+            return true;
     for (const Triangle& t : scene.triangles)
         if (t.material < scene.materials.size() && scene.materials[t.material].is_emissive())
             return true;

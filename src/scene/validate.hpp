@@ -59,8 +59,9 @@ bool view_direction_is_degenerate(const glm::dvec3& eye, const glm::dvec3& look_
 // True when up is zero or (numerically) parallel to look_at - eye.
 bool up_is_parallel(const glm::dvec3& eye, const glm::dvec3& look_at, const glm::dvec3& up);
 
-// True when some triangle has an emissive material. Light comes only from
-// those (spheres cannot emit), so a scene without one renders black.
+// True when some triangle has an emissive material or some emitter (point,
+// spot, directional, constant) is not black. Light comes only from those
+// (spheres cannot emit), so a scene without one renders black.
 bool has_emitter(const Scene& scene);
 
 // Checks a complete Scene against every rule the loader enforces (finite values

@@ -25,7 +25,8 @@ namespace {
     X(WpSphere)                                                                                    \
     X(WpTriangleUvs)                                                                               \
     X(WpTexture)                                                                                   \
-    X(WpMaterial) X(WpLight) X(WpMirrorGroup) X(WpBvhNode) X(WpCamera) X(WpFrame) X(WpLaunch)
+    X(WpMaterial)                                                                                  \
+    X(WpLight) X(WpEmitter) X(WpMirrorGroup) X(WpBvhNode) X(WpCamera) X(WpFrame) X(WpLaunch)
 
 #define WP_LAYOUT_FIELDS(X)                                                                        \
     X(WpTriangle, v0)                                                                              \
@@ -88,6 +89,17 @@ namespace {
     X(WpLight, cdf)                                                                                \
     X(WpLight, pad0)                                                                               \
     X(WpLight, pad1)                                                                               \
+    X(WpEmitter, position)                                                                         \
+    X(WpEmitter, direction)                                                                        \
+    X(WpEmitter, radiance)                                                                         \
+    X(WpEmitter, kind)                                                                             \
+    X(WpEmitter, pick)                                                                             \
+    X(WpEmitter, cdf)                                                                              \
+    X(WpEmitter, reach)                                                                            \
+    X(WpEmitter, cos_cutoff)                                                                       \
+    X(WpEmitter, cos_beam)                                                                         \
+    X(WpEmitter, cutoff)                                                                           \
+    X(WpEmitter, inv_transition)                                                                   \
     X(WpMirrorGroup, plane)                                                                        \
     X(WpMirrorGroup, first)                                                                        \
     X(WpMirrorGroup, count)                                                                        \
@@ -118,8 +130,8 @@ namespace {
     X(WpFrame, mirror_group_count)                                                                 \
     X(WpFrame, mirror_sphere_count)                                                                \
     X(WpFrame, path_types)                                                                         \
-    X(WpFrame, pad1)                                                                               \
-    X(WpFrame, pad2)                                                                               \
+    X(WpFrame, emitter_count)                                                                      \
+    X(WpFrame, emitter_pick)                                                                       \
     X(WpLaunch, count)                                                                             \
     X(WpLaunch, ray_queue)                                                                         \
     X(WpLaunch, from_finished)                                                                     \

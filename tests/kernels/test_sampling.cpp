@@ -33,6 +33,14 @@ __kernel void cosine_samples(float4 n, uint seed, uint count, __global float4* o
     out[i] = (float4)(wp_sample_cosine_hemisphere(n.xyz, u1, u2), 0.0f);
 }
 
+__kernel void sphere_samples(uint seed, uint count, __global float4* out) {
+    uint i = get_global_id(0);
+    if (i >= count) return;
+    float u1 = wp_random(seed, WP_KEY(i), 0u, WP_DIM_LIGHT_U);
+    float u2 = wp_random(seed, WP_KEY(i), 0u, WP_DIM_LIGHT_V);
+    out[i] = (float4)(wp_sample_uniform_sphere(u1, u2), 0.0f);
+}
+
 __kernel void sincos_2pi(uint count, __global const uint* k, __global float2* out) {
     uint i = get_global_id(0);
     if (i >= count) return;
@@ -106,6 +114,37 @@ std::vector<cl_float4> run_samples(cl::Kernel& kernel) {
 }
 
 } // namespace
+
+TEST_CASE("wp_sample_uniform_sphere is uniform on the sphere (chi-square against 1 / 4 pi)",
+          "[cl][sampling][statistical]") {
+    // The constant emitter's light sample (kernels/lights.h): its pdf
+    // 1 / (4 pi) is what multiple importance sampling weighs an escaping ray
+    // against, so the directions must follow it. Under it z = cos theta and
+    // the azimuth are independent and uniform: 32 x 32 equal-area bins.
+    const std::string options = sampler_options();
+    INFO(options);
+    cl::Kernel kernel(program(kSamplingSource, "sampling_test.cl", options), "sphere_samples");
+    set_args(kernel, cl_uint(7), kSamples);
+    std::vector<cl_float4> samples = run_samples(kernel);
+    const std::size_t bins = 32;
+    std::vector<std::size_t> histogram(bins * bins);
+    std::size_t bad_length = 0;
+    Moment z;
+    for (const cl_float4& s : samples) {
+        D3 d = from_float4(s);
+        bad_length += std::fabs(length(d) - 1.0) > 1e-6;
+        z.add(d.z);
+        double phi = std::atan2(d.y, d.x) + M_PI;
+        auto z_bin = std::min<std::size_t>(bins - 1, std::size_t((d.z + 1.0) * 0.5 * bins));
+        auto phi_bin = std::min<std::size_t>(bins - 1, std::size_t(phi / (2 * M_PI) * bins));
+        ++histogram[z_bin * bins + phi_bin];
+    }
+    CHECK(bad_length == 0);
+    check_mean("E[z]", z, 0.0);
+    double statistic = chi_square(histogram, samples.size());
+    INFO("chi-square " << statistic << " over " << histogram.size() << " bins");
+    CHECK(statistic < chi_square_limit(histogram.size() - 1));
+}
 
 TEST_CASE("wp_sample_cosine_hemisphere has the moments of the cosine distribution",
           "[cl][sampling][statistical]") {

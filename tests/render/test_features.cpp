@@ -7,6 +7,8 @@
 #include <cstring>
 #include <string>
 
+#include <glm/geometric.hpp>
+
 #include "render/device_scene.hpp"
 #include "scene/load.hpp"
 #include "support/render_helpers.hpp"
@@ -135,7 +137,8 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_ROUGHPLASTIC=0 -D "
           "WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D "
-          "WP_HAS_LENS=0 -D "
+          "WP_HAS_LENS=0 -D WP_HAS_POINT_LIGHT=0 -D WP_HAS_SPOT_LIGHT=0 -D "
+          "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D "
           "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D WP_HAS_BITMAP_TEXTURE=0 -D "
           "WP_HAS_CHECKERBOARD_TEXTURE=0 -D "
           "WP_TRIANGLE_COUNT=26 -D "
@@ -149,7 +152,8 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_ROUGHPLASTIC=0 -D "
           "WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=0 -D "
-          "WP_HAS_LENS=0 -D "
+          "WP_HAS_LENS=0 -D WP_HAS_POINT_LIGHT=0 -D WP_HAS_SPOT_LIGHT=0 -D "
+          "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D "
           "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D WP_HAS_BITMAP_TEXTURE=0 -D "
           "WP_HAS_CHECKERBOARD_TEXTURE=0 -D "
           "WP_TRIANGLE_COUNT=26 -D "
@@ -163,7 +167,8 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_ROUGHPLASTIC=0 -D "
           "WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=0 -D WP_HAS_PLANAR_MIRRORS=0 -D WP_HAS_MIRROR_SPHERES=0 -D "
-          "WP_HAS_LENS=0 -D "
+          "WP_HAS_LENS=0 -D WP_HAS_POINT_LIGHT=0 -D WP_HAS_SPOT_LIGHT=0 -D "
+          "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D "
           "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D WP_HAS_BITMAP_TEXTURE=0 -D "
           "WP_HAS_CHECKERBOARD_TEXTURE=0 -D "
           "WP_TRIANGLE_COUNT=0 -D "
@@ -176,7 +181,8 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_ROUGHPLASTIC=0 -D "
           "WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=0 -D WP_HAS_MIRROR_SPHERES=0 -D "
-          "WP_HAS_LENS=0 -D "
+          "WP_HAS_LENS=0 -D WP_HAS_POINT_LIGHT=0 -D WP_HAS_SPOT_LIGHT=0 -D "
+          "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D "
           "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D WP_HAS_BITMAP_TEXTURE=0 -D "
           "WP_HAS_CHECKERBOARD_TEXTURE=0 -D "
           "WP_TRIANGLE_COUNT=26 -D "
@@ -190,7 +196,8 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_ROUGHPLASTIC=0 -D "
           "WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=0 -D WP_HAS_PLANAR_MIRRORS=0 -D WP_HAS_MIRROR_SPHERES=0 -D "
-          "WP_HAS_LENS=0 -D "
+          "WP_HAS_LENS=0 -D WP_HAS_POINT_LIGHT=0 -D WP_HAS_SPOT_LIGHT=0 -D "
+          "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D "
           "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D WP_HAS_BITMAP_TEXTURE=0 -D "
           "WP_HAS_CHECKERBOARD_TEXTURE=0 -D "
           "WP_TRIANGLE_COUNT=24 -D "
@@ -205,9 +212,9 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_ROUGHPLASTIC=0 -D "
           "WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D "
-          "WP_HAS_LENS=0 -D "
-          "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D WP_HAS_BITMAP_TEXTURE=0 -D "
-          "WP_HAS_CHECKERBOARD_TEXTURE=0 -D WP_USE_BVH=1");
+          "WP_HAS_LENS=0 -D WP_HAS_POINT_LIGHT=0 -D WP_HAS_SPOT_LIGHT=0 -D "
+          "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D "
+          "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D WP_USE_BVH=1");
     // The general kernels: every feature, runtime counts, the scene's hierarchy.
     CHECK(SceneFeatures::general_for(analyse_features(large())).build_options() ==
           "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 -D "
@@ -216,9 +223,9 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_ROUGHPLASTIC=1 -D "
           "WP_HAS_SHADING_NORMALS=1 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D "
-          "WP_HAS_LENS=1 -D "
-          "WP_HAS_TENT_FILTER=1 -D WP_HAS_GAUSSIAN_FILTER=1 -D WP_HAS_BITMAP_TEXTURE=1 -D "
-          "WP_HAS_CHECKERBOARD_TEXTURE=1 -D WP_USE_BVH=1");
+          "WP_HAS_LENS=1 -D WP_HAS_POINT_LIGHT=1 -D WP_HAS_SPOT_LIGHT=1 -D "
+          "WP_HAS_DIRECTIONAL_LIGHT=1 -D WP_HAS_CONSTANT_LIGHT=1 -D "
+          "WP_HAS_TENT_FILTER=1 -D WP_HAS_GAUSSIAN_FILTER=1 -D WP_USE_BVH=1");
     CHECK(SceneFeatures::general_for(analyse_features(hexroom())).build_options() ==
           SceneFeatures::all().build_options());
     CHECK(SceneFeatures::all().build_options() ==
@@ -228,7 +235,8 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_ROUGHPLASTIC=1 -D "
           "WP_HAS_SHADING_NORMALS=1 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D "
-          "WP_HAS_LENS=1 -D "
+          "WP_HAS_LENS=1 -D WP_HAS_POINT_LIGHT=1 -D WP_HAS_SPOT_LIGHT=1 -D "
+          "WP_HAS_DIRECTIONAL_LIGHT=1 -D WP_HAS_CONSTANT_LIGHT=1 -D "
           "WP_HAS_TENT_FILTER=1 -D WP_HAS_GAUSSIAN_FILTER=1 -D WP_HAS_BITMAP_TEXTURE=1 -D "
           "WP_HAS_CHECKERBOARD_TEXTURE=1");
 }
@@ -257,8 +265,8 @@ TEST_CASE("features: describe() names the features and the compiled-in counts") 
     CHECK(SceneFeatures::all().describe() ==
           "triangles spheres diffuse mirror conductor roughconductor dielectric thindielectric "
           "plastic roughdielectric roughplastic shading_normals lights "
-          "planar_mirrors mirror_spheres lens tent_filter gaussian_filter bitmap_texture "
-          "checkerboard_texture");
+          "planar_mirrors mirror_spheres lens point_light spot_light directional_light "
+          "constant_light tent_filter gaussian_filter bitmap_texture checkerboard_texture");
 }
 
 // The program's options begin with the features' (estimator options may follow).
@@ -315,6 +323,34 @@ TEST_CASE("features: specialised and general kernels render bit-identical images
     SECTION("the Gaussian filter") {
         Scene scene = hexroom();
         scene.camera.filter = FilterKind::Gaussian;
+        check_specialised_equals_general(scene);
+    }
+    // The emitters: each kind's switch alone, and all of them chosen among
+    // at run time, beside the hexroom's emissive triangles.
+    SECTION("a spot and a sun beside the area lights") {
+        Scene scene = hexroom();
+        Emitter spot;
+        spot.kind = EmitterKind::Spot;
+        spot.position = {0.5, 0.2, 1.0};
+        spot.direction = {0, 0, -1};
+        spot.value = glm::dvec3(2.0);
+        scene.emitters.push_back(spot);
+        Emitter sun;
+        sun.kind = EmitterKind::Directional;
+        sun.direction = glm::normalize(glm::dvec3(1, 1, -2));
+        scene.emitters.push_back(sun);
+        check_specialised_equals_general(scene);
+    }
+    SECTION("a point light and a constant sky, no area light") {
+        Scene scene = no_light();
+        Emitter point;
+        point.kind = EmitterKind::Point;
+        point.position = {0.5, 0.2, 1.0};
+        scene.emitters.push_back(point);
+        Emitter sky;
+        sky.kind = EmitterKind::Constant;
+        sky.value = glm::dvec3(0.2, 0.3, 0.4);
+        scene.emitters.push_back(sky);
         check_specialised_equals_general(scene);
     }
 }

@@ -14,6 +14,7 @@
 // rendered from the file itself.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -74,9 +75,20 @@ void check_agreement(const std::string& name, const Scene& scene, std::uint32_t 
         CHECK(sigmas_apart(a, b) < 5.0);
         for (int y = 0; y + kBlock <= height; y += kBlock)
             for (int x = 0; x + kBlock <= width; x += kBlock) {
-                const double z = sigmas_apart(
-                    region_mean(mean, variance, x, y, x + kBlock, y + kBlock, c),
-                    region_mean(reference, reference_variance, x, y, x + kBlock, y + kBlock, c));
+                const MeanWithError ours_block =
+                    region_mean(mean, variance, x, y, x + kBlock, y + kBlock, c);
+                const MeanWithError reference_block =
+                    region_mean(reference, reference_variance, x, y, x + kBlock, y + kBlock, c);
+                // A block of background seen straight against a constant
+                // emitter has no noise in either renderer (every sample is
+                // the radiance): there the two differ by rounding alone, so
+                // the error is at least 1e-4 of the mean. (Mitsuba 3.9.1's
+                // scalar_rgb reads the sky's 0.7 as 0.699992, 1.1e-5 less:
+                // measured in sky.exr, whose error is 0 there.)
+                const double z =
+                    std::abs(ours_block.mean - reference_block.mean) /
+                    std::max(std::hypot(ours_block.standard_error, reference_block.standard_error),
+                             1e-4 * std::abs(reference_block.mean));
                 ++regions;
                 far += z > 5.0 ? 1 : 0;
                 worst = std::max(worst, z);
@@ -159,4 +171,27 @@ TEST_CASE("Mitsuba 3 agreement through XML: textures", "[render][mitsuba][textur
 TEST_CASE("Mitsuba 3 agreement: textures on a cube, rectangles, a disk and an OBJ mesh",
           "[render][mitsuba][textures][statistical]") {
     check_agreement("textures-shapes", load_scene(kDir + "textures-shapes.xml"), 1024);
+}
+
+TEST_CASE("Mitsuba 3 agreement: a point light", "[render][emitters][statistical]") {
+    check_agreement("point", 1024);
+}
+
+TEST_CASE("Mitsuba 3 agreement: a spot light's cone and falloff",
+          "[render][emitters][statistical]") {
+    check_agreement("spot", 1024);
+}
+
+TEST_CASE("Mitsuba 3 agreement: a directional light (a sun)", "[render][emitters][statistical]") {
+    check_agreement("sun", 1024);
+}
+
+TEST_CASE("Mitsuba 3 agreement: a constant environment, with MIS",
+          "[render][emitters][statistical]") {
+    check_agreement("sky", 1024);
+}
+
+TEST_CASE("Mitsuba 3 agreement through XML: the four emitters", "[render][mitsuba][statistical]") {
+    for (const char* name : {"point", "spot", "sun", "sky"})
+        check_agreement_through_xml(name, 256);
 }

@@ -35,6 +35,13 @@ std::string with_shape(const std::string& s) {
     return with_shapes("[" + s + "]");
 }
 
+// The base scene with an "emitters" array.
+std::string with_emitters(const std::string& e) {
+    std::string json = scene();
+    json.pop_back(); // the closing brace
+    return json + R"(, "emitters": )" + e + "}";
+}
+
 std::string error_of(const std::string& json, const std::string& source = "test.json") {
     try {
         (void)wp::parse_scene(json, source);
@@ -557,6 +564,86 @@ TEST_CASE("loader: every validation error names its field", "[scene][load][error
         CHECK(msg.find(c.fragment) != std::string::npos);
         CHECK(msg.find('\n') == std::string::npos);
     }
+}
+
+TEST_CASE("loader: every emitter error names its field", "[scene][load][errors]") {
+    const std::string point = R"("type": "point", "position": [0, 0, 1])";
+    const std::string spot = R"("type": "spot", "position": [0, 0, 1], "intensity": [1, 1, 1])";
+    const std::string sun = R"("type": "directional", "direction": [0, 0, -1])";
+    const std::vector<Case> cases{
+        {"emitters not an array", with_emitters(R"({"type": "point"})"), "/emitters",
+         "expected an array of emitters"},
+        {"unknown emitter type", with_emitters(R"([{"type": "area"}])"), "/emitters/0/type",
+         "unknown emitter type 'area' (expected point, spot, directional or constant)"},
+        {"negative intensity", with_emitters("[{" + point + R"(, "intensity": [1, -2, 1]}])"),
+         "/emitters/0/intensity/1", "must not be negative, got -2"},
+        {"infinite intensity", with_emitters("[{" + point + R"(, "intensity": [1e999, 1, 1]}])"),
+         "/emitters/0/intensity/0", "out of range"},
+        {"intensity beyond float32",
+         with_emitters("[{" + point + R"(, "intensity": [1e31, 1, 1]}])"),
+         "/emitters/0/intensity/0", "at most 1e30"},
+        {"point light without a position",
+         with_emitters(R"([{"type": "point", "intensity": [1, 1, 1]}])"), "/emitters/0/position",
+         "missing required field"},
+        {"non-finite position",
+         with_emitters(R"([{"type": "point", "position": [0, 1e999, 1], "intensity": [1, 1, 1]}])"),
+         "/emitters/0/position/1", "out of range"},
+        {"a key the point does not have",
+         with_emitters("[{" + point + R"(, "intensity": [1, 1, 1], "cutoff_angle": 3}])"),
+         "/emitters/0/cutoff_angle", "unknown key 'cutoff_angle'"},
+        {"zero spot cutoff",
+         with_emitters("[{" + spot + R"(, "direction": [0, 0, -1], "cutoff_angle": 0}])"),
+         "/emitters/0/cutoff_angle",
+         "must be in (0, 180] degrees (a zero cutoff lights nothing), got 0"},
+        {"negative beam width",
+         with_emitters("[{" + spot + R"(, "direction": [0, 0, -1], "beam_width": -1}])"),
+         "/emitters/0/beam_width", "must be in [0, 180] degrees, got -1"},
+        {"zero spot direction", with_emitters("[{" + spot + R"(, "direction": [0, 0, 0]}])"),
+         "/emitters/0/direction", "must be a non-zero vector"},
+        {"spot without a direction", with_emitters("[{" + spot + "}]"), "/emitters/0/direction",
+         "missing required field"},
+        {"negative irradiance", with_emitters("[{" + sun + R"(, "irradiance": [-1, 1, 1]}])"),
+         "/emitters/0/irradiance/0", "must not be negative, got -1"},
+        {"zero sun direction",
+         with_emitters(
+             R"([{"type": "directional", "direction": [0, 0, 0], "irradiance": [1, 1, 1]}])"),
+         "/emitters/0/direction", "must be a non-zero vector"},
+        {"negative sky radiance",
+         with_emitters(R"([{"type": "constant", "radiance": [1, 1, -0.5]}])"),
+         "/emitters/0/radiance/2", "must not be negative, got -0.5"},
+        {"two skies", with_emitters(R"([{"type": "constant", "radiance": [1, 1, 1]},
+                           {"type": "constant", "radiance": [1, 1, 1]}])"),
+         "/emitters/1", "a second constant emitter"},
+    };
+    for (const Case& c : cases) {
+        INFO(c.what);
+        INFO(c.json);
+        const std::string msg = error_of(c.json);
+        INFO(msg);
+        CHECK(msg.rfind("test.json", 0) == 0);
+        CHECK(msg.find(c.pointer + ": ") != std::string::npos);
+        CHECK(msg.find(c.fragment) != std::string::npos);
+        CHECK(msg.find('\n') == std::string::npos);
+    }
+}
+
+TEST_CASE("loader: emitters are read with Mitsuba's names and defaults", "[scene][load]") {
+    const wp::Scene s = wp::parse_scene(
+        with_emitters(R"([{"type": "spot", "position": [1, 2, 3], "direction": [0, 0, -2],
+                           "intensity": [4, 5, 6], "cutoff_angle": 40},
+                          {"type": "directional", "direction": [3, 0, 4], "irradiance": [1, 2, 3]},
+                          {"type": "constant", "radiance": [0.5, 0.5, 0.5]}])"),
+        "test.json");
+    REQUIRE(s.emitters.size() == 3);
+    CHECK(s.emitters[0].kind == wp::EmitterKind::Spot);
+    CHECK(s.emitters[0].position == glm::dvec3(1, 2, 3));
+    CHECK(s.emitters[0].direction == glm::dvec3(0, 0, -1)); // made unit
+    CHECK(s.emitters[0].value == glm::dvec3(4, 5, 6));
+    CHECK(s.emitters[0].cutoff_angle == 40.0);
+    CHECK(s.emitters[0].beam_width == 30.0); // 3/4 of the cutoff, as in Mitsuba
+    CHECK(s.emitters[1].direction == glm::dvec3(0.6, 0, 0.8));
+    CHECK(s.emitters[2].kind == wp::EmitterKind::Constant);
+    CHECK(s.emitters[2].value == glm::dvec3(0.5));
 }
 
 TEST_CASE("loader: the exact message format", "[scene][load][errors]") {

@@ -179,6 +179,36 @@ TEST_CASE("mitsuba import: <default>, $name, <include> and <ref>", "[scene][mits
     CHECK(s.files.size() == 1); // the include, which outputs must not overwrite
 }
 
+TEST_CASE("mitsuba import: point, spot, directional and constant emitters at the top level",
+          "[scene][mitsuba][import]") {
+    wp::test::TempDir dir;
+    const wp::Scene s = load(dir, R"(<emitter type="point">
+        <point name="position" x="1" y="2" z="3"/><rgb name="intensity" value="4, 5, 6"/></emitter>
+    <emitter type="point"><transform name="to_world"><translate x="-1"/></transform></emitter>
+    <emitter type="spot"><float name="cutoff_angle" value="40"/>
+        <transform name="to_world"><lookat origin="0, 3, 0" target="0, 0, 0" up="1, 0, 0"/></transform>
+    </emitter>
+    <emitter type="directional"><vector name="direction" value="0, -2, 0"/>
+        <rgb name="irradiance" value="2"/></emitter>
+    <emitter type="constant"><rgb name="radiance" value="0.5"/></emitter>)");
+    REQUIRE(s.emitters.size() == 5);
+    CHECK(s.emitters[0].kind == wp::EmitterKind::Point);
+    check_near(s.emitters[0].position, {1, 2, 3});
+    CHECK(s.emitters[0].value == glm::dvec3(4, 5, 6));
+    check_near(s.emitters[1].position, {-1, 0, 0});
+    CHECK(s.emitters[1].value == glm::dvec3(1.0)); // Mitsuba's default intensity
+    CHECK(s.emitters[2].kind == wp::EmitterKind::Spot);
+    check_near(s.emitters[2].position, {0, 3, 0});
+    check_near(s.emitters[2].direction, {0, -1, 0}); // to_world's z axis
+    CHECK(s.emitters[2].cutoff_angle == 40.0);
+    CHECK(s.emitters[2].beam_width == 30.0); // Mitsuba's default: 3/4 of the cutoff
+    CHECK(s.emitters[3].kind == wp::EmitterKind::Directional);
+    check_near(s.emitters[3].direction, {0, -1, 0});
+    CHECK(s.emitters[3].value == glm::dvec3(2.0));
+    CHECK(s.emitters[4].kind == wp::EmitterKind::Constant);
+    CHECK(s.emitters[4].value == glm::dvec3(0.5));
+}
+
 TEST_CASE("mitsuba import: bad input is one line with the file, line and column",
           "[scene][mitsuba][import][errors]") {
     wp::test::TempDir dir;
@@ -205,8 +235,28 @@ TEST_CASE("mitsuba import: bad input is one line with the file, line and column"
              "<float name=\"alpha_u\" value=\"0.1\"/><float name=\"alpha_v\" value=\"0.2\"/>"
              "</bsdf></shape></scene>",
          "8:1", "roughplastic's roughness is isotropic"},
-        {"unsupported emitter", head + "<emitter type=\"constant\"/>\n</scene>\n", "2:1",
-         "unsupported emitter at the scene's top level"},
+        {"unsupported emitter", head + "<emitter type=\"envmap\"/>\n</scene>\n", "2:1",
+         "unsupported emitter at the scene's top level (wavepath reads point, spot"},
+        {"zero spot cutoff",
+         head + "<emitter type=\"spot\"><float name=\"cutoff_angle\" value=\"0\"/></emitter>\n"
+                "</scene>\n",
+         "2:22", "must be in (0, 180] degrees (a zero cutoff lights nothing), got 0"},
+        {"negative intensity",
+         head + "<emitter type=\"point\"><rgb name=\"intensity\" value=\"1, -1, 1\"/></emitter>\n"
+                "</scene>\n",
+         "2:23", "must be in [0, 1e+30], got -1"},
+        {"position and to_world",
+         head + "<emitter type=\"point\"><point name=\"position\" x=\"1\"/>"
+                "<transform name=\"to_world\"><translate x=\"1\"/></transform></emitter>\n"
+                "</scene>\n",
+         "2:23", "give either position or to_world"},
+        {"zero sun direction",
+         head + "<emitter type=\"directional\"><vector name=\"direction\" value=\"0, 0, 0\"/>"
+                "</emitter>\n</scene>\n",
+         "2:29", "gives no direction"},
+        {"two skies",
+         head + "<emitter type=\"constant\"/>\n<emitter type=\"constant\"/>\n</scene>\n", "3:1",
+         "a second constant emitter"},
         {"unknown parameter",
          head + "<shape type=\"cube\">\n  <float name=\"radius\" value=\"1\"/>"
                 "</shape></scene>",

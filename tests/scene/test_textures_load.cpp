@@ -127,7 +127,8 @@ TEST_CASE("loader: bad textures are one-line errors naming the field and the fil
     };
     const Case cases[] = {
         {"unknown kind", R"({"type": "noise"})", m + "/type", "unknown texture type 'noise'"},
-        {"missing filename", R"({"type": "bitmap"})", m + "/filename", "missing required field 'filename'"},
+        {"missing filename", R"({"type": "bitmap"})", m + "/filename",
+         "missing required field 'filename'"},
         {"missing file", R"({"type": "bitmap", "filename": "nowhere.png"})", m + "/filename",
          "nowhere.png"},
         {"corrupt file", R"({"type": "bitmap", "filename": "broken.png"})", m + "/filename",

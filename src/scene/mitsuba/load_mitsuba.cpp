@@ -1,10 +1,13 @@
 // A Mitsuba 3 scene put together from its plugins (load_mitsuba.hpp).
 #include "scene/mitsuba/load_mitsuba.hpp"
 
+#include <cmath>
 #include <map>
 #include <memory>
 #include <tuple>
 #include <vector>
+
+#include <glm/geometric.hpp>
 
 #include "scene/json_reader.hpp"
 #include "scene/mitsuba/bsdfs.hpp"
@@ -36,6 +39,76 @@ glm::dvec3 read_emitter(const Object& emitter) {
                                               "> inside " + emitter.element());
     p.finish();
     return *radiance;
+}
+
+// An emitter at the scene's top level: point, spot, directional, constant,
+// with Mitsuba 3.9.1's parameters and defaults (docs/mitsuba-import.md).
+Emitter read_scene_emitter(const Object& emitter) {
+    Parameters p(emitter);
+    Emitter e;
+    auto value = [&](const char* name) {
+        const glm::dvec3 v = p.color(name).value_or(glm::dvec3(1.0)); // Mitsuba's default
+        check_range(p, name, v, 0.0, scene_limits::max_radiance);
+        return v;
+    };
+    // Where a point or spot is and which way a spot or sun points: its
+    // to_world's origin and z axis, as Mitsuba places them.
+    const std::optional<wp::Transform> to_world = p.transform("to_world");
+    auto unit_axis = [&](const glm::dvec3& axis, const char* name) {
+        const double length = glm::length(axis);
+        if (!(length > 0.0) || !std::isfinite(length))
+            p.fail(name, "gives no direction (a zero or non-finite vector)");
+        return axis / length;
+    };
+    if (emitter.type == "point") {
+        e.kind = EmitterKind::Point;
+        e.value = value("intensity");
+        const std::optional<glm::dvec3> position = p.point("position");
+        if (position && to_world)
+            p.fail("position", "give either position or to_world, not both (as Mitsuba)");
+        e.position = position ? *position
+                              : to_world.value_or(wp::Transform()).apply_to_point(glm::dvec3(0.0));
+    } else if (emitter.type == "spot") {
+        e.kind = EmitterKind::Spot;
+        e.value = value("intensity");
+        const wp::Transform t = to_world.value_or(wp::Transform());
+        e.position = t.apply_to_point(glm::dvec3(0.0));
+        e.direction = unit_axis(t.apply_to_vector({0.0, 0.0, 1.0}), "to_world");
+        e.cutoff_angle = p.number("cutoff_angle").value_or(20.0);
+        if (!(e.cutoff_angle > 0.0 && e.cutoff_angle <= 180.0))
+            p.fail("cutoff_angle", "must be in (0, 180] degrees (a zero cutoff lights nothing), "
+                                   "got " +
+                                       number_text(e.cutoff_angle));
+        e.beam_width = p.number("beam_width").value_or(0.75 * e.cutoff_angle);
+        if (!(e.beam_width >= 0.0 && e.beam_width <= 180.0))
+            p.fail("beam_width", "must be in [0, 180] degrees, got " + number_text(e.beam_width));
+    } else if (emitter.type == "directional") {
+        e.kind = EmitterKind::Directional;
+        e.value = value("irradiance");
+        const std::optional<glm::dvec3> direction = p.point("direction");
+        if (direction && to_world)
+            p.fail("direction", "give either direction or to_world, not both (as Mitsuba)");
+        e.direction =
+            direction
+                ? unit_axis(*direction, "direction")
+                : unit_axis(to_world.value_or(wp::Transform()).apply_to_vector({0.0, 0.0, 1.0}),
+                            "to_world");
+    } else if (emitter.type == "constant") {
+        e.kind = EmitterKind::Constant;
+        // A to_world (taken above) turns a uniform sky into itself: Mitsuba
+        // accepts it, and so does wavepath, changing nothing.
+        e.value = value("radiance");
+    } else {
+        p.fail("unsupported emitter at the scene's top level (wavepath reads point, spot, "
+               "directional and constant; area emitters go inside shapes)");
+    }
+    for (const auto& child : emitter.children)
+        fail_at(child->where, child->element(),
+                child->tag == "texture" ? "textured emitters are not supported (give an <rgb>)"
+                                        : "wavepath does not support a <" + child->tag +
+                                              "> inside " + emitter.element());
+    p.finish();
+    return e;
 }
 
 // Mitsuba's `path` integrator. wavepath's paths end by Russian roulette
@@ -88,9 +161,13 @@ class SceneAssembler {
             } else if ((object.tag == "bsdf" || object.tag == "texture") && !object.id.empty()) {
                 // Declared for <ref>s; read where a shape uses it.
             } else if (object.tag == "emitter") {
-                fail_at(object.where, object.element(),
-                        "unsupported emitter at the scene's top level (wavepath's lights are "
-                        "area emitters inside shapes: <emitter type=\"area\">)");
+                const Emitter e = read_scene_emitter(object);
+                if (e.kind == EmitterKind::Constant)
+                    for (const Emitter& other : scene_.emitters)
+                        if (other.kind == EmitterKind::Constant)
+                            fail_at(object.where, object.element(),
+                                    "a second constant emitter (wavepath's background is one)");
+                scene_.emitters.push_back(e);
             } else {
                 fail_at(object.where, object.element(),
                         "unsupported at the scene's top level (wavepath reads sensor, "
