@@ -9,6 +9,7 @@
 #define WP_LIGHTS_H
 
 #include "estimator.h"
+#include "lights/envmap.h"
 #include "ray_offset.h"
 #include "sampling.h"
 #include "scene_features.h" /* WP_HAS_EMITTERS and the kinds' switches */
@@ -209,17 +210,20 @@ static inline float wp_spot_falloff(__global const WpEmitter* e, float cos_theta
  * and directional emitters are delta lights, reached by this sample alone:
  * their pdf is INFINITY, which gives them the power heuristic's weight 1. The
  * constant emitter samples a direction uniformly on the sphere (pdf
- * pick / (4 pi), what a ray that escapes weighs itself against, shade.cl). */
-static inline int wp_sample_emitter(__global const WpEmitter* e, float3 position, float3 origin,
-                                    float3 origin_behind, int two_sided, float3 normal, float u,
-                                    float v, WpLightSample* out) {
+ * pick / (4 pi)), an envmap by its image (lights/envmap.h): what a ray that
+ * escapes weighs itself against (shade.cl). */
+static inline int wp_sample_emitter(const WpSceneView* scene, __global const WpEmitter* e,
+                                    float3 position, float3 origin, float3 origin_behind,
+                                    int two_sided, float3 normal, float u, float v,
+                                    WpLightSample* out) {
     wp_uint kind = e->kind;
     float3 wi;
     float length_to_test;
     float3 arriving = e->radiance.xyz * (1.0f / e->pick); /* at normal incidence, over the pdf */
     float pdf = INFINITY;
     out->weigh_always = 0;
-    if (kind == WP_EMITTER_CONSTANT || kind == WP_EMITTER_DIRECTIONAL) {
+    if (kind == WP_EMITTER_CONSTANT || kind == WP_EMITTER_DIRECTIONAL ||
+        kind == WP_EMITTER_ENVMAP) {
         /* Nothing to stop short of: the shadow ray must only leave the scene. */
         length_to_test = e->reach;
         wi = -e->direction.xyz;
@@ -228,6 +232,17 @@ static inline int wp_sample_emitter(__global const WpEmitter* e, float3 position
             wi = wp_sample_uniform_sphere(u, v);
             pdf = e->pick * (1.0f / (4.0f * WP_PI));
             arriving = e->radiance.xyz * (1.0f / pdf);
+            out->weigh_always = 1;
+        }
+#endif
+#if WP_HAS_ENVMAP_LIGHT
+        if (kind == WP_EMITTER_ENVMAP) {
+            float direction_pdf;
+            wp_envmap_sample(scene->environment_cdf, e, u, v, &wi, &direction_pdf);
+            if (!(direction_pdf > 0.0f))
+                return 0;
+            pdf = e->pick * direction_pdf;
+            arriving = wp_envmap_radiance(scene->texels, e, wi) * (1.0f / pdf);
             out->weigh_always = 1;
         }
 #endif
@@ -245,7 +260,7 @@ static inline int wp_sample_emitter(__global const WpEmitter* e, float3 position
 #endif
         length_to_test = distance - wp_shadow_end_margin(e->position.xyz, 0.0f, distance);
     }
-    (void)u, (void)v;
+    (void)scene, (void)u, (void)v;
     float cos_surface = dot(normal, wi);
     float3 from = origin;
     if (two_sided && cos_surface < 0.0f) {
@@ -295,7 +310,7 @@ static inline int wp_sample_lights(const WpSceneView* scene, float3 position, fl
     wp_uint i = 0u;
     while (i + 1u < scene->emitter_count && scene->emitters[i].cdf <= u_pick)
         ++i;
-    return wp_sample_emitter(&scene->emitters[i], position, origin, origin_behind, two_sided,
+    return wp_sample_emitter(scene, &scene->emitters[i], position, origin, origin_behind, two_sided,
                              normal, u, v, out);
 #else
     out->weigh_always = 0;

@@ -101,8 +101,16 @@ enum { WP_TEXTURES(WP_TEXTURE_FEATURE_CHECK) wp_texture_features_checked };
 #ifndef WP_HAS_CONSTANT_LIGHT
 #define WP_HAS_CONSTANT_LIGHT 1
 #endif
+#ifndef WP_HAS_ENVMAP_LIGHT
+#define WP_HAS_ENVMAP_LIGHT 1
+#endif
 #define WP_HAS_EMITTERS                                                                            \
-    (WP_HAS_POINT_LIGHT || WP_HAS_SPOT_LIGHT || WP_HAS_DIRECTIONAL_LIGHT || WP_HAS_CONSTANT_LIGHT)
+    (WP_HAS_POINT_LIGHT || WP_HAS_SPOT_LIGHT || WP_HAS_DIRECTIONAL_LIGHT ||                        \
+     WP_HAS_CONSTANT_LIGHT || WP_HAS_ENVMAP_LIGHT)
+/* An environment (constant or envmap): what a ray that escapes finds, and a
+ * light that a BSDF sample can find from any vertex, so its light samples are
+ * weighed by multiple importance sampling everywhere (shade.cl). */
+#define WP_HAS_ENVIRONMENT (WP_HAS_CONSTANT_LIGHT || WP_HAS_ENVMAP_LIGHT)
 #ifndef WP_HAS_PLANAR_MIRRORS /* flat mirror triangles and lights (kernels/mirror_light.h) */
 #define WP_HAS_PLANAR_MIRRORS 1
 #endif

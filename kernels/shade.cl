@@ -79,9 +79,9 @@ static inline void wp_shade_next_event(const WpSceneView* scene, const WpMateria
         return;
     float3 contribution = beta * wp_bsdf_eval_pi(material, wo, light.direction, point) *
                           light.irradiance * (1.0f / WP_PI);
-#if WP_HAS_GLOSSY || WP_HAS_CONSTANT_LIGHT
-    /* Glossy BSDFs weigh every light sample; the constant emitter is weighed
-     * at every vertex (a diffuse one too), as the ray that escapes is. */
+#if WP_HAS_GLOSSY || WP_HAS_ENVIRONMENT
+    /* Glossy BSDFs weigh every light sample; the environment is weighed at
+     * every vertex (a diffuse one too), as the ray that escapes is. */
     if (wp_bsdf_weighs_light(material) || light.weigh_always)
         contribution *= wp_mis_power(light.pdf, wp_bsdf_pdf(material, wo, light.direction, point));
 #endif
@@ -98,6 +98,40 @@ static inline void wp_shade_next_event(const WpSceneView* scene, const WpMateria
     (void)u_pick, (void)u, (void)v, (void)shadow;
 #endif
 }
+
+#if WP_HAS_ENVIRONMENT
+/* What a path that escaped along `direction` with throughput `beta` gathers
+ * from the environment `e` (a constant or an envmap emitter; nothing from
+ * any other kind): after a non-delta bounce (flags), weighed against the
+ * light sample there by the power heuristic, `bsdf_pdf` being the density
+ * the BSDF sampled the direction with. */
+static inline float3 wp_shade_environment(__global const WpEmitter* e,
+                                          __global const float* environment_cdf,
+                                          __global const wp_uint* texels, float3 direction,
+                                          wp_uint flags, float bsdf_pdf, float3 beta) {
+    float3 found = (float3)(0.0f);
+    float light_pdf = 0.0f;
+#if WP_HAS_CONSTANT_LIGHT
+    if (e->kind == WP_EMITTER_CONSTANT) {
+        found = e->radiance.xyz;
+        light_pdf = e->pick * (1.0f / (4.0f * WP_PI));
+    }
+#endif
+#if WP_HAS_ENVMAP_LIGHT
+    if (e->kind == WP_EMITTER_ENVMAP) {
+        found = wp_envmap_radiance(texels, e, direction);
+        light_pdf = e->pick * wp_envmap_pdf(environment_cdf, e, direction);
+    }
+#endif
+#if WP_USE_NEE
+    if (!(flags & WP_PATH_SPECULAR))
+        found *= wp_mis_power(bsdf_pdf, light_pdf);
+#else
+    (void)flags, (void)bsdf_pdf, (void)light_pdf, (void)environment_cdf;
+#endif
+    return beta * found;
+}
+#endif
 
 /* Step 4: whether the path goes on, and the probability it did so with
  * (survivors' throughput is divided by it). Takes the scattering weight into
@@ -166,21 +200,18 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
     shadow->mirror_made = 0;
 #endif
     if (primitive == WP_NO_HIT) { /* the ray left the scene: the path ends with what it has */
-#if WP_HAS_CONSTANT_LIGHT
-        /* ... and the constant emitter's radiance (emitters[0], if any),
-         * weighed after a non-delta bounce against the light sample that
-         * could have found the same direction (wp_sample_emitter's pdf). */
+#if WP_HAS_ENVIRONMENT
+        /* ... and the environment's radiance (emitters[0], if any), weighed
+         * after a non-delta bounce against the light sample that could have
+         * found the same direction (wp_sample_emitter's pdf). */
         wp_uint escaped_flags = path_flags[slot];
-        if (frame.emitter_count > 0u && emitters[0].kind == WP_EMITTER_CONSTANT &&
-            WP_PATH_EMISSION_SELECTED(frame.path_types, escaped_flags)) {
-            float3 found = throughput[slot].xyz * emitters[0].radiance.xyz;
-#if WP_USE_NEE
-            if (!(escaped_flags & WP_PATH_SPECULAR))
-                found *=
-                    wp_mis_power(mirror_vertex[slot].w, emitters[0].pick * (1.0f / (4.0f * WP_PI)));
-#endif
-            radiance[slot] = (float4)(radiance[slot].xyz + found, 0.0f);
-        }
+        if (frame.emitter_count > 0u && WP_PATH_EMISSION_SELECTED(frame.path_types, escaped_flags))
+            radiance[slot] =
+                (float4)(radiance[slot].xyz +
+                             wp_shade_environment(&emitters[0], environment_cdf, texels,
+                                                  ray_direction[slot].xyz, escaped_flags,
+                                                  mirror_vertex[slot].w, throughput[slot].xyz),
+                         0.0f);
 #endif
         return WP_SHADED_ENDS;
     }
@@ -284,7 +315,7 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
         origin = origin_behind;
     int delta = wp_bsdf_sample_is_delta(&scattered);
 /* What the emission weight at the next vertex (or the escape) needs. */
-#if WP_MIRROR_NEE || WP_HAS_GLOSSY || WP_HAS_CONSTANT_LIGHT
+#if WP_MIRROR_NEE || WP_HAS_GLOSSY || WP_HAS_ENVIRONMENT
     if (!delta)
         mirror_vertex[slot] = (float4)(surface.position, scattered.pdf);
 #endif

@@ -319,14 +319,17 @@ typedef struct {
 #define WP_EMITTER_SPOT 1u        /* a point's intensity within a cone, linear falloff */
 #define WP_EMITTER_DIRECTIONAL 2u /* irradiance from one direction: a sun */
 #define WP_EMITTER_CONSTANT 3u    /* uniform radiance from every direction: a sky */
+#define WP_EMITTER_ENVMAP 4u      /* radiance from every direction, by an image: an HDR sky */
 
-/* One such emitter, 80 bytes. Lights are chosen by emitted power
+/* One such emitter, 144 bytes. Lights are chosen by emitted power
  * (src/render/device_scene.cpp): the emissive triangles together with
  * probability 1 - WpFrame.emitter_pick (then one by area, WpLight), each
  * emitter here with probability `pick`; `cdf` is the running sum of the
  * area lights' and the emitters' probabilities up to and including this one
- * (the last 1). A constant emitter, if any, is emitters[0], so that a ray
- * that escapes finds it without a search. */
+ * (the last 1). The environment (a constant or an envmap emitter, at most
+ * one), if any, is emitters[0], so that a ray that escapes finds it without a
+ * search. An envmap's image and its sampling tables are described in
+ * kernels/lights/envmap.h. */
 typedef struct {
     wp_float4 position;  /* point, spot: xyz (in the device's float frame) */
     wp_float4 direction; /* spot: unit axis it shines along; directional: unit direction the
@@ -341,6 +344,11 @@ typedef struct {
     wp_float cos_beam;   /* spot: cos(beam_width) */
     wp_float cutoff;     /* spot: cutoff_angle, radians */
     wp_float inv_transition; /* spot: 1 / (cutoff_angle - beam_width), radians */
+    wp_float4 to_local[3];   /* envmap: the rows of its world-to-map rotation */
+    wp_uint texels_first;    /* envmap: its image in texels[] (WP_TEXELS_RGB32F) */
+    wp_uint width;           /* envmap: the image's size in texels */
+    wp_uint height;
+    wp_uint cdf_first; /* envmap: its sampling tables in environment_cdf[] (lights/envmap.h) */
 } WpEmitter;
 
 /* A planar mirror: coplanar mirror triangles (without vertex normals) found
@@ -501,7 +509,8 @@ typedef struct {
     X(triangle_uvs, WpTriangleUvs) /* texture coordinates of the triangles that have them */       \
     X(textures, WpTexture)         /* with textures; a dummy without */                            \
     X(texels, wp_uint)             /* the bitmaps' texels (WpTexture.format) */                    \
-    X(emitters, WpEmitter)         /* point, spot, directional, constant emitters */
+    X(emitters, WpEmitter)         /* point, spot, directional, constant, envmap emitters */       \
+    X(environment_cdf, wp_float)   /* an envmap's sampling tables (kernels/lights/envmap.h) */
 
 #define WP_PATH_BUFFERS(X)                                                                         \
     /* path state, one entry per slot (structure of arrays) */                                     \

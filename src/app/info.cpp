@@ -206,6 +206,18 @@ void print_scene(const std::string& path, const Scene& scene) {
     std::printf("  materials: %zu (%zu diffuse, %zu mirror, %zu emitter; %zu emissive)\n",
                 scene.materials.size(), kinds[0], kinds[1], kinds[2], emissive_materials);
     std::printf("  lights: %zu emissive triangles, total area %.6g\n", emissive, light_area);
+    for (const Emitter& e : scene.emitters) {
+        std::printf("  emitter: %s", emitter_kind_name(e.kind));
+        if (e.image) {
+            // As the device holds it: padded to 2x3 at least, float RGB
+            // texels and a float table entry a patch (lights/envmap.h).
+            const std::size_t w = std::max(e.image->width, 2u), h = std::max(e.image->height, 3u);
+            std::printf(" %s, %ux%u texels, %.1f MB on the device", e.filename.c_str(),
+                        e.image->width, e.image->height,
+                        1e-6 * double(12 * w * h + 4 * ((h - 1) * (w + 1))));
+        }
+        std::printf("\n");
+    }
     std::printf("  camera: %dx%d\n", scene.camera.width, scene.camera.height);
     if (!scene.textures.empty()) {
         // Texels as the device holds them (8-bit files 4 bytes a texel, HDR

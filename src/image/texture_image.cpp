@@ -6,6 +6,7 @@
 
 #include <stb_image.h>
 
+#include <array>
 #include <bit>
 #include <climits>
 #include <cmath>
@@ -20,10 +21,6 @@ struct StbPixels {
     void* data = nullptr;
     ~StbPixels() { stbi_image_free(data); }
 };
-
-double srgb_to_linear(double c) {
-    return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
-}
 
 void check_size(int width, int height, const std::string& context) {
     if (width <= 0 || height <= 0)
@@ -116,6 +113,40 @@ TextureImage decode_texture_image(const std::vector<unsigned char>& bytes,
         out.texels[i] = std::uint32_t{p[4 * i]} | std::uint32_t{p[4 * i + 1]} << 8 |
                         std::uint32_t{p[4 * i + 2]} << 16;
     return out;
+}
+
+double srgb_to_linear(double c) {
+    return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
+
+namespace {
+
+// The sRGB decoding of every 8-bit value, computed once: a 16384^2 image's
+// mean would otherwise take 805 million pow() calls.
+const std::array<double, 256>& srgb_table() {
+    static const std::array<double, 256> table = [] {
+        std::array<double, 256> t{};
+        for (int i = 0; i < 256; ++i)
+            t[static_cast<std::size_t>(i)] = srgb_to_linear(i / 255.0);
+        return t;
+    }();
+    return table;
+}
+
+} // namespace
+
+glm::dvec3 linear_texel(const TextureImage& image, std::size_t x, std::size_t y) {
+    const std::size_t i = y * image.width + x;
+    if (image.encoding == TexelEncoding::Float32)
+        return {std::bit_cast<float>(image.texels[3 * i]),
+                std::bit_cast<float>(image.texels[3 * i + 1]),
+                std::bit_cast<float>(image.texels[3 * i + 2])};
+    const std::uint32_t bits = image.texels[i];
+    if (image.encoding == TexelEncoding::Srgb8) {
+        const std::array<double, 256>& t = srgb_table();
+        return {t[bits & 255u], t[(bits >> 8) & 255u], t[(bits >> 16) & 255u]};
+    }
+    return {(bits & 255u) / 255.0, ((bits >> 8) & 255u) / 255.0, ((bits >> 16) & 255u) / 255.0};
 }
 
 TextureImage read_texture_image(const std::filesystem::path& path, bool raw) {

@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <vector>
 
+#include <glm/vec3.hpp>
+
 namespace wp {
 
 // How the texels are packed: 8 bits per channel in one uint (r in the low
@@ -22,6 +24,13 @@ struct TextureImage {
 
     std::size_t bytes() const { return texels.size() * sizeof(std::uint32_t); }
 };
+
+// sRGB's decoding curve (IEC 61966-2-1), as the kernels apply it
+// (kernels/textures/bitmap.h).
+double srgb_to_linear(double c);
+
+// Texel (x, y) (in range) in linear RGB, decoded as the kernels decode it.
+glm::dvec3 linear_texel(const TextureImage& image, std::size_t x, std::size_t y);
 
 // The largest side a texture image may have, in texels.
 inline constexpr std::uint32_t kMaxTextureSide = 16384;

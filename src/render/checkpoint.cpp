@@ -114,6 +114,10 @@ class Hasher {
     // A material field (Material::rendered_fields).
     void field(double x) { f64(x); }
     void field(const glm::dvec3& v) { vec(v); }
+    void field(const glm::dmat3& m) {
+        for (int c = 0; c < 3; ++c)
+            vec(m[c]);
+    }
     template <typename E>
     requires std::is_enum_v<E>
     void field(E e) { u64(static_cast<std::uint64_t>(e)); }
@@ -210,8 +214,15 @@ std::uint64_t scene_content_hash(const Scene& scene) {
     // (every checkpoint written before they existed) is unchanged.
     if (!scene.emitters.empty()) {
         h.u64(scene.emitters.size());
-        for (const Emitter& e : scene.emitters)
+        for (const Emitter& e : scene.emitters) {
             std::apply([&](const auto&... field) { (h.field(field), ...); }, e.rendered_fields());
+            if (e.image) { // an envmap's, by its values as a texture's
+                h.u64(e.image->width);
+                h.u64(e.image->height);
+                h.u64(static_cast<std::uint64_t>(e.image->encoding));
+                h.state = fnv1a64_bytes(e.image->texels.data(), e.image->bytes(), h.state);
+            }
+        }
     }
     return h.state;
 }

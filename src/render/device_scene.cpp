@@ -1,6 +1,7 @@
 #include "render/device_scene.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -9,6 +10,7 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include "render/environment_tables.hpp"
 #include "render/float_range.hpp"
 #include "render/planar_mirrors.hpp"
 #include "render/shadow_occluders.hpp"
@@ -243,12 +245,14 @@ double channel_mean(const glm::dvec3& c) {
 // emits (the mean of its channels), so that a faint light takes few samples.
 // Point, 4 pi I; spot, 2 pi (1 - cos cutoff) I (its cone at full
 // intensity); triangles, pi L A summed; directional, E through the disk of
-// the scene's bounding sphere (pi R^2 E) and constant, L through that sphere
-// (4 pi^2 R^2 L), which is what of them can reach the scene. Any choice
-// with every light's probability > 0 is unbiased: the kernels divide by the
-// probability and multiple importance sampling weighs by it (lights.h,
-// shade.cl). Emitters of zero power are left out. A constant emitter comes
-// first (shade.cl finds it there for an escaping ray).
+// the scene's bounding sphere (pi R^2 E), constant, L through that sphere
+// (4 pi^2 R^2 L), and envmap, pi R^2 times its radiance integrated over the
+// sphere of directions, which is what of them can reach the scene. Any
+// choice with every light's probability > 0 is unbiased: the kernels divide
+// by the probability and multiple importance sampling weighs by it
+// (lights.h, shade.cl). Emitters of zero power are left out. The
+// environment (constant or envmap) comes first (shade.cl finds it there for
+// an escaping ray).
 void flatten_emitters(const Scene& scene, const FloatFrame& frame, double triangle_area_power,
                       DeviceScene& out) {
     if (scene.emitters.empty())
@@ -303,13 +307,39 @@ void flatten_emitters(const Scene& scene, const FloatFrame& frame, double triang
             w.radiance = to_float4(e.value);
             p = 4.0 * M_PI * M_PI * radius * radius * mean;
             break;
+        case EmitterKind::Envmap: {
+            const EnvironmentTables tables = build_environment_tables(*e.image);
+            if (tables.cdf.empty())
+                break; // black: zero power, left out
+            // The kernels index texels with 32-bit offsets.
+            if (out.texels.size() + tables.rgb.size() > std::size_t{0xffffffffu})
+                throw std::runtime_error(
+                    "the scene's textures and environment map hold more than 16 GiB of texels; "
+                    "the device's 32-bit offsets cannot reach past that");
+            w.radiance = to_float4(e.value);
+            // Rows of the inverse rotation: its transpose's columns.
+            const glm::dmat3 to_local = glm::transpose(e.to_world);
+            for (int r = 0; r < 3; ++r)
+                w.to_local[r] =
+                    to_float4(glm::dvec3(to_local[0][r], to_local[1][r], to_local[2][r]));
+            w.width = tables.width;
+            w.height = tables.height;
+            w.texels_first = static_cast<wp_uint>(out.texels.size());
+            for (float c : tables.rgb)
+                out.texels.push_back(std::bit_cast<wp_uint>(c));
+            w.cdf_first = static_cast<wp_uint>(out.environment_cdf.size());
+            out.environment_cdf.insert(out.environment_cdf.end(), tables.cdf.begin(),
+                                       tables.cdf.end());
+            p = M_PI * radius * radius * tables.integral * mean;
+            break;
+        }
         }
         // Twice the diagonal, so that a shadow ray from anywhere inside
         // leaves the box whatever its direction.
         w.reach = static_cast<float>(std::max(2.0 * diagonal, 1.0));
         if (!(p > 0.0))
             continue;
-        if (e.kind == EmitterKind::Constant) {
+        if (e.kind == EmitterKind::Constant || e.kind == EmitterKind::Envmap) {
             emitters.insert(emitters.begin(), w);
             power.insert(power.begin(), p);
         } else {
@@ -412,6 +442,7 @@ SceneFeatures analyse_features(const Scene& scene, std::uint32_t max_fixed_count
     f.spot_light = has_emitter(EmitterKind::Spot);
     f.directional_light = has_emitter(EmitterKind::Directional);
     f.constant_light = has_emitter(EmitterKind::Constant);
+    f.envmap_light = has_emitter(EmitterKind::Envmap);
     // Next-event estimation through planar mirrors needs both (kernels/mirror_light.h).
     // Its estimator picks among the emissive triangles alone, so a scene
     // with other emitters goes without it (flatten_scene leaves its tables

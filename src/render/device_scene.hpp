@@ -53,6 +53,7 @@ inline constexpr std::uint32_t kMinBvhPrimitives = kMaxFixedCountPrimitives + 1;
     X(spot_light, WP_HAS_SPOT_LIGHT)                                                               \
     X(directional_light, WP_HAS_DIRECTIONAL_LIGHT)                                                 \
     X(constant_light, WP_HAS_CONSTANT_LIGHT)                                                       \
+    X(envmap_light, WP_HAS_ENVMAP_LIGHT)                                                           \
     WP_FILTER_FEATURES(X)  /* the pixel filter, unless the box */                                  \
     WP_TEXTURE_FEATURES(X) /* texture kinds in use */
 
@@ -126,9 +127,10 @@ struct DeviceScene {
     std::vector<wp_uint> mirror_spheres;            // with lights: the spheres of a mirror material
     std::vector<WpTriangleUvs> triangle_uvs; // of the triangles that have them (with textures)
     std::vector<WpTexture> textures;
-    std::vector<wp_uint> texels;     // the bitmaps' (WpTexture.first)
-    std::vector<WpEmitter> emitters; // point, spot, directional, constant; a constant
-                                     // one first
+    std::vector<wp_uint> texels;           // the bitmaps' (WpTexture.first)
+    std::vector<WpEmitter> emitters;       // point, spot, directional, constant, envmap; the
+                                           // environment (constant or envmap) first
+    std::vector<wp_float> environment_cdf; // an envmap's sampling tables (lights/envmap.h)
     BvhStats bvh_stats;
     float light_area = 0.0f; // total emissive area
     // The probability that next-event estimation chooses an emitter rather

@@ -911,7 +911,8 @@ class SceneReader : private json::Reader {
     // "emitters": lights that are not surfaces, named and parameterised as
     // Mitsuba 3's plugins (docs/scene-format.md#emitters): point (position,
     // intensity), spot (position, direction, intensity, cutoff_angle,
-    // beam_width), directional (direction, irradiance), constant (radiance).
+    // beam_width), directional (direction, irradiance), constant (radiance),
+    // envmap (filename, scale, to_world).
     void read_emitters(const Json& list, const Ptr& p) {
         if (!list.is_array())
             fail(p, "expected an array of emitters, got " + describe(list));
@@ -944,16 +945,47 @@ class SceneReader : private json::Reader {
                 check_keys(e, pe, {"type", "radiance"});
                 out.kind = EmitterKind::Constant;
                 out.value = vec3(require(e, pe, "radiance"), pe / "radiance", Range::Radiance);
-                for (const Emitter& other : scene_.emitters)
-                    if (other.kind == EmitterKind::Constant)
-                        fail(pe, "a second constant emitter (the background is one radiance; "
-                                 "add the two)");
+            } else if (type == "envmap") {
+                read_envmap(e, pe, out);
             } else {
                 fail(pe / "type", "unknown emitter type '" + shorten(type, 40) +
-                                      "' (expected point, spot, directional or constant)");
+                                      "' (expected point, spot, directional, constant or envmap)");
             }
+            if (out.kind == EmitterKind::Constant || out.kind == EmitterKind::Envmap)
+                if (find_environment(scene_.emitters))
+                    fail(pe, "a second environment (constant or envmap emitter): a scene has at "
+                             "most one");
             scene_.emitters.push_back(out);
         }
+    }
+
+    // An envmap: {"type": "envmap", "filename": "sky.exr", "scale": 1,
+    // "to_world": [transform steps]}, Mitsuba's parameters (an image file
+    // as a bitmap texture reads it, sRGB files made linear; scale >= 0; a
+    // to_world that only rotates).
+    void read_envmap(const Json& e, const Ptr& pe, Emitter& out) {
+        check_keys(e, pe, {"type", "filename", "scale", "to_world"});
+        out.kind = EmitterKind::Envmap;
+        if (const auto it = e.find("scale"); it != e.end()) {
+            const double scale = number(*it, pe / "scale");
+            if (!(scale >= 0.0 && scale <= scene_limits::max_radiance))
+                fail(pe / "scale", "must be in [0, " + number_text(scene_limits::max_radiance) +
+                                       "], got " + number_text(scale));
+            out.value = glm::dvec3(scale);
+        }
+        if (const auto it = e.find("to_world"); it != e.end()) {
+            const Transform to_world = read_transform(*this, *it, pe / "to_world");
+            out.to_world = glm::dmat3(to_world.matrix());
+            if (!is_rotation(out.to_world))
+                fail(pe / "to_world", "must be a rotation (an environment map is only turned: no "
+                                      "scale, shear or mirror)");
+        }
+        const Ptr pf = pe / "filename";
+        out.filename = expect_string(require(e, pe, "filename"), pf);
+        const std::filesystem::path path = folder_ / out.filename;
+        out.path = path.string();
+        scene_.files.push_back(out.path);
+        out.image = load_texture_image(path, false, pf);
     }
 
     // An emitter's "direction": any length but zero, made unit.

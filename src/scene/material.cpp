@@ -1,5 +1,7 @@
 #include "scene/material.hpp"
 
+#include "scene/scene.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -32,7 +34,16 @@ const char* emitter_kind_name(EmitterKind kind) {
         return "directional";
     case EmitterKind::Constant:
         return "constant";
+    case EmitterKind::Envmap:
+        return "envmap";
     }
+    return nullptr;
+}
+
+const Emitter* find_environment(const std::vector<Emitter>& emitters) {
+    for (const Emitter& e : emitters)
+        if (e.kind == EmitterKind::Constant || e.kind == EmitterKind::Envmap)
+            return &e;
     return nullptr;
 }
 

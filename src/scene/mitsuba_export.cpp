@@ -291,7 +291,7 @@ std::string integrator() {
            "    </integrator>\n";
 }
 
-// A point, spot, directional or constant emitter as Mitsuba 3's plugin of
+// A point, spot, directional, constant or envmap emitter as Mitsuba 3's plugin of
 // that name, which the XML reader reads back to the same Emitter. A spot is
 // placed by a lookat along its axis (its roll changes nothing).
 std::string scene_emitter(const Emitter& e) {
@@ -320,6 +320,25 @@ std::string scene_emitter(const Emitter& e) {
     case EmitterKind::Constant:
         s += "        " + rgb("radiance", e.value) + "\n";
         break;
+    case EmitterKind::Envmap: {
+        // The image by its absolute path, as a bitmap texture's; the
+        // rotation as its matrix, row by row.
+        s += "        <string name=\"filename\" value=\"" +
+             xml_escape(std::filesystem::absolute(e.path).string()) + "\"/>\n";
+        s += "        <float name=\"scale\" value=\"" + number(e.value.x) + "\"/>\n";
+        if (e.to_world != glm::dmat3(1.0)) {
+            std::string m;
+            for (int r = 0; r < 4; ++r)
+                for (int c = 0; c < 4; ++c)
+                    m += (m.empty() ? "" : " ") + number(r < 3 && c < 3 ? e.to_world[c][r]
+                                                         : r == c       ? 1.0
+                                                                        : 0.0);
+            s += "        <transform name=\"to_world\">\n";
+            s += "            <matrix value=\"" + m + "\"/>\n";
+            s += "        </transform>\n";
+        }
+        break;
+    }
     }
     return s + "    </emitter>\n";
 }

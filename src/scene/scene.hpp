@@ -5,11 +5,13 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <tuple>
 #include <vector>
 
+#include <glm/mat3x3.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -162,6 +164,7 @@ enum class EmitterKind : std::uint32_t {
     Spot = WP_EMITTER_SPOT,
     Directional = WP_EMITTER_DIRECTIONAL,
     Constant = WP_EMITTER_CONSTANT,
+    Envmap = WP_EMITTER_ENVMAP,
 };
 
 // The kind's name in scene files ("point", ...), or null for no kind.
@@ -175,17 +178,31 @@ struct Emitter {
     // its light travels (Mitsuba's `direction`)
     glm::dvec3 direction{0.0, 0.0, 1.0};
     // rgb, >= 0: point and spot, `intensity` (W/sr); directional,
-    // `irradiance` (W/m^2); constant, `radiance`
+    // `irradiance` (W/m^2); constant, `radiance`; envmap, its `scale` (the
+    // same in every channel)
     glm::dvec3 value{1.0};
     // spot, degrees: where the light ends, and where its linear falloff
     // starts (Mitsuba's defaults: 20, and 3/4 of the cutoff)
     double cutoff_angle = 20.0;
     double beam_width = 15.0;
+    // envmap: its to_world, a rotation (the map's +y is its up), the image
+    // file as the scene names it and as it was opened, and the decoded
+    // image (kernels/lights/envmap.h has the conventions). The image is
+    // shared: a scene is copied, its texels are not.
+    glm::dmat3 to_world{1.0};
+    std::string filename;
+    std::string path;
+    std::shared_ptr<const TextureImage> image;
 
+    // An envmap's image enters the checkpoint hash by its texels, not here.
     auto rendered_fields() const {
-        return std::tie(kind, position, direction, value, cutoff_angle, beam_width);
+        return std::tie(kind, position, direction, value, cutoff_angle, beam_width, to_world);
     }
 };
+
+// The environment among a scene's emitters (constant or envmap: at most one),
+// or null.
+const Emitter* find_environment(const std::vector<Emitter>& emitters);
 
 struct Scene {
     std::string source; // file name the scene came from, for messages

@@ -74,10 +74,6 @@ const char* texture_filter_name(TextureFilter filter) {
 
 namespace {
 
-double srgb_to_linear(double c) {
-    return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
-}
-
 // The kernels' wrap of a texel index (kernels/textures/bitmap.h).
 long long wrap_index(long long i, long long n, TextureWrap wrap) {
     switch (wrap) {
@@ -95,30 +91,8 @@ long long wrap_index(long long i, long long n, TextureWrap wrap) {
     return m < 0 ? m + n : m;
 }
 
-// The sRGB decoding of every 8-bit value, computed once: a 16384^2 image's
-// mean would otherwise take 805 million pow() calls.
-const std::array<double, 256>& srgb_table() {
-    static const std::array<double, 256> table = [] {
-        std::array<double, 256> t{};
-        for (int i = 0; i < 256; ++i)
-            t[static_cast<std::size_t>(i)] = srgb_to_linear(i / 255.0);
-        return t;
-    }();
-    return table;
-}
-
 glm::dvec3 texel(const TextureImage& image, long long x, long long y) {
-    const std::size_t i = static_cast<std::size_t>(y) * image.width + static_cast<std::size_t>(x);
-    if (image.encoding == TexelEncoding::Float32)
-        return {std::bit_cast<float>(image.texels[3 * i]),
-                std::bit_cast<float>(image.texels[3 * i + 1]),
-                std::bit_cast<float>(image.texels[3 * i + 2])};
-    const std::uint32_t bits = image.texels[i];
-    if (image.encoding == TexelEncoding::Srgb8) {
-        const std::array<double, 256>& t = srgb_table();
-        return {t[bits & 255u], t[(bits >> 8) & 255u], t[(bits >> 16) & 255u]};
-    }
-    return {(bits & 255u) / 255.0, ((bits >> 8) & 255u) / 255.0, ((bits >> 16) & 255u) / 255.0};
+    return linear_texel(image, static_cast<std::size_t>(x), static_cast<std::size_t>(y));
 }
 
 } // namespace

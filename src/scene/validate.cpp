@@ -22,6 +22,14 @@ bool is_zero_area(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c)
     return twice_area == 0.0 || twice_area <= scene_limits::zero_area_relative * longest2;
 }
 
+bool is_rotation(const glm::dmat3& m) {
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            if (!(std::abs(glm::dot(m[i], m[j]) - (i == j ? 1.0 : 0.0)) <= 1e-6))
+                return false;
+    return glm::dot(glm::cross(m[0], m[1]), m[2]) > 0.0;
+}
+
 bool view_direction_is_degenerate(const glm::dvec3& eye, const glm::dvec3& look_at) {
     const double d = glm::length(look_at - eye);
     const double scale = std::max(glm::length(eye), glm::length(look_at));
@@ -221,7 +229,7 @@ class Checker {
                 fail(f + ".material", "spheres cannot be emitters: use triangles");
         }
 
-        int constants = 0;
+        int environments = 0;
         for (std::size_t i = 0; i < scene_.emitters.size(); ++i) {
             const Emitter& e = scene_.emitters[i];
             const std::string f = "emitters[" + std::to_string(i) + "]";
@@ -240,8 +248,17 @@ class Checker {
                     fail(f + ".beam_width",
                          "must be in [0, 180] degrees, got " + fmt(e.beam_width));
             }
-            if (e.kind == EmitterKind::Constant && ++constants > 1)
-                fail(f, "a second constant emitter (at most one)");
+            if (e.kind == EmitterKind::Envmap) {
+                if (!e.image || e.image->width == 0 || e.image->height == 0)
+                    fail(f + ".filename", "the envmap has no image");
+                if (!is_rotation(e.to_world))
+                    fail(f + ".to_world", "must be a rotation (an environment map is only "
+                                          "turned: no scale, shear or mirror)");
+            }
+            if ((e.kind == EmitterKind::Constant || e.kind == EmitterKind::Envmap) &&
+                ++environments > 1)
+                fail(f, "a second environment (constant or envmap emitter): a scene has at most "
+                        "one");
         }
 
         if (scene_.triangles.empty() && scene_.spheres.empty())

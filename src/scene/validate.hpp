@@ -2,6 +2,7 @@
 // wp::Scene directly (tests, generated stress scenes).
 #pragma once
 
+#include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
 #include "scene/scene.hpp"
@@ -58,6 +59,10 @@ bool view_direction_is_degenerate(const glm::dvec3& eye, const glm::dvec3& look_
 
 // True when up is zero or (numerically) parallel to look_at - eye.
 bool up_is_parallel(const glm::dvec3& eye, const glm::dvec3& look_at, const glm::dvec3& up);
+
+// True when m is a rotation: orthonormal columns (to 1e-6) and determinant
+// +1 (no mirror).
+bool is_rotation(const glm::dmat3& m);
 
 // True when some triangle has an emissive material or some emitter (point,
 // spot, directional, constant) is not black. Light comes only from those

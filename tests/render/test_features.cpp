@@ -138,7 +138,7 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D "
           "WP_HAS_LENS=0 -D WP_HAS_POINT_LIGHT=0 -D WP_HAS_SPOT_LIGHT=0 -D "
-          "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D "
+          "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D WP_HAS_ENVMAP_LIGHT=0 -D "
           "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D WP_HAS_BITMAP_TEXTURE=0 -D "
           "WP_HAS_CHECKERBOARD_TEXTURE=0 -D "
           "WP_TRIANGLE_COUNT=26 -D "
@@ -153,7 +153,7 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=0 -D "
           "WP_HAS_LENS=0 -D WP_HAS_POINT_LIGHT=0 -D WP_HAS_SPOT_LIGHT=0 -D "
-          "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D "
+          "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D WP_HAS_ENVMAP_LIGHT=0 -D "
           "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D WP_HAS_BITMAP_TEXTURE=0 -D "
           "WP_HAS_CHECKERBOARD_TEXTURE=0 -D "
           "WP_TRIANGLE_COUNT=26 -D "
@@ -168,7 +168,7 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=0 -D WP_HAS_PLANAR_MIRRORS=0 -D WP_HAS_MIRROR_SPHERES=0 -D "
           "WP_HAS_LENS=0 -D WP_HAS_POINT_LIGHT=0 -D WP_HAS_SPOT_LIGHT=0 -D "
-          "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D "
+          "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D WP_HAS_ENVMAP_LIGHT=0 -D "
           "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D WP_HAS_BITMAP_TEXTURE=0 -D "
           "WP_HAS_CHECKERBOARD_TEXTURE=0 -D "
           "WP_TRIANGLE_COUNT=0 -D "
@@ -182,7 +182,7 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=0 -D WP_HAS_MIRROR_SPHERES=0 -D "
           "WP_HAS_LENS=0 -D WP_HAS_POINT_LIGHT=0 -D WP_HAS_SPOT_LIGHT=0 -D "
-          "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D "
+          "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D WP_HAS_ENVMAP_LIGHT=0 -D "
           "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D WP_HAS_BITMAP_TEXTURE=0 -D "
           "WP_HAS_CHECKERBOARD_TEXTURE=0 -D "
           "WP_TRIANGLE_COUNT=26 -D "
@@ -197,7 +197,7 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=0 -D WP_HAS_PLANAR_MIRRORS=0 -D WP_HAS_MIRROR_SPHERES=0 -D "
           "WP_HAS_LENS=0 -D WP_HAS_POINT_LIGHT=0 -D WP_HAS_SPOT_LIGHT=0 -D "
-          "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D "
+          "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D WP_HAS_ENVMAP_LIGHT=0 -D "
           "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D WP_HAS_BITMAP_TEXTURE=0 -D "
           "WP_HAS_CHECKERBOARD_TEXTURE=0 -D "
           "WP_TRIANGLE_COUNT=24 -D "
@@ -213,7 +213,7 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_SHADING_NORMALS=0 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D "
           "WP_HAS_LENS=0 -D WP_HAS_POINT_LIGHT=0 -D WP_HAS_SPOT_LIGHT=0 -D "
-          "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D "
+          "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D WP_HAS_ENVMAP_LIGHT=0 -D "
           "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D WP_HAS_BITMAP_TEXTURE=0 -D "
           "WP_HAS_CHECKERBOARD_TEXTURE=0 -D WP_USE_BVH=1");
     // The general kernels: every feature, runtime counts, the scene's hierarchy.
@@ -225,7 +225,7 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_SHADING_NORMALS=1 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D "
           "WP_HAS_LENS=1 -D WP_HAS_POINT_LIGHT=1 -D WP_HAS_SPOT_LIGHT=1 -D "
-          "WP_HAS_DIRECTIONAL_LIGHT=1 -D WP_HAS_CONSTANT_LIGHT=1 -D "
+          "WP_HAS_DIRECTIONAL_LIGHT=1 -D WP_HAS_CONSTANT_LIGHT=1 -D WP_HAS_ENVMAP_LIGHT=1 -D "
           "WP_HAS_TENT_FILTER=1 -D WP_HAS_GAUSSIAN_FILTER=1 -D WP_HAS_BITMAP_TEXTURE=1 -D "
           "WP_HAS_CHECKERBOARD_TEXTURE=1 -D WP_USE_BVH=1");
     CHECK(SceneFeatures::general_for(analyse_features(hexroom())).build_options() ==
@@ -238,7 +238,7 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_SHADING_NORMALS=1 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D "
           "WP_HAS_LENS=1 -D WP_HAS_POINT_LIGHT=1 -D WP_HAS_SPOT_LIGHT=1 -D "
-          "WP_HAS_DIRECTIONAL_LIGHT=1 -D WP_HAS_CONSTANT_LIGHT=1 -D "
+          "WP_HAS_DIRECTIONAL_LIGHT=1 -D WP_HAS_CONSTANT_LIGHT=1 -D WP_HAS_ENVMAP_LIGHT=1 -D "
           "WP_HAS_TENT_FILTER=1 -D WP_HAS_GAUSSIAN_FILTER=1 -D WP_HAS_BITMAP_TEXTURE=1 -D "
           "WP_HAS_CHECKERBOARD_TEXTURE=1");
 }
@@ -268,7 +268,8 @@ TEST_CASE("features: describe() names the features and the compiled-in counts") 
           "triangles spheres diffuse mirror conductor roughconductor dielectric thindielectric "
           "plastic roughdielectric roughplastic shading_normals lights "
           "planar_mirrors mirror_spheres lens point_light spot_light directional_light "
-          "constant_light tent_filter gaussian_filter bitmap_texture checkerboard_texture");
+          "constant_light envmap_light tent_filter gaussian_filter bitmap_texture "
+          "checkerboard_texture");
 }
 
 // The program's options begin with the features' (estimator options may follow).

@@ -191,7 +191,12 @@ TEST_CASE("Mitsuba 3 agreement: a constant environment, with MIS",
     check_agreement("sky", 1024);
 }
 
-TEST_CASE("Mitsuba 3 agreement through XML: the four emitters", "[render][mitsuba][statistical]") {
-    for (const char* name : {"point", "spot", "sun", "sky"})
+TEST_CASE("Mitsuba 3 agreement: an environment map, turned and scaled, with MIS",
+          "[render][emitters][envmap][statistical]") {
+    check_agreement("envmap", 1024);
+}
+
+TEST_CASE("Mitsuba 3 agreement through XML: the five emitters", "[render][mitsuba][statistical]") {
+    for (const char* name : {"point", "spot", "sun", "sky", "envmap"})
         check_agreement_through_xml(name, 256);
 }

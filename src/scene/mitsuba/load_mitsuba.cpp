@@ -9,6 +9,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "image/image.hpp"
+#include "image/texture_image.hpp"
 #include "scene/json_reader.hpp"
 #include "scene/mitsuba/bsdfs.hpp"
 #include "scene/mitsuba/parameters.hpp"
@@ -16,6 +18,7 @@
 #include "scene/mitsuba/shapes.hpp"
 #include "scene/mitsuba/xml_reader.hpp"
 #include "scene/validate.hpp"
+#include "util/file.hpp"
 
 namespace wp {
 namespace mitsuba {
@@ -39,6 +42,39 @@ glm::dvec3 read_emitter(const Object& emitter) {
                                               "> inside " + emitter.element());
     p.finish();
     return *radiance;
+}
+
+// An envmap's parameters (Mitsuba 3.9.1's): filename, scale, to_world (a
+// rotation here), mis_compensation (how Mitsuba samples it: no change to the
+// image, read and dropped).
+void read_envmap(Parameters& p, const Object& emitter, const std::optional<wp::Transform>& to_world,
+                 Emitter& e) {
+    e.kind = EmitterKind::Envmap;
+    const std::optional<std::string> filename = p.string("filename");
+    if (!filename)
+        p.fail("an envmap needs its filename");
+    const double scale = p.number("scale").value_or(1.0);
+    if (!(scale >= 0.0 && scale <= scene_limits::max_radiance))
+        p.fail("scale", "must be in [0, " + number_text(scene_limits::max_radiance) + "], got " +
+                            number_text(scale));
+    e.value = glm::dvec3(scale);
+    if (to_world) {
+        e.to_world = glm::dmat3(to_world->matrix());
+        if (!is_rotation(e.to_world))
+            p.fail("to_world", "must be a rotation (wavepath turns an environment map, but does "
+                               "not scale, shear or mirror it)");
+    }
+    p.ignore("mis_compensation");
+    e.filename = *filename;
+    const std::filesystem::path path = emitter.folder() / *filename;
+    e.path = path.string();
+    try {
+        e.image = std::make_shared<const TextureImage>(read_texture_image(path, false));
+    } catch (const FileError& error) {
+        p.fail("filename", error.what());
+    } catch (const ImageError& error) {
+        p.fail("filename", error.what());
+    }
 }
 
 // An emitter at the scene's top level: point, spot, directional, constant,
@@ -98,9 +134,11 @@ Emitter read_scene_emitter(const Object& emitter) {
         // A to_world (taken above) turns a uniform sky into itself: Mitsuba
         // accepts it, and so does wavepath, changing nothing.
         e.value = value("radiance");
+    } else if (emitter.type == "envmap") {
+        read_envmap(p, emitter, to_world, e);
     } else {
         p.fail("unsupported emitter at the scene's top level (wavepath reads point, spot, "
-               "directional and constant; area emitters go inside shapes)");
+               "directional, constant and envmap; area emitters go inside shapes)");
     }
     for (const auto& child : emitter.children)
         fail_at(child->where, child->element(),
@@ -162,11 +200,13 @@ class SceneAssembler {
                 // Declared for <ref>s; read where a shape uses it.
             } else if (object.tag == "emitter") {
                 const Emitter e = read_scene_emitter(object);
-                if (e.kind == EmitterKind::Constant)
-                    for (const Emitter& other : scene_.emitters)
-                        if (other.kind == EmitterKind::Constant)
-                            fail_at(object.where, object.element(),
-                                    "a second constant emitter (wavepath's background is one)");
+                if ((e.kind == EmitterKind::Constant || e.kind == EmitterKind::Envmap) &&
+                    find_environment(scene_.emitters))
+                    fail_at(object.where, object.element(),
+                            "a second environment (constant or envmap emitter): wavepath's "
+                            "scene has at most one");
+                if (e.kind == EmitterKind::Envmap)
+                    scene_.files.push_back(e.path);
                 scene_.emitters.push_back(e);
             } else {
                 fail_at(object.where, object.element(),

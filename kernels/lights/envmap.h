@@ -1,0 +1,152 @@
+/* Mitsuba 3's `envmap` emitter: radiance arriving from every direction, read
+ * from an equirectangular (latitude-longitude) image, docs/lights-and-camera.md.
+ *
+ * The image's conventions are Mitsuba 3.9.1's, measured with its Python API
+ * (tests/kernels/test_envmap.cpp holds them): a world direction d is turned
+ * into the map's frame by the inverse of the emitter's to_world (the rows
+ * to_local), l = to_local d, then
+ *     u = atan2(l.x, -l.z) / 2 pi  (wrapped into [0, 1)),  v = acos(l.y) / pi,
+ * so +y is up (v = 0 is the image's top row) and -z is the image's left edge.
+ * Columns are texel-centred and periodic in u: column i lies at
+ * u = (i + 1/2) / width, and u = 0 blends the last column with the first.
+ * Rows are corner-aligned in v: row j lies at v = j / (height - 1), the first
+ * row at the zenith, the last at the nadir. Radiance is the bilinear blend of
+ * the four texels around (x, y) = (u width - 1/2, v (height - 1)), times the
+ * emitter's scale (radiance.xyz). The host pads images narrower than 2 or
+ * lower than 3 texels to that size by repeating the last column or row, as
+ * Mitsuba does, so every map here has width >= 2, height >= 3.
+ *
+ * Sampling (ours, not Mitsuba's): the map is width x (height - 1) bilinear
+ * patches, patch (i, j) between columns i, i + 1 (modulo the width) and rows
+ * j, j + 1. Each is chosen with probability proportional to its mean
+ * luminance (the mean of its four corners', which is positive wherever the
+ * radiance in the patch is) times its solid angle, then a direction uniformly
+ * in the patch's solid angle: phi uniform, cos theta uniform. So the density
+ * of a direction is P(patch) / solid angle(patch), finite at the poles, and
+ * exactly what the escape's multiple importance sampling weight uses. The
+ * tables (the host builds them, src/render/environment_tables.cpp) are
+ * cumulative sums at environment_cdf[cdf_first]: first the height - 1 rows'
+ * (the marginal), then for each row its width patches' (the conditional),
+ * each table ending in 1. A patch's probability is the difference of two
+ * neighbouring entries, in both the sampler and the density, so the two agree
+ * to the float even for patches far below the entries' rounding.
+ */
+#ifndef WP_LIGHTS_ENVMAP_H
+#define WP_LIGHTS_ENVMAP_H
+
+#include "sampling.h"
+#include "wp_shared.h"
+
+/* The bilinear patch a direction falls in, and where in it: columns *i and
+ * *i + 1 (modulo the width) with the second's weight *ax, rows *j and *j + 1
+ * with the second's weight *ay. */
+static inline void wp_envmap_patch(__global const WpEmitter* e, float3 d, int* i, int* j, float* ax,
+                                   float* ay) {
+    float3 l = (float3)(dot(e->to_local[0].xyz, d), dot(e->to_local[1].xyz, d),
+                        dot(e->to_local[2].xyz, d));
+    float u = atan2(l.x, -l.z) * (0.5f / WP_PI);
+    u -= floor(u); /* [-1/2, 1/2) to [0, 1); a NaN stays a NaN, caught below */
+    float v = acos(clamp(l.y, -1.0f, 1.0f)) * (1.0f / WP_PI);
+    int w = (int)e->width, h = (int)e->height;
+    float x = u * (float)w - 0.5f; /* [-1/2, w - 1/2]: left of column 0 wraps to w - 1 */
+    float x_floor = floor(x);
+    int x0 = (int)clamp(x_floor, -1.0f, (float)(w - 1));
+    *ax = clamp(x - x_floor, 0.0f, 1.0f);
+    *i = x0 < 0 ? w - 1 : x0;
+    float y = clamp(v, 0.0f, 1.0f) * (float)(h - 1);
+    float y_floor = fmin(floor(y), (float)(h - 2)); /* the nadir belongs to the last patch */
+    *j = (int)y_floor;
+    *ay = clamp(y - y_floor, 0.0f, 1.0f);
+}
+
+/* Texel (x, y) of the map, linear RGB. */
+static inline float3 wp_envmap_texel(__global const wp_uint* texels, __global const WpEmitter* e,
+                                     int x, int y) {
+    __global const wp_uint* p =
+        texels + e->texels_first + 3u * ((wp_uint)y * e->width + (wp_uint)x);
+    return (float3)(as_float(p[0]), as_float(p[1]), as_float(p[2]));
+}
+
+/* The radiance arriving along -d, that is seen looking in direction d (unit). */
+static inline float3 wp_envmap_radiance(__global const wp_uint* texels, __global const WpEmitter* e,
+                                        float3 d) {
+    int i, j;
+    float ax, ay;
+    wp_envmap_patch(e, d, &i, &j, &ax, &ay);
+    int i1 = i + 1 == (int)e->width ? 0 : i + 1;
+    float3 top =
+        (1.0f - ax) * wp_envmap_texel(texels, e, i, j) + ax * wp_envmap_texel(texels, e, i1, j);
+    float3 bottom = (1.0f - ax) * wp_envmap_texel(texels, e, i, j + 1) +
+                    ax * wp_envmap_texel(texels, e, i1, j + 1);
+    return ((1.0f - ay) * top + ay * bottom) * e->radiance.xyz;
+}
+
+/* cos(theta_j) - cos(theta_{j+1}) for the row boundaries theta_j = pi j / rows,
+ * as 2 sin(mid) sin(half width): the plain difference of two cosines near 1
+ * loses every digit at the poles of a large map. */
+static inline float wp_envmap_cos_span(int j, int rows) {
+    float half_width = 0.5f * WP_PI / (float)rows;
+    return 2.0f * sin(WP_PI * ((float)j + 0.5f) / (float)rows) * sin(half_width);
+}
+
+/* The probability of patch (i, j) (the product of two table differences). */
+static inline float wp_envmap_patch_probability(__global const float* environment_cdf,
+                                                __global const WpEmitter* e, int i, int j) {
+    __global const float* marginal = environment_cdf + e->cdf_first;
+    __global const float* row = marginal + (e->height - 1u) + (wp_uint)j * e->width;
+    float p_row = marginal[j] - (j > 0 ? marginal[j - 1] : 0.0f);
+    float p_column = row[i] - (i > 0 ? row[i - 1] : 0.0f);
+    return p_row * p_column;
+}
+
+/* The solid-angle density with which wp_envmap_sample picks direction d. */
+static inline float wp_envmap_pdf(__global const float* environment_cdf,
+                                  __global const WpEmitter* e, float3 d) {
+    int i, j;
+    float ax, ay;
+    wp_envmap_patch(e, d, &i, &j, &ax, &ay);
+    int rows = (int)e->height - 1;
+    float solid_angle = (2.0f * WP_PI / (float)e->width) * wp_envmap_cos_span(j, rows);
+    return wp_envmap_patch_probability(environment_cdf, e, i, j) / solid_angle;
+}
+
+/* The first of n cumulative entries that exceeds u (n - 1 if none does:
+ * rounding may leave u at or above the last, 1). */
+static inline wp_uint wp_envmap_search(__global const float* cdf, wp_uint n, float u) {
+    wp_uint low = 0u, high = n - 1u;
+    while (low < high) {
+        wp_uint mid = (low + high) / 2u;
+        if (cdf[mid] > u)
+            high = mid;
+        else
+            low = mid + 1u;
+    }
+    return low;
+}
+
+/* Picks a direction by the tables from the numbers (u, v) in [0, 1): *d the
+ * unit world direction, *pdf its solid-angle density (wp_envmap_pdf's). */
+static inline void wp_envmap_sample(__global const float* environment_cdf,
+                                    __global const WpEmitter* e, float u, float v, float3* d,
+                                    float* pdf) {
+    wp_uint w = e->width, rows = e->height - 1u;
+    __global const float* marginal = environment_cdf + e->cdf_first;
+    wp_uint j = wp_envmap_search(marginal, rows, v);
+    __global const float* row = marginal + rows + j * w;
+    wp_uint i = wp_envmap_search(row, w, u);
+    /* Where in the patch: the numbers' remainders within their bins. */
+    float row_low = j > 0u ? marginal[j - 1u] : 0.0f, column_low = i > 0u ? row[i - 1u] : 0.0f;
+    float s = clamp((u - column_low) / (row[i] - column_low), 0.0f, 1.0f);
+    float t = clamp((v - row_low) / (marginal[j] - row_low), 0.0f, 1.0f);
+    float span = wp_envmap_cos_span((int)j, (int)rows);
+    float cos_theta = cos(WP_PI * (float)j / (float)rows) - t * span;
+    cos_theta = clamp(cos_theta, -1.0f, 1.0f);
+    float sin_theta = sqrt(fmax(0.0f, 1.0f - cos_theta * cos_theta));
+    float phi = 2.0f * WP_PI * ((float)i + 0.5f + s) / (float)w;
+    float3 l = (float3)(sin(phi) * sin_theta, cos_theta, -cos(phi) * sin_theta);
+    *d = normalize(e->to_local[0].xyz * l.x + e->to_local[1].xyz * l.y + e->to_local[2].xyz * l.z);
+    float p_row = marginal[j] - row_low, p_column = row[i] - column_low;
+    *pdf = p_row * p_column / ((2.0f * WP_PI / (float)w) * span);
+}
+
+#endif /* WP_LIGHTS_ENVMAP_H */
