@@ -73,7 +73,7 @@ void check_distinct_outputs(const std::vector<NamedPath>& inputs,
 std::vector<NamedPath> scene_inputs(const Scene& scene) {
     std::vector<NamedPath> inputs = {{"the scene", scene.source}};
     for (const std::string& file : scene.files)
-        inputs.push_back({"mesh file", file});
+        inputs.push_back({"input file", file}); // a mesh, a texture, an environment map
     return inputs;
 }
 

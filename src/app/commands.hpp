@@ -144,7 +144,8 @@ struct NamedPath {
 void check_distinct_outputs(const std::vector<NamedPath>& inputs,
                             const std::vector<NamedPath>& outputs);
 
-// Every file the scene read: "the scene" itself and each "mesh file", for
+// Every file the scene read: "the scene" itself and each "input file" (its
+// meshes, textures and environment map), for
 // check_distinct_outputs once the scene is loaded.
 std::vector<NamedPath> scene_inputs(const Scene& scene);
 

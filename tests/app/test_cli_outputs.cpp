@@ -69,7 +69,7 @@ TEST_CASE("cli: an output that is one of the scene's mesh files is refused befor
                                quoted(s.dir / "cube.obj") + " --out " + quoted(s.dir / "x.exr"),
                            s);
         check_one_line_error(run, "cannot write " + option);
-        CHECK(run.err.find("it is the same file as mesh file") != std::string::npos);
+        CHECK(run.err.find("it is the same file as input file") != std::string::npos);
         CHECK(slurp(s.dir / "cube.obj") == cube);
     }
 }
@@ -94,7 +94,7 @@ TEST_CASE("cli: export-mitsuba refuses to write a mesh over one the scene reads"
     s.write("mesh.json", text);
     const std::string mesh = slurp(s.dir / generated);
     Run run = wavepath("export-mitsuba " + quoted(scene) + " " + quoted(s.dir / "export.xml"), s);
-    check_one_line_error(run, "it is the same file as mesh file");
+    check_one_line_error(run, "it is the same file as input file");
     CHECK(slurp(s.dir / generated) == mesh);
     CHECK_FALSE(fs::exists(s.dir / "export.xml"));
 }
