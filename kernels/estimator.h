@@ -66,6 +66,19 @@
 #define WP_ROULETTE_DEPTH 1
 #endif
 
+/* WP_MIS_STRATEGY: how a light sample and a BSDF sample that can find the
+ * same light are weighed (lights.h, wp_mis_light_sample and wp_mis_bsdf_hit;
+ * IntegratorOptions::mis, --mis).
+ *   WP_MIS_POWER (0): the power heuristic.
+ *   WP_MIS_LIGHT_ONLY (1): the light sample alone (weight 1) wherever it can
+ *     reach; a BSDF sample's hit on such a light counts 0. For measuring what
+ *     multiple importance sampling buys (docs/lights-and-camera.md). */
+#define WP_MIS_POWER 0
+#define WP_MIS_LIGHT_ONLY 1
+#ifndef WP_MIS_STRATEGY
+#define WP_MIS_STRATEGY WP_MIS_POWER
+#endif
+
 #define WP_MIN_SPHERICAL_AREA 1e-3f
 #define WP_MAX_SPHERICAL_AREA 6.2f
 

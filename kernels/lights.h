@@ -10,6 +10,7 @@
 
 #include "estimator.h"
 #include "lights/envmap.h"
+#include "lights/sphere.h"
 #include "ray_offset.h"
 #include "sampling.h"
 #include "scene_features.h" /* WP_HAS_EMITTERS and the kinds' switches */
@@ -30,6 +31,26 @@
 static inline float wp_shadow_end_margin(float3 end, float scale, float length) {
     return WP_SHADOW_END_MARGIN * wp_offset_distance(end, fmax(scale, length));
 }
+
+#if WP_HAS_SPHERE_LIGHT
+/* How long the shadow ray from `from` along the sampled direction wi may be
+ * (t: the sample's distance to the sphere): up to where the intersection
+ * test itself meets the sphere along the rounded wi, less the shadow ray's
+ * end margin. The sample's own t will not do: near the cone's rim the
+ * sphere is met at a grazing angle, where a direction rounded by an ulp
+ * moves the hit by far more than the margin, and the sphere would shadow
+ * its own light (measured: a floor under a sphere 30 radii away got 2.5 %
+ * of its light). A rounded direction that passes the rim meets nothing: it
+ * keeps the sample's t. */
+static inline float wp_sphere_light_shadow_length(float3 from, float3 wi, float4 center_radius,
+                                                  float t) {
+    float t_hit;
+    if (wp_sphere_test(from.x, from.y, from.z, wi.x, wi.y, wi.z, center_radius.x, center_radius.y,
+                       center_radius.z, center_radius.w, 2.0f * t + 4.0f * center_radius.w, &t_hit))
+        t = t_hit;
+    return t - wp_shadow_end_margin(from + t * wi, center_radius.w, t);
+}
+#endif
 
 /* The first light whose cumulative area fraction exceeds u (count > 0), by
  * binary search. With the count compiled in (WP_LIGHT_COUNT, small scenes)
@@ -78,6 +99,28 @@ static inline float wp_mis_power(float own, float other) {
         return 0.0f;
     float r = other / own;
     return 1.0f / (1.0f + r * r);
+}
+
+/* The weight of a light sample of density `light_pdf` (INFINITY: a delta
+ * light) against BSDF sampling's `bsdf_pdf` of the same direction, and of a
+ * BSDF-sampled hit on a light against the light sample that could have found
+ * it, by WP_MIS_STRATEGY (estimator.h). */
+static inline float wp_mis_light_sample(float light_pdf, float bsdf_pdf) {
+#if WP_MIS_STRATEGY == WP_MIS_LIGHT_ONLY
+    (void)light_pdf, (void)bsdf_pdf;
+    return 1.0f;
+#else
+    return wp_mis_power(light_pdf, bsdf_pdf);
+#endif
+}
+
+static inline float wp_mis_bsdf_hit(float bsdf_pdf, float light_pdf) {
+#if WP_MIS_STRATEGY == WP_MIS_LIGHT_ONLY
+    (void)bsdf_pdf;
+    return light_pdf > 0.0f ? 0.0f : 1.0f;
+#else
+    return wp_mis_power(bsdf_pdf, light_pdf);
+#endif
 }
 
 /* The shadow ray from `origin` to a light point, stopping just short of it. */
@@ -246,6 +289,17 @@ static inline int wp_sample_emitter(const WpSceneView* scene, __global const WpE
             out->weigh_always = 1;
         }
 #endif
+#if WP_HAS_SPHERE_LIGHT
+    } else if (kind == WP_EMITTER_SPHERE) {
+        /* Uniform in the cone the sphere subtends (lights/sphere.h); found by
+         * a BSDF sample too, so weighed at glossy vertices as a triangle. */
+        float t, cone_pdf;
+        if (!wp_sample_sphere_light(position, e->position, u, v, &wi, &t, &cone_pdf))
+            return 0;
+        pdf = e->pick * cone_pdf;
+        arriving = e->radiance.xyz * (1.0f / pdf);
+        length_to_test = t; /* made the shadow ray's below, from where it starts */
+#endif
     } else { /* point, spot: intensity over the squared distance */
         float3 to_light = e->position.xyz - position;
         float distance_squared = dot(to_light, to_light);
@@ -267,6 +321,10 @@ static inline int wp_sample_emitter(const WpSceneView* scene, __global const WpE
         cos_surface = -cos_surface;
         from = origin_behind;
     }
+#if WP_HAS_SPHERE_LIGHT
+    if (kind == WP_EMITTER_SPHERE)
+        length_to_test = wp_sphere_light_shadow_length(from, wi, e->position, length_to_test);
+#endif
     if (!(cos_surface > 0.0f && length_to_test > 0.0f))
         return 0;
     out->origin = from;
@@ -275,6 +333,22 @@ static inline int wp_sample_emitter(const WpSceneView* scene, __global const WpE
     out->irradiance = arriving * cos_surface;
     out->pdf = pdf;
     return 1;
+}
+#endif
+
+#if WP_HAS_SPHERE_LIGHT
+/* The density with which next-event estimation, at `position`, picks a
+ * direction towards sphere number `sphere` (0 if that sphere is not a
+ * light): what a BSDF-sampled hit on it is weighed against. The few
+ * emitters are searched for the sphere's. */
+static inline float wp_sphere_light_pick_pdf(const WpSceneView* scene, wp_uint sphere,
+                                             float3 position) {
+    for (wp_uint i = 0u; i < scene->emitter_count; ++i) {
+        __global const WpEmitter* e = &scene->emitters[i];
+        if (e->kind == WP_EMITTER_SPHERE && e->sphere == sphere)
+            return e->pick * wp_sphere_light_pdf(position, e->position);
+    }
+    return 0.0f;
 }
 #endif
 

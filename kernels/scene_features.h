@@ -104,9 +104,12 @@ enum { WP_TEXTURES(WP_TEXTURE_FEATURE_CHECK) wp_texture_features_checked };
 #ifndef WP_HAS_ENVMAP_LIGHT
 #define WP_HAS_ENVMAP_LIGHT 1
 #endif
+#ifndef WP_HAS_SPHERE_LIGHT /* spheres of an emissive material (lights/sphere.h) */
+#define WP_HAS_SPHERE_LIGHT 1
+#endif
 #define WP_HAS_EMITTERS                                                                            \
     (WP_HAS_POINT_LIGHT || WP_HAS_SPOT_LIGHT || WP_HAS_DIRECTIONAL_LIGHT ||                        \
-     WP_HAS_CONSTANT_LIGHT || WP_HAS_ENVMAP_LIGHT)
+     WP_HAS_CONSTANT_LIGHT || WP_HAS_ENVMAP_LIGHT || WP_HAS_SPHERE_LIGHT)
 /* An environment (constant or envmap): what a ray that escapes finds, and a
  * light that a BSDF sample can find from any vertex, so its light samples are
  * weighed by multiple importance sampling everywhere (shade.cl). */

@@ -83,7 +83,8 @@ static inline void wp_shade_next_event(const WpSceneView* scene, const WpMateria
     /* Glossy BSDFs weigh every light sample; the environment is weighed at
      * every vertex (a diffuse one too), as the ray that escapes is. */
     if (wp_bsdf_weighs_light(material) || light.weigh_always)
-        contribution *= wp_mis_power(light.pdf, wp_bsdf_pdf(material, wo, light.direction, point));
+        contribution *=
+            wp_mis_light_sample(light.pdf, wp_bsdf_pdf(material, wo, light.direction, point));
 #endif
     if (wp_is_black(contribution))
         return;
@@ -125,7 +126,7 @@ static inline float3 wp_shade_environment(__global const WpEmitter* e,
 #endif
 #if WP_USE_NEE
     if (!(flags & WP_PATH_SPECULAR))
-        found *= wp_mis_power(bsdf_pdf, light_pdf);
+        found *= wp_mis_bsdf_hit(bsdf_pdf, light_pdf);
 #else
     (void)flags, (void)bsdf_pdf, (void)light_pdf, (void)environment_cdf;
 #endif
@@ -251,7 +252,7 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
     float3 beta_emission = beta;
 #if WP_HAS_GLOSSY && WP_HAS_LIGHTS && WP_USE_NEE
     /* After a glossy bounce from mirror_vertex: weighed against the light
-     * sample there. Only emissive triangles are lights it samples. */
+     * sample there: an emissive triangle here, a sphere below. */
     if ((flags & WP_PATH_GLOSSY) && surface.front_face &&
         wp_primitive_kind(&scene, primitive) == WP_PRIMITIVE_TRIANGLE) {
         float4 vertex = mirror_vertex[slot];
@@ -260,8 +261,17 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
 #if WP_HAS_EMITTERS /* the triangles are chosen with this probability (lights.h) */
         light_pdf *= 1.0f - scene.emitter_pick;
 #endif
-        beta_emission *= wp_mis_power(vertex.w, light_pdf);
+        beta_emission *= wp_mis_bsdf_hit(vertex.w, light_pdf);
     }
+#endif
+#if WP_HAS_GLOSSY && WP_HAS_SPHERE_LIGHT && WP_USE_NEE
+    /* ... and on an emitting sphere, against its cone sample there. */
+    if ((flags & WP_PATH_GLOSSY) && surface.front_face &&
+        wp_primitive_kind(&scene, primitive) == WP_PRIMITIVE_SPHERE)
+        beta_emission *=
+            wp_mis_bsdf_hit(mirror_vertex[slot].w,
+                            wp_sphere_light_pick_pdf(&scene, primitive - scene.triangle_count,
+                                                     mirror_vertex[slot].xyz));
 #endif
 #if WP_MIRROR_NEE /* weighed against the mirrored light sample (mirror_light.h) */
     if (flags & (WP_PATH_PLANAR_MIRROR | WP_PATH_SPHERE_MIRROR))

@@ -320,8 +320,9 @@ typedef struct {
 #define WP_EMITTER_DIRECTIONAL 2u /* irradiance from one direction: a sun */
 #define WP_EMITTER_CONSTANT 3u    /* uniform radiance from every direction: a sky */
 #define WP_EMITTER_ENVMAP 4u      /* radiance from every direction, by an image: an HDR sky */
+#define WP_EMITTER_SPHERE 5u      /* an emitting sphere: a sphere whose material emits */
 
-/* One such emitter, 144 bytes. Lights are chosen by emitted power
+/* One such emitter, 160 bytes. Lights are chosen by emitted power
  * (src/render/device_scene.cpp): the emissive triangles together with
  * probability 1 - WpFrame.emitter_pick (then one by area, WpLight), each
  * emitter here with probability `pick`; `cdf` is the running sum of the
@@ -349,6 +350,8 @@ typedef struct {
     wp_uint width;           /* envmap: the image's size in texels */
     wp_uint height;
     wp_uint cdf_first; /* envmap: its sampling tables in environment_cdf[] (lights/envmap.h) */
+    wp_uint sphere;    /* sphere: its number in spheres[] (position: centre xyz, radius w) */
+    wp_uint pad0, pad1, pad2;
 } WpEmitter;
 
 /* A planar mirror: coplanar mirror triangles (without vertex normals) found
@@ -509,7 +512,7 @@ typedef struct {
     X(triangle_uvs, WpTriangleUvs) /* texture coordinates of the triangles that have them */       \
     X(textures, WpTexture)         /* with textures; a dummy without */                            \
     X(texels, wp_uint)             /* the bitmaps' texels (WpTexture.format) */                    \
-    X(emitters, WpEmitter)         /* point, spot, directional, constant, envmap emitters */       \
+    X(emitters, WpEmitter)         /* point, spot, directional, constant, envmap, sphere */        \
     X(environment_cdf, wp_float)   /* an envmap's sampling tables (kernels/lights/envmap.h) */
 
 #define WP_PATH_BUFFERS(X)                                                                         \

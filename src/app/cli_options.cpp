@@ -94,6 +94,10 @@ void add_integrator_options(CLI::App& command, IntegratorOptions& options) {
                {DiffuseSampling::Cosine, DiffuseSampling::Report},
                "Lambertian sampling: 'cosine' (cosine-weighted, throughput roulette) or "
                "'report' (the seed report's uniform angles and albedo roulette, made unbiased)");
+    add_choice(command, "--mis", options.mis, {MisStrategy::Power, MisStrategy::LightOnly},
+               "Light and BSDF samples of the same light: 'power' (weighed by the power "
+               "heuristic) or 'light' (light sampling alone where it reaches, to measure what "
+               "multiple importance sampling buys; BSDF sampling alone is --no-nee)");
     add_choice(command, "--light-sampling", options.light_sampling,
                {LightSampling::Area, LightSampling::SolidAngle},
                "Next-event estimation: 'area' (uniform on the light) or 'solid-angle' (uniform "

@@ -225,6 +225,9 @@ void build_hierarchy(DeviceScene& scene) {
     scene.spheres = std::move(spheres);
     for (WpLight& light : scene.lights)
         light.triangle = new_number[light.triangle];
+    for (WpEmitter& e : scene.emitters)
+        if (e.kind == WP_EMITTER_SPHERE)
+            e.sphere = new_number[triangle_count + e.sphere] - triangle_count;
 
     std::vector<BinaryNode> binary;
     binary.reserve(bvh.nodes.size());
@@ -255,7 +258,7 @@ double channel_mean(const glm::dvec3& c) {
 // an escaping ray).
 void flatten_emitters(const Scene& scene, const FloatFrame& frame, double triangle_area_power,
                       DeviceScene& out) {
-    if (scene.emitters.empty())
+    if (!has_lights_besides_triangles(scene))
         return;
     // The scene's bounding box in the float frame: its diagonal gives the
     // radius for the infinite emitters' power and their shadow rays' reach.
@@ -346,6 +349,22 @@ void flatten_emitters(const Scene& scene, const FloatFrame& frame, double triang
             emitters.push_back(w);
             power.push_back(p);
         }
+    }
+    // Emitting spheres: pi L times their area, as triangles.
+    for (std::size_t i = 0; i < scene.spheres.size(); ++i) {
+        const Sphere& sphere = scene.spheres[i];
+        const Material& material = scene.materials[sphere.material];
+        const double p =
+            M_PI * channel_mean(material.emission) * 4.0 * M_PI * sphere.radius * sphere.radius;
+        if (!(p > 0.0))
+            continue;
+        WpEmitter w{};
+        w.kind = WP_EMITTER_SPHERE;
+        w.position = to_float4(frame.point(sphere.center), frame.scale * sphere.radius);
+        w.radiance = to_float4(material.emission);
+        w.sphere = static_cast<wp_uint>(i);
+        emitters.push_back(w);
+        power.push_back(p);
     }
     if (emitters.empty())
         return;
@@ -443,11 +462,12 @@ SceneFeatures analyse_features(const Scene& scene, std::uint32_t max_fixed_count
     f.directional_light = has_emitter(EmitterKind::Directional);
     f.constant_light = has_emitter(EmitterKind::Constant);
     f.envmap_light = has_emitter(EmitterKind::Envmap);
+    f.sphere_light = has_sphere_lights(scene);
     // Next-event estimation through planar mirrors needs both (kernels/mirror_light.h).
     // Its estimator picks among the emissive triangles alone, so a scene
     // with other emitters goes without it (flatten_scene leaves its tables
     // empty): light by way of a mirror is then found by the path itself.
-    const bool mirror_nee = f.lights && scene.emitters.empty();
+    const bool mirror_nee = f.lights && !has_lights_besides_triangles(scene);
     const std::vector<PlanarMirror> mirrors = find_planar_mirrors(scene);
     f.planar_mirrors = mirror_nee && !mirrors.empty();
     f.mirror_spheres =
@@ -484,8 +504,8 @@ SceneFeatures analyse_features(const Scene& scene, std::uint32_t max_fixed_count
         // every occluder.
         // Nor can emitters keep it: a sun, the sky or a point outside must be
         // blocked by the very bounding faces culling leaves out.
-        f.shadow_culling =
-            !f.lens && scene.emitters.empty() && f.shadow_occluders.size() < scene.triangles.size();
+        f.shadow_culling = !f.lens && !has_lights_besides_triangles(scene) &&
+                           f.shadow_occluders.size() < scene.triangles.size();
     }
     return f;
 }
@@ -657,8 +677,9 @@ DeviceScene flatten_scene(const Scene& scene, bool hierarchy) {
 
     // Planar mirrors in the float frame: the plane from the frame's vertices
     // (none with emitters, analyse_features says why).
-    for (const PlanarMirror& mirror :
-         scene.emitters.empty() ? find_planar_mirrors(scene) : std::vector<PlanarMirror>{}) {
+    for (const PlanarMirror& mirror : !has_lights_besides_triangles(scene)
+                                          ? find_planar_mirrors(scene)
+                                          : std::vector<PlanarMirror>{}) {
         WpMirrorGroup g{};
         const Triangle& first = scene.triangles[mirror.triangles.front()];
         g.plane = to_float4(mirror.normal, glm::dot(mirror.normal, frame.point(first.v[0])));
@@ -712,7 +733,7 @@ DeviceScene flatten_scene(const Scene& scene, bool hierarchy) {
     if (hierarchy)
         build_hierarchy(out);
     // After the hierarchy, which may reorder the spheres.
-    if (!out.lights.empty() && scene.emitters.empty())
+    if (!out.lights.empty() && !has_lights_besides_triangles(scene))
         for (std::size_t i = 0; i < out.spheres.size(); ++i)
             if (scene.materials[out.spheres[i].material].kind == MaterialKind::Mirror)
                 out.mirror_spheres.push_back(static_cast<wp_uint>(i));

@@ -54,8 +54,9 @@ inline constexpr std::uint32_t kMinBvhPrimitives = kMaxFixedCountPrimitives + 1;
     X(directional_light, WP_HAS_DIRECTIONAL_LIGHT)                                                 \
     X(constant_light, WP_HAS_CONSTANT_LIGHT)                                                       \
     X(envmap_light, WP_HAS_ENVMAP_LIGHT)                                                           \
-    WP_FILTER_FEATURES(X)  /* the pixel filter, unless the box */                                  \
-    WP_TEXTURE_FEATURES(X) /* texture kinds in use */
+    X(sphere_light, WP_HAS_SPHERE_LIGHT) /* spheres of an emissive material */                     \
+    WP_FILTER_FEATURES(X)                /* the pixel filter, unless the box */                    \
+    WP_TEXTURE_FEATURES(X)               /* texture kinds in use */
 
 // Which kinds of primitive, material and light the scene uses.
 struct SceneFeatures {

@@ -16,6 +16,16 @@ std::string to_string(DiffuseSampling sampling) {
     return "?";
 }
 
+std::string to_string(MisStrategy strategy) {
+    switch (strategy) {
+    case MisStrategy::Power:
+        return "power";
+    case MisStrategy::LightOnly:
+        return "light";
+    }
+    return "?";
+}
+
 std::string to_string(LightSampling sampling) {
     switch (sampling) {
     case LightSampling::Area:
@@ -152,6 +162,8 @@ std::string describe_estimator(const IntegratorOptions& options) {
                            : diffuse + "+no-nee";
     if (options.next_event_estimation && !options.mirror_next_event)
         text += "+no-mirror-nee";
+    if (options.next_event_estimation && options.mis != MisStrategy::Power)
+        text += "+mis-" + to_string(options.mis);
     if (options.roulette_depth != IntegratorOptions{}.roulette_depth)
         text += "+roulette-from-" + std::to_string(options.roulette_depth);
     if (options.path_types != kAllPathTypes)

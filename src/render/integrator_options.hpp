@@ -25,6 +25,15 @@ enum class LightSampling {
     SolidAngle, // uniform in the subtended solid angle (spherical triangles)
 };
 
+// How a light sample and a BSDF sample that could find the same light are
+// weighed at a glossy vertex (and at every vertex for the environment):
+enum class MisStrategy {
+    Power,     // the power heuristic (the estimator)
+    LightOnly, // light sampling alone wherever it reaches: a BSDF sample's hit on a
+               // light it could have sampled counts 0 (for measuring what MIS buys;
+               // BSDF sampling alone is --no-nee)
+};
+
 // Where the random numbers come from (kernels/rng.h; compared in
 // docs/convergence.md, "Samplers"). Both are pure functions of (seed, pixel,
 // sample, bounce, dimension), so neither depends on how samples are split.
@@ -81,6 +90,7 @@ struct IntegratorOptions {
     // magnitude where surfaces come close to a light.
     DiffuseSampling diffuse_sampling = DiffuseSampling::Cosine;
     LightSampling light_sampling = LightSampling::Area;
+    MisStrategy mis = MisStrategy::Power;
     // The first bounce at which throughput roulette may end a path (1: every
     // bounce); before it paths always go on (kernels/estimator.h).
     std::uint32_t roulette_depth = 1;
@@ -143,6 +153,7 @@ std::string describe_aovs(std::uint32_t aovs);
 // them: "cosine" and "report"; "area" and "solid-angle".
 std::string to_string(DiffuseSampling sampling);
 std::string to_string(LightSampling sampling);
+std::string to_string(MisStrategy strategy);
 std::string to_string(Traversal traversal); // "auto", "bvh", "loop"
 std::string to_string(Sampler sampler);     // "independent", "sobol"
 std::string to_string(LaunchPlan plan);     // "auto", "stages", "bounce", "wave"

@@ -567,6 +567,8 @@ std::string kernel_build_options(const SceneFeatures& features, const Integrator
     text += options.light_sampling == LightSampling::SolidAngle ? " -D WP_LIGHT_SAMPLING=1"
                                                                 : " -D WP_LIGHT_SAMPLING=0";
     text += " -D WP_ROULETTE_DEPTH=" + std::to_string(options.roulette_depth);
+    if (options.mis == MisStrategy::LightOnly) // only then: the default builds are as they were
+        text += " -D WP_MIS_STRATEGY=1";
     if (options.path_types != kAllPathTypes) // only then is anything tracked (path_type.h)
         text += " -D WP_PATH_TYPES=1";
     text += options.sampler == Sampler::Sobol ? " -D WP_SAMPLER=1" : " -D WP_SAMPLER=0";

@@ -830,10 +830,6 @@ class SceneReader : private json::Reader {
         if (sp.radius <= 0.0)
             fail(pr, "must be positive, got " + number_text(sp.radius));
         check_range(sp.radius, pr, Range::Coordinate);
-        if (scene_.materials[material].is_emissive())
-            fail(p / "material", "material '" + shorten(scene_.materials[material].name, 60) +
-                                     "' is emissive, but spheres cannot be emitters: use "
-                                     "triangles");
         sp.material = material;
         scene_.spheres.push_back(sp);
     }

@@ -40,6 +40,17 @@ const char* emitter_kind_name(EmitterKind kind) {
     return nullptr;
 }
 
+bool has_sphere_lights(const Scene& scene) {
+    for (const Sphere& s : scene.spheres)
+        if (s.material < scene.materials.size() && scene.materials[s.material].is_emissive())
+            return true;
+    return false;
+}
+
+bool has_lights_besides_triangles(const Scene& scene) {
+    return !scene.emitters.empty() || has_sphere_lights(scene);
+}
+
 const Emitter* find_environment(const std::vector<Emitter>& emitters) {
     for (const Emitter& e : emitters)
         if (e.kind == EmitterKind::Constant || e.kind == EmitterKind::Envmap)

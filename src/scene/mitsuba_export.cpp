@@ -506,6 +506,7 @@ MitsubaExport export_mitsuba(const Scene& scene, const std::string& mesh_prefix,
         x += "        <point name=\"center\" value=\"" + triple(s.center) + "\"/>\n";
         x += "        <float name=\"radius\" value=\"" + number(s.radius) + "\"/>\n";
         x += "        <ref id=\"" + material_id(s.material) + "\"/>\n";
+        x += area_emitter(scene.materials[s.material]);
         x += "    </shape>\n";
     }
     for (const Emitter& e : scene.emitters)

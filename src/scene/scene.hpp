@@ -82,8 +82,7 @@ struct Material {
     // diffuse_reflectance. In [0, 1] per channel.
     glm::dvec3 reflectance{0.0};
     // Radiance emitted from the front face (the side the right-handed winding
-    // normal points to). Any material kind may emit; only triangles may carry
-    // an emissive material (spheres cannot be sampled as lights).
+    // normal points to; a sphere's outside). Any material kind may emit.
     glm::dvec3 emission{0.0};
     // Conductors: the complex index of refraction eta + i k per channel.
     // Mitsuba's material "none" is eta 0, k 1: reflectance 1 at every angle.
@@ -213,9 +212,18 @@ struct Scene {
     std::vector<Material> materials;
     std::vector<Triangle> triangles; // quads and meshes are split into triangles
     std::vector<Sphere> spheres;
-    std::vector<Texture> textures;     // named by materials' *_texture
-    std::vector<Emitter> emitters;     // point, spot, directional, constant: at most one constant
+    std::vector<Texture> textures; // named by materials' *_texture
+    std::vector<Emitter> emitters; // point, spot, directional, constant, envmap: one environment
     std::vector<std::string> warnings; // e.g. skipped zero-area triangles
 };
+
+// Whether some sphere has an emissive material (a sphere light, sampled by
+// the cone it subtends: kernels/lights/sphere.h).
+bool has_sphere_lights(const Scene& scene);
+
+// Whether the scene has lights other than emissive triangles: emitters or
+// sphere lights. Next-event estimation through mirrors and shadow culling
+// are for triangle lights alone (render/device_scene.cpp).
+bool has_lights_besides_triangles(const Scene& scene);
 
 } // namespace wp

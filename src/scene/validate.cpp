@@ -225,8 +225,6 @@ class Checker {
                 s.radius > scene_limits::max_coordinate)
                 fail(f + ".radius", "must be positive and at most 1e30, got " + fmt(s.radius));
             material_index(s.material, f + ".material");
-            if (scene_.materials[s.material].is_emissive())
-                fail(f + ".material", "spheres cannot be emitters: use triangles");
         }
 
         int environments = 0;
@@ -309,7 +307,7 @@ bool has_emitter(const Scene& scene) {
     for (const Triangle& t : scene.triangles)
         if (t.material < scene.materials.size() && scene.materials[t.material].is_emissive())
             return true;
-    return false;
+    return has_sphere_lights(scene);
 }
 
 void validate_scene(const Scene& scene) {

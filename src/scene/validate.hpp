@@ -64,9 +64,9 @@ bool up_is_parallel(const glm::dvec3& eye, const glm::dvec3& look_at, const glm:
 // +1 (no mirror).
 bool is_rotation(const glm::dmat3& m);
 
-// True when some triangle has an emissive material or some emitter (point,
-// spot, directional, constant) is not black. Light comes only from those
-// (spheres cannot emit), so a scene without one renders black.
+// True when some triangle or sphere has an emissive material or some emitter
+// (point, spot, directional, constant, envmap) is not black. Light comes only
+// from those, so a scene without one renders black.
 bool has_emitter(const Scene& scene);
 
 // Checks a complete Scene against every rule the loader enforces (finite values

@@ -305,3 +305,68 @@ TEST_CASE("emitters: area lights and a point light together add up", "[emitters]
     CHECK(test::sigmas_apart(s, sum) < kSigmas);
     CHECK(s.standard_error < 0.01 * s.mean);
 }
+
+TEST_CASE("emitters: a sphere light gives a diffuse plane rho / pi * pi L r^2 cos / d^2",
+          "[emitters][sphere-light][statistical]") {
+    // A sphere of radiance L wholly above the floor (height h > r) is seen
+    // whole from every floor point, and gives it E = pi L (r / d)^2 cos
+    // beta exactly, d the distance to the centre (a uniformly bright sphere
+    // acts as a point of intensity pi r^2 L). A large near sphere beside the
+    // view (its cone up to 90 degrees wide) and a small far one above it (a
+    // 1e-3 radian cone).
+    const glm::dvec3 rho(0.8, 0.6, 0.4), radiance(4.0, 3.0, 2.0);
+    struct Case {
+        const char* what;
+        glm::dvec3 center;
+        double radius;
+        std::uint32_t spp;
+    };
+    for (const Case& c : {Case{"near", {2.3, 0.0, 0.85}, 0.8, 256},
+                          Case{"small and far", {0.5, 0.4, 30.0}, 0.03, 64}}) {
+        INFO(c.what);
+        FloorView v = floor_view(rho, 2.0, 60.0, 16, 12);
+        auto light = test::add_material(v.scene, MaterialKind::Emitter, glm::dvec3(0.0), radiance);
+        v.scene.spheres.push_back({c.center, c.radius, light});
+        const double geometry = rectangle_mean(v.half_x, v.half_y, [&](double x, double y) {
+            const double dx = x - c.center.x, dy = y - c.center.y;
+            const double d = std::sqrt(dx * dx + dy * dy + c.center.z * c.center.z);
+            return c.center.z / (d * d * d);
+        });
+        IntegratorOptions options;
+        options.sampler = Sampler::Independent;
+        test::Rendered r = test::render(v.scene, c.spp, 1, 0, options);
+        CHECK(r.stats.nonfinite_samples == 0);
+        for (int ch = 0; ch < 3; ++ch) {
+            // The camera sees only the floor (the near sphere is outside
+            // the view, the far one behind the camera).
+            const double expected = rho[ch] * radiance[ch] * c.radius * c.radius * geometry;
+            test::MeanWithError m = test::image_mean(r.film, ch);
+            INFO("channel " << ch << ": " << m.mean << " +- " << m.standard_error << ", expected "
+                            << expected);
+            CHECK(std::abs(m.mean - expected) < kSigmas * m.standard_error + 1e-5 * expected);
+            CHECK(m.standard_error < 0.01 * expected);
+        }
+    }
+}
+
+TEST_CASE("emitters: sphere lights are a feature switch and an emitter each",
+          "[emitters][sphere-light]") {
+    Scene scene = test::hexroom(8, 8);
+    CHECK_FALSE(analyse_features(scene).sphere_light); // its spheres do not emit
+    auto light = test::add_material(scene, MaterialKind::Emitter, glm::dvec3(0.0), glm::dvec3(5));
+    scene.spheres.push_back({{0.1, 0.2, 0.3}, 0.05, light});
+    const SceneFeatures f = analyse_features(scene);
+    CHECK(f.sphere_light);
+    CHECK_FALSE(f.planar_mirrors); // mirror next-event estimation picks triangles only
+    CHECK_FALSE(f.shadow_culling);
+    const DeviceScene flat = flatten_scene(scene, true); // with a hierarchy, which renumbers
+    REQUIRE(flat.emitters.size() == 1);
+    const WpEmitter& e = flat.emitters[0];
+    CHECK(e.kind == WP_EMITTER_SPHERE);
+    // It names its sphere by the sphere's number after the reordering.
+    REQUIRE(e.sphere < flat.spheres.size());
+    CHECK(flat.spheres[e.sphere].material == light);
+    CHECK(flat.spheres[e.sphere].center_radius.s[3] == Approx(e.position.s[3]));
+    CHECK(flat.emitter_pick > 0.0f);
+    CHECK(flat.emitter_pick < 1.0f);
+}

@@ -47,10 +47,9 @@ Scene no_mirror() {
     return scene;
 }
 
-// The hexroom without its area light; the red sphere glows instead. Spheres
-// are not lights (next-event estimation samples triangles), so the scene has
-// no lights, and the sphere's light arrives by camera rays and mirrors only
-// (with next-event estimation on) or after every bounce (off).
+// The hexroom without its area light; the red sphere glows instead: no
+// triangle lights, and the sphere is a sphere light (next-event estimation
+// samples it by its cone; without it, light arrives after every bounce).
 Scene no_light() {
     Scene scene = hexroom();
     const std::uint32_t light = material_named(scene, "light");
@@ -59,9 +58,8 @@ Scene no_light() {
     return scene;
 }
 
-// Spheres only, built in code (the loader would refuse the glowing sphere):
-// a big ground sphere, a mirror sphere, a diffuse sphere and a glowing one,
-// all seen from outside.
+// Spheres only: a big ground sphere, a mirror sphere, a diffuse sphere and a
+// glowing one (a sphere light), all seen from outside.
 Scene spheres_only() {
     Scene scene;
     auto ground = test::add_material(scene, MaterialKind::Diffuse, glm::dvec3(0.7));
@@ -139,6 +137,7 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D "
           "WP_HAS_LENS=0 -D WP_HAS_POINT_LIGHT=0 -D WP_HAS_SPOT_LIGHT=0 -D "
           "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D WP_HAS_ENVMAP_LIGHT=0 -D "
+          "WP_HAS_SPHERE_LIGHT=0 -D "
           "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D WP_HAS_BITMAP_TEXTURE=0 -D "
           "WP_HAS_CHECKERBOARD_TEXTURE=0 -D "
           "WP_TRIANGLE_COUNT=26 -D "
@@ -154,6 +153,7 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=0 -D "
           "WP_HAS_LENS=0 -D WP_HAS_POINT_LIGHT=0 -D WP_HAS_SPOT_LIGHT=0 -D "
           "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D WP_HAS_ENVMAP_LIGHT=0 -D "
+          "WP_HAS_SPHERE_LIGHT=0 -D "
           "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D WP_HAS_BITMAP_TEXTURE=0 -D "
           "WP_HAS_CHECKERBOARD_TEXTURE=0 -D "
           "WP_TRIANGLE_COUNT=26 -D "
@@ -169,6 +169,7 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "-D WP_HAS_LIGHTS=0 -D WP_HAS_PLANAR_MIRRORS=0 -D WP_HAS_MIRROR_SPHERES=0 -D "
           "WP_HAS_LENS=0 -D WP_HAS_POINT_LIGHT=0 -D WP_HAS_SPOT_LIGHT=0 -D "
           "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D WP_HAS_ENVMAP_LIGHT=0 -D "
+          "WP_HAS_SPHERE_LIGHT=1 -D "
           "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D WP_HAS_BITMAP_TEXTURE=0 -D "
           "WP_HAS_CHECKERBOARD_TEXTURE=0 -D "
           "WP_TRIANGLE_COUNT=0 -D "
@@ -183,6 +184,7 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=0 -D WP_HAS_MIRROR_SPHERES=0 -D "
           "WP_HAS_LENS=0 -D WP_HAS_POINT_LIGHT=0 -D WP_HAS_SPOT_LIGHT=0 -D "
           "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D WP_HAS_ENVMAP_LIGHT=0 -D "
+          "WP_HAS_SPHERE_LIGHT=0 -D "
           "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D WP_HAS_BITMAP_TEXTURE=0 -D "
           "WP_HAS_CHECKERBOARD_TEXTURE=0 -D "
           "WP_TRIANGLE_COUNT=26 -D "
@@ -198,12 +200,12 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "-D WP_HAS_LIGHTS=0 -D WP_HAS_PLANAR_MIRRORS=0 -D WP_HAS_MIRROR_SPHERES=0 -D "
           "WP_HAS_LENS=0 -D WP_HAS_POINT_LIGHT=0 -D WP_HAS_SPOT_LIGHT=0 -D "
           "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D WP_HAS_ENVMAP_LIGHT=0 -D "
+          "WP_HAS_SPHERE_LIGHT=1 -D "
           "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D WP_HAS_BITMAP_TEXTURE=0 -D "
           "WP_HAS_CHECKERBOARD_TEXTURE=0 -D "
           "WP_TRIANGLE_COUNT=24 -D "
           "WP_SPHERE_COUNT=2 -D WP_LIGHT_COUNT=0 -D "
-          "WP_MIRROR_GROUP_TRIANGLES=0 -D WP_SHADOW_OCCLUDER_COUNT=3 -D "
-          "WP_SHADOW_OCCLUDERS=21,22,23");
+          "WP_MIRROR_GROUP_TRIANGLES=0");
     // Past the fixed-count limit: runtime counts and the hierarchy.
     CHECK(analyse_features(large()).build_options() ==
           "-D WP_HAS_TRIANGLES=1 -D WP_HAS_SPHERES=1 -D WP_HAS_DIFFUSE=1 -D WP_HAS_MIRROR=1 -D "
@@ -214,6 +216,7 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D "
           "WP_HAS_LENS=0 -D WP_HAS_POINT_LIGHT=0 -D WP_HAS_SPOT_LIGHT=0 -D "
           "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D WP_HAS_ENVMAP_LIGHT=0 -D "
+          "WP_HAS_SPHERE_LIGHT=0 -D "
           "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D WP_HAS_BITMAP_TEXTURE=0 -D "
           "WP_HAS_CHECKERBOARD_TEXTURE=0 -D WP_USE_BVH=1");
     // The general kernels: every feature, runtime counts, the scene's hierarchy.
@@ -226,6 +229,7 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D "
           "WP_HAS_LENS=1 -D WP_HAS_POINT_LIGHT=1 -D WP_HAS_SPOT_LIGHT=1 -D "
           "WP_HAS_DIRECTIONAL_LIGHT=1 -D WP_HAS_CONSTANT_LIGHT=1 -D WP_HAS_ENVMAP_LIGHT=1 -D "
+          "WP_HAS_SPHERE_LIGHT=1 -D "
           "WP_HAS_TENT_FILTER=1 -D WP_HAS_GAUSSIAN_FILTER=1 -D WP_HAS_BITMAP_TEXTURE=1 -D "
           "WP_HAS_CHECKERBOARD_TEXTURE=1 -D WP_USE_BVH=1");
     CHECK(SceneFeatures::general_for(analyse_features(hexroom())).build_options() ==
@@ -239,6 +243,7 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D "
           "WP_HAS_LENS=1 -D WP_HAS_POINT_LIGHT=1 -D WP_HAS_SPOT_LIGHT=1 -D "
           "WP_HAS_DIRECTIONAL_LIGHT=1 -D WP_HAS_CONSTANT_LIGHT=1 -D WP_HAS_ENVMAP_LIGHT=1 -D "
+          "WP_HAS_SPHERE_LIGHT=1 -D "
           "WP_HAS_TENT_FILTER=1 -D WP_HAS_GAUSSIAN_FILTER=1 -D WP_HAS_BITMAP_TEXTURE=1 -D "
           "WP_HAS_CHECKERBOARD_TEXTURE=1");
 }
@@ -261,14 +266,15 @@ TEST_CASE("features: describe() names the features and the compiled-in counts") 
           "triangles spheres diffuse mirror lights planar_mirrors mirror_spheres; counts 26+2; "
           "shadow tests 5 "
           "of 26 triangles");
-    CHECK(analyse_features(spheres_only()).describe() == "spheres diffuse mirror; counts 0+4");
+    CHECK(analyse_features(spheres_only()).describe() ==
+          "spheres diffuse mirror sphere_light; counts 0+4");
     CHECK(analyse_features(large()).describe() ==
           "triangles spheres diffuse mirror lights planar_mirrors mirror_spheres; bvh");
     CHECK(SceneFeatures::all().describe() ==
           "triangles spheres diffuse mirror conductor roughconductor dielectric thindielectric "
           "plastic roughdielectric roughplastic shading_normals lights "
           "planar_mirrors mirror_spheres lens point_light spot_light directional_light "
-          "constant_light envmap_light tent_filter gaussian_filter bitmap_texture "
+          "constant_light envmap_light sphere_light tent_filter gaussian_filter bitmap_texture "
           "checkerboard_texture");
 }
 

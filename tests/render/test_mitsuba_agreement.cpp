@@ -196,6 +196,11 @@ TEST_CASE("Mitsuba 3 agreement: an environment map, turned and scaled, with MIS"
     check_agreement("envmap", 1024);
 }
 
+TEST_CASE("Mitsuba 3 agreement: sphere lights on glossy plates (Veach's MIS scene)",
+          "[render][emitters][sphere-light][statistical]") {
+    check_agreement("veach-mis", 1024);
+}
+
 TEST_CASE("Mitsuba 3 agreement through XML: the five emitters", "[render][mitsuba][statistical]") {
     for (const char* name : {"point", "spot", "sun", "sky", "envmap"})
         check_agreement_through_xml(name, 256);

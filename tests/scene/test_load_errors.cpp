@@ -540,14 +540,6 @@ TEST_CASE("loader: every validation error names its field", "[scene][load][error
          with_shape(
              R"({"type": "sphere", "center": [0, 0, 5e30], "radius": 1, "material": "white"})"),
          "/shapes/0/center/2", "1e30"},
-        {"emitter sphere", with_shape("{" + sph + R"(, "radius": 1, "material": "light"})"),
-         "/shapes/0/material", "spheres cannot be emitters: use triangles"},
-        {"emissive diffuse sphere",
-         scene(
-             kCamera,
-             R"({"glow": {"type": "diffuse", "reflectance": [0.5, 0.5, 0.5], "emission": [0, 0, 1]}})",
-             "[{" + sph + R"(, "radius": 1, "material": "glow"}])"),
-         "/shapes/0/material", "spheres cannot be emitters"},
         {"all shapes skipped",
          with_shape(
              R"({"type": "triangle", "vertices": [[0, 0, 0], [1, 0, 0], [2, 0, 0]], "material": "white"})"),
@@ -574,7 +566,7 @@ TEST_CASE("loader: every emitter error names its field", "[scene][load][errors]"
         {"emitters not an array", with_emitters(R"({"type": "point"})"), "/emitters",
          "expected an array of emitters"},
         {"unknown emitter type", with_emitters(R"([{"type": "area"}])"), "/emitters/0/type",
-         "unknown emitter type 'area' (expected point, spot, directional or constant)"},
+         "unknown emitter type 'area' (expected point, spot, directional, constant or envmap)"},
         {"negative intensity", with_emitters("[{" + point + R"(, "intensity": [1, -2, 1]}])"),
          "/emitters/0/intensity/1", "must not be negative, got -2"},
         {"infinite intensity", with_emitters("[{" + point + R"(, "intensity": [1e999, 1, 1]}])"),
@@ -613,7 +605,7 @@ TEST_CASE("loader: every emitter error names its field", "[scene][load][errors]"
          "/emitters/0/radiance/2", "must not be negative, got -0.5"},
         {"two skies", with_emitters(R"([{"type": "constant", "radiance": [1, 1, 1]},
                            {"type": "constant", "radiance": [1, 1, 1]}])"),
-         "/emitters/1", "a second constant emitter"},
+         "/emitters/1", "a second environment (constant or envmap emitter)"},
     };
     for (const Case& c : cases) {
         INFO(c.what);
@@ -727,12 +719,6 @@ TEST_CASE("validate_scene: rejects bad hand-built scenes", "[scene][validate]") 
         wp::Scene bad = s;
         bad.triangles[0].material = 7;
         CHECK(message(bad).find("triangles[0].material") != std::string::npos);
-    }
-    {
-        wp::Scene bad = s;
-        bad.spheres.push_back(wp::Sphere{glm::dvec3(0.0), 1.0, 2}); // "light"
-        CHECK(message(bad).find("spheres[0].material: spheres cannot be emitters") !=
-              std::string::npos);
     }
     {
         wp::Scene bad = s;

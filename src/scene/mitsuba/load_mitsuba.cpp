@@ -246,10 +246,6 @@ class SceneAssembler {
         }
         const glm::dvec3 emission = emitter ? read_emitter(*emitter) : glm::dvec3(0.0);
         const std::uint32_t material = material_of(bsdf, emission);
-        if (shape.type == "sphere" && emitter && scene_.materials[material].is_emissive())
-            fail_at(emitter->where, emitter->element(),
-                    "spheres cannot be emitters in wavepath (its lights are triangles): use a "
-                    "rectangle, a disk or a mesh");
         add_shape(shape, material, scene_);
     }
 
