@@ -306,11 +306,16 @@ typedef struct {
 
 /* One emissive triangle, chosen with probability proportional to its area:
  * cdf is the running sum of areas up to and including this one, divided by
- * the total, so light sampling is a search for the first cdf > u. */
+ * the total, so light sampling is a search for the first cdf > u. `guide`
+ * makes that search O(1) for many lights (the cutpoint method, Chen and
+ * Asau 1974): in entry k, the first light whose cdf exceeds k / count, where
+ * the search for any u in [k / count, (k + 1) / count) may start
+ * (kernels/lights.h; src/render/device_scene.cpp fills it). */
 typedef struct {
     wp_uint triangle;
     wp_float cdf;
-    wp_uint pad0, pad1;
+    wp_uint guide;
+    wp_uint pad0;
 } WpLight;
 
 /* The emitters that are not emitting surfaces (Mitsuba 3's plugins of the

@@ -385,6 +385,17 @@ void flatten_emitters(const Scene& scene, const FloatFrame& frame, double triang
 
 } // namespace
 
+void set_light_guides(std::vector<WpLight>& lights) {
+    const std::size_t count = lights.size();
+    std::size_t j = 0;
+    for (std::size_t k = 0; k < count; ++k) {
+        const double start = static_cast<double>(k) / static_cast<double>(count);
+        while (j + 1 < count && static_cast<double>(lights[j].cdf) <= start)
+            ++j;
+        lights[k].guide = static_cast<wp_uint>(j);
+    }
+}
+
 std::string SceneFeatures::build_options() const {
     std::string options;
 #define WP_FEATURE_FLAG(member, kernel_switch) append_word(options, flag(#kernel_switch, member));
@@ -671,6 +682,7 @@ DeviceScene flatten_scene(const Scene& scene, bool hierarchy) {
     }
     if (!out.lights.empty())
         out.lights.back().cdf = 1.0f; // never let rounding leave u in no bin
+    set_light_guides(out.lights);
     out.light_area = static_cast<float>(total_area);
 
     flatten_emitters(scene, frame, triangle_power / (frame.scale * frame.scale), out);

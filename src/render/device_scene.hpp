@@ -150,6 +150,10 @@ wp_float4 to_float4(const glm::dvec3& v, double w = 0.0);
 // values (at most WP_TRIANGLE_INDEX_LIMIT each, wp_shared.h).
 void check_triangle_indices(std::size_t materials, std::size_t normal_sets);
 
+// Fills each light's guide (WpLight.guide, kernels/wp_shared.h): entry k the
+// first light whose cdf exceeds k / count. Part of flatten_scene.
+void set_light_guides(std::vector<WpLight>& lights);
+
 // Converts to float32 and builds the light table, and with `hierarchy` the
 // bounding volume hierarchy over triangles and spheres; the camera basis is
 // scaled so that film coordinates in [-1, 1] span the field of view.

@@ -87,8 +87,8 @@ namespace {
     X(WpBvhNode, count)                                                                            \
     X(WpLight, triangle)                                                                           \
     X(WpLight, cdf)                                                                                \
+    X(WpLight, guide)                                                                              \
     X(WpLight, pad0)                                                                               \
-    X(WpLight, pad1)                                                                               \
     X(WpEmitter, position)                                                                         \
     X(WpEmitter, direction)                                                                        \
     X(WpEmitter, radiance)                                                                         \

@@ -1,9 +1,11 @@
 // sampling.h on the device: cosine-weighted hemisphere directions and uniform
 // triangle points, checked against analytic moments (within 5 standard errors
 // taken from the sample variance) and chi-square uniformity tests.
+#include "render/device_scene.hpp"
 #include "rng.h"
 #include "support/kernel_test_util.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <iterator>
@@ -362,6 +364,7 @@ __kernel void pick_lights(__global const WpLight* lights, uint light_count, uint
         lights.push_back(light);
     }
     REQUIRE(lights.back().cdf == 1.0f);
+    wp::set_light_guides(lights); // as flatten_scene does (0 would do as well, only slower)
 
     // Every boundary, the floats on either side of it, and random u in [0, 1).
     std::vector<cl_float> us = {0.0f, std::nextafter(1.0f, 0.0f)};
@@ -406,4 +409,72 @@ __kernel void pick_lights(__global const WpLight* lights, uint light_count, uint
             if (light_count == 1)
                 CHECK(picked[0] == us.size());
         }
+}
+
+// Many lights of very unequal areas (a few large ones, runs of tiny and of
+// zero-area ones): the guided search (WpLight.guide) finds exactly the light
+// the binary search finds, at every cdf, on both sides of it, at the bins'
+// edges k / count and at random u.
+TEST_CASE("wp_pick_light's guided search finds the binary search's light among 10^4",
+          "[cl][sampling]") {
+    const char* const source = R"CL(
+#include "lights.h"
+__kernel void pick_lights(__global const WpLight* lights, uint light_count, uint count,
+                          __global const float* u, __global uint* out) {
+    uint i = get_global_id(0);
+    if (i >= count) return;
+    out[i] = wp_pick_light(lights, light_count, u[i]);
+}
+)CL";
+    const std::size_t n = 10007;
+    std::vector<double> areas(n);
+    for (std::size_t i = 0; i < n; ++i)
+        areas[i] = i % 997 == 0 ? 500.0 : (i % 13 == 0 ? 0.0 : (i % 7 == 0 ? 1e-6 : 1.0));
+    double total = 0.0;
+    for (double a : areas)
+        total += a;
+    std::vector<WpLight> lights(n);
+    double running = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+        running += areas[i];
+        lights[i].triangle = cl_uint(i);
+        lights[i].cdf = float(running / total);
+    }
+    lights.back().cdf = 1.0f;
+    wp::set_light_guides(lights);
+    std::vector<cl_float> us;
+    for (const WpLight& light : lights)
+        for (float u : {std::nextafter(light.cdf, 0.0f), light.cdf})
+            if (u < 1.0f)
+                us.push_back(u);
+    for (std::size_t k = 0; k < n; ++k) {
+        const float edge = float(double(k) / double(n));
+        us.push_back(edge);
+        us.push_back(std::nextafter(edge, 0.0f));
+    }
+    for (cl_uint i = 0; i < 20000; ++i)
+        us.push_back(wp_random(5u, i, 0u, 0u, WP_DIM_LIGHT_PICK));
+    for (float& u : us)
+        u = std::max(0.0f, u);
+    cl::Kernel kernel(program(source, "pick_light_test.cl"), "pick_lights");
+    cl::Buffer light_buffer = upload(lights), u_buffer = upload(us);
+    cl::Buffer out = upload(std::vector<cl_uint>(us.size(), 0xffffffffu));
+    set_args(kernel, light_buffer, cl_uint(n), cl_uint(us.size()), u_buffer, out);
+    launch(kernel, us.size());
+    const std::vector<cl_uint> got = download<cl_uint>(out, us.size());
+    std::size_t wrong = 0;
+    for (std::size_t i = 0; i < us.size(); ++i) {
+        // The binary search of the kernels before guides, on the host.
+        std::size_t low = 0, high = n - 1;
+        while (low < high) {
+            const std::size_t mid = (low + high) / 2;
+            if (lights[mid].cdf > us[i])
+                high = mid;
+            else
+                low = mid + 1;
+        }
+        wrong += got[i] != low;
+    }
+    INFO(wrong << " of " << us.size() << " picks differ");
+    CHECK(wrong == 0);
 }
