@@ -1,5 +1,5 @@
-// Mitsuba 3's shape plugins as wavepath geometry: meshes from `obj` and
-// `ply` files (through wavepath's own mesh readers, scene/mesh.hpp),
+// Mitsuba 3's shape plugins as wavepath geometry: meshes from `obj`, `ply`
+// and `serialized` files (through wavepath's own mesh readers, scene/mesh.hpp),
 // `rectangle`, `cube` and `disk` as triangles, `sphere` as a sphere, each
 // placed by its to_world, with flip_normals and face_normals.
 #pragma once
