@@ -249,6 +249,11 @@ void add_sphere(Parameters& p, std::uint32_t material, Scene& scene) {
 
 } // namespace
 
+bool is_supported_shape(const std::string& type) {
+    return type == "obj" || type == "ply" || type == "serialized" || type == "sphere" ||
+           type == "rectangle" || type == "cube" || type == "disk";
+}
+
 void add_shape(const Object& shape, std::uint32_t material, Scene& scene) {
     Parameters p(shape);
     refuse_other_children(shape);

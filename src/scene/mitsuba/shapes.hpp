@@ -17,6 +17,10 @@ namespace wp::mitsuba {
 // (2 pi) = 0.9999 of the round disk's.
 inline constexpr int kDiskSegments = 256;
 
+// Whether add_shape reads shapes of this plugin (--lenient leaves the
+// others out).
+bool is_supported_shape(const std::string& type);
+
 // Appends the shape's triangles or sphere to `scene` with `material`. The
 // shape's <bsdf> and <emitter> children are the caller's; any other child is
 // refused. Mesh files are recorded in Scene::files. Throws SceneError.
