@@ -13,6 +13,7 @@
 #include <glm/geometric.hpp>
 
 #include "scene/load.hpp"
+#include "scene/mitsuba_export.hpp"
 #include "support/temp_dir.hpp"
 
 namespace {
@@ -237,6 +238,23 @@ TEST_CASE("mitsuba import: serialized shapes by shape_index, placed and flipped"
     check_near(normal_of(s.triangles[6]), {0, 0, 1});
     // A texture coordinate of the file, as it is.
     CHECK(s.triangles[4].uvs[0] == glm::dvec2(0, 0));
+}
+
+TEST_CASE("mitsuba import: the path integrator's hide_emitters, read and exported",
+          "[scene][mitsuba][import]") {
+    wp::test::TempDir dir;
+    const wp::Scene shown = load(dir, R"(<integrator type="path"/>)");
+    CHECK_FALSE(shown.hide_emitters);
+    const wp::Scene hidden = load(
+        dir,
+        R"(<integrator type="path"><boolean name="hide_emitters" value="true"/></integrator>)");
+    CHECK(hidden.hide_emitters);
+    // export-mitsuba writes it, and the export reads back with it.
+    for (const wp::Scene* scene : {&shown, &hidden}) {
+        const wp::MitsubaExport out = wp::export_mitsuba(*scene, "back");
+        wp::write_mitsuba(out, dir / "back.xml");
+        CHECK(wp::load_scene(dir / "back.xml").hide_emitters == scene->hide_emitters);
+    }
 }
 
 TEST_CASE("mitsuba import: bad input is one line with the file, line and column",

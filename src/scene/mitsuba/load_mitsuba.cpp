@@ -121,7 +121,8 @@ bool is_supported_scene_emitter(const std::string& type) {
 // alone (a cap of 1024 bounces guards lossless corridors), which is
 // Mitsuba's max_depth -1; a finite max_depth is noted, since it darkens
 // Mitsuba's image. rr_depth changes the noise only.
-void read_integrator(const Object& integrator, std::vector<std::string>& warnings) {
+void read_integrator(const Object& integrator, Scene& scene) {
+    std::vector<std::string>& warnings = scene.warnings;
     Parameters p(integrator);
     if (integrator.type != "path")
         p.fail("unsupported integrator (wavepath's is Mitsuba's path)");
@@ -132,9 +133,7 @@ void read_integrator(const Object& integrator, std::vector<std::string>& warning
                            " is not applied: wavepath ends paths by Russian roulette only (as "
                            "max_depth -1); set --max-depth for a cap");
     p.ignore("rr_depth");
-    if (p.boolean("hide_emitters").value_or(false))
-        p.fail("hide_emitters", "hide_emitters is not supported (wavepath shows the lights a "
-                                "camera ray hits)");
+    scene.hide_emitters = p.boolean("hide_emitters").value_or(false);
     for (const auto& child : integrator.children)
         fail_at(child->where, child->element(),
                 "wavepath does not support a <" + child->tag + "> inside " + integrator.element());
@@ -175,7 +174,7 @@ class SceneAssembler {
                                      "path) and that integrator's defaults");
                     continue;
                 }
-                read_integrator(object, scene_.warnings);
+                read_integrator(object, scene_);
             } else if ((object.tag == "bsdf" || object.tag == "texture") && !object.id.empty()) {
                 // Declared for <ref>s; read where a shape uses it.
             } else if (object.tag == "emitter") {
