@@ -13,7 +13,7 @@ build=${1:?usage: make-corpora.sh BUILD_DIR OUT_DIR}
 out=${2:?usage: make-corpora.sh BUILD_DIR OUT_DIR}
 seeds=$out/seeds
 rm -rf "$seeds" "$out/scene-cwd"
-mkdir -p "$seeds"/{scene,xml,obj,ply,exr,pfm} "$out/scene-cwd"
+mkdir -p "$seeds"/{scene,xml,obj,ply,serialized,exr,pfm} "$out/scene-cwd"
 
 "$build/fuzz/wavepath_fuzz_seeds" "$out/generated"
 cp "$out"/generated/exr/* "$seeds/exr/"
@@ -25,10 +25,11 @@ cp scenes/*.json scenes/stress/*.json tests/oclgrind/scenes/*.json fuzz/seeds/sc
 cp tests/data/mitsuba/*.xml "$seeds/xml/"
 cp tests/data/meshes/*.obj fuzz/seeds/obj/*.obj "$seeds/obj/"
 cp tests/data/meshes/*.ply "$seeds/ply/"
+cp tests/data/meshes/*.serialized "$seeds/serialized/"
 cp tests/data/hexroom-32-ref.exr "$seeds/exr/"
 cp tests/data/meshes/* "$out/scene-cwd/"
 
-for target in scene xml obj ply exr pfm; do
+for target in scene xml obj ply serialized exr pfm; do
   if compgen -G "tests/data/fuzz/$target/*" >/dev/null; then
     cp tests/data/fuzz/"$target"/* "$seeds/$target/"
   fi

@@ -2,13 +2,16 @@
 // the in-memory form of load_mesh: the OBJ or PLY reader, triangulation, the
 // degenerate-triangle filter and normals. Built twice, as obj_fuzzer and
 // ply_fuzzer; WAVEPATH_FUZZ_MESH_NAME ("fuzz.obj" or "fuzz.ply") picks the
-// reader by its extension.
+// reader by its extension; serialized_fuzzer ("fuzz.serialized") reads
+// Mitsuba's zlib-compressed meshes.
 //
 // The triangles' `usemtl` names are then matched against scene materials
 // (resolve_materials), as the scene loader does. Each input is read twice, to
 // reach both halves of the loader: once keeping the file's normals with the
 // identity transform, once computing smooth normals under a mirroring
-// transform (which reverses every triangle's winding).
+// transform (which reverses every triangle's winding); the second asks for
+// mesh 1, which sends a .serialized file through its end-of-file dictionary
+// (other formats have one mesh and ignore the index).
 //
 // A MeshError with a clean one-line message (clean_error.hpp) is the expected
 // answer to bad input, and warnings must be clean too; anything else is a
@@ -28,6 +31,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     wp::MeshLoadOptions smooth_mirrored;
     smooth_mirrored.normals = wp::NormalSource::Smooth;
     smooth_mirrored.transform = wp::Transform::scale(glm::dvec3(-1.0, 2.0, 0.5));
+    smooth_mirrored.shape_index = 1;
     // The scene's materials that `usemtl` names are matched against, as the
     // scene loader does; names in the seeds ("red", "blue") and others.
     static const std::vector<wp::Material> scene_materials = {{"white"}, {"red"}, {"blue"}};

@@ -16,14 +16,14 @@ seconds=${3:-600}
 jobs=${4:-2}
 shift $(($# < 4 ? $# : 4))
 targets=("$@")
-((${#targets[@]})) || targets=(scene xml obj ply exr pfm)
+((${#targets[@]})) || targets=(scene xml obj ply serialized exr pfm)
 dicts=$(realpath fuzz/dictionaries)
 
 bash fuzz/make-corpora.sh "$build" "$out"
 
 # Longest input per target: a few times the largest seed, so that mutations
 # can grow a file, without letting the fuzzer spend its time on huge inputs.
-declare -A max_len=([scene]=16384 [xml]=16384 [obj]=8192 [ply]=8192 [exr]=16384 [pfm]=4096)
+declare -A max_len=([scene]=16384 [xml]=16384 [obj]=8192 [ply]=8192 [serialized]=8192 [exr]=16384 [pfm]=4096)
 
 run_one() {
   local target=$1

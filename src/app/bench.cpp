@@ -77,7 +77,7 @@ CLI::App* add_bench_subcommand(CLI::App& app, BenchCommand& command) {
         "bench", "Print throughput figures for fixed workloads: a render of the scene with and "
                  "without path regeneration, and each tracing stage alone on 2^20 random rays");
     b->add_option("scene", command.scene, "Scene file")->capture_default_str();
-    add_scene_define_option(*b);
+    add_scene_options(*b);
     add_device_option(*b, command.device);
     b->add_option("--size", command.size, "Rendered workload: size x size pixels")
         ->capture_default_str()
@@ -96,7 +96,7 @@ CLI::App* add_bench_subcommand(CLI::App& app, BenchCommand& command) {
 
 int run_bench(const BenchCommand& command) {
     DeviceContext device(select_device(command.device), true);
-    Scene scene = load_scene(command.scene, scene_defines());
+    Scene scene = load_scene(command.scene, scene_read_options());
     std::printf("wavepath bench on %s (%s)\n\n", device.info.name.c_str(),
                 device.info.driver_version.c_str());
 

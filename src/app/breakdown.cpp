@@ -74,7 +74,7 @@ CLI::App* add_breakdown_subcommand(CLI::App& app, BreakdownCommand& command) {
                      "film, no reference needed), near the light and elsewhere; see "
                      "docs/convergence.md");
     c->add_option("scene", command.scene, "Scene file (JSON)")->required();
-    add_scene_define_option(*c);
+    add_scene_options(*c);
     c->add_option("--reference,-r", command.reference,
                   "A high-sample reference (.exr or .pfm) of the same size: the full "
                   "estimate's MSE against it too, and the near-light pixels taken from it");

@@ -167,23 +167,24 @@ void add_device_list_option(CLI::App& command, std::string& devices) {
 
 namespace {
 
-// One command runs per process, so its -D values can live here rather than
-// in each command's struct, where every loader call would have to pass them.
-std::map<std::string, std::string>& defines() {
-    static std::map<std::string, std::string> values;
+// One command runs per process, so its -D values and --lenient can live here
+// rather than in each command's struct, where every loader call would have
+// to pass them.
+SceneReadOptions& read_options() {
+    static SceneReadOptions values;
     return values;
 }
 
 } // namespace
 
-void add_scene_define_option(CLI::App& command) {
+void add_scene_options(CLI::App& command) {
     command
         .add_option_function<std::vector<std::string>>(
             "-D,--define",
             [](const std::vector<std::string>& given) {
                 for (const std::string& text : given) {
                     const std::size_t equals = text.find('=');
-                    defines()[text.substr(0, equals)] = text.substr(equals + 1);
+                    read_options().defines[text.substr(0, equals)] = text.substr(equals + 1);
                 }
             },
             "name=value: sets $name in a Mitsuba XML scene, as Mitsuba's -D does (over the "
@@ -194,10 +195,15 @@ void add_scene_define_option(CLI::App& command) {
                 return "expected name=value, got '" + text + "'";
             return "";
         });
+    command.add_flag_callback(
+        "--lenient", [] { read_options().lenient = true; },
+        "a Mitsuba XML scene: render a BSDF wavepath cannot read as a grey diffuse, and leave "
+        "out shapes, emitters and integrators of plugins it has not, each with a warning "
+        "(docs/mitsuba-import.md)");
 }
 
-const std::map<std::string, std::string>& scene_defines() {
-    return defines();
+const SceneReadOptions& scene_read_options() {
+    return read_options();
 }
 
 void add_image_size_options(CLI::App& command, int& width, int& height) {

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "render/integrator_options.hpp"
+#include "scene/scene_read_options.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -45,11 +46,13 @@ void add_device_list_option(CLI::App& command, std::string& devices);
 // (not given) keeps the scene's resolution.
 void add_image_size_options(CLI::App& command, int& width, int& height);
 
-// -D name=value (repeatable): a Mitsuba XML scene's `$name`, as Mitsuba's own
-// -D sets it (docs/mitsuba-import.md). The values go to scene_defines().
-void add_scene_define_option(CLI::App& command);
+// How a Mitsuba XML scene is read (docs/mitsuba-import.md): -D name=value
+// (repeatable), a `$name` as Mitsuba's own -D sets it, and --lenient, which
+// replaces or leaves out what wavepath cannot read, with warnings. They go
+// to scene_read_options().
+void add_scene_options(CLI::App& command);
 
-// The -D values of this run's command, for load_scene.
-const std::map<std::string, std::string>& scene_defines();
+// This run's -D values and --lenient, for load_scene.
+const SceneReadOptions& scene_read_options();
 
 } // namespace wp

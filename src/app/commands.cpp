@@ -134,7 +134,7 @@ CLI::App* add_render_subcommand(CLI::App& app, RenderCommand& command) {
     CLI::App* r = app.add_subcommand("render", "Render a scene to an image");
     r->add_option("scene", command.scene, "Scene file (JSON, see docs/scene-format.md)")
         ->required();
-    add_scene_define_option(*r);
+    add_scene_options(*r);
     r->add_option("--out,-o", command.out,
                   "Output image; its extension picks the format: .exr or .pfm (linear HDR), "
                   ".png (view)")
@@ -173,7 +173,7 @@ CLI::App* add_render_subcommand(CLI::App& app, RenderCommand& command) {
 }
 
 Scene load_scene_for_render(const std::string& path, int width, int height) {
-    Scene scene = load_scene(path, scene_defines());
+    Scene scene = load_scene(path, scene_read_options());
     for (const std::string& warning : scene.warnings)
         std::cerr << "wavepath: warning: " << warning << "\n";
     if (!has_emitter(scene))

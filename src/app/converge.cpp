@@ -24,7 +24,7 @@ CLI::App* add_converge_subcommand(CLI::App& app, ConvergeCommand& command) {
         "converge", "Render progressively and report the error against render time at 1, 2, "
                     "4, ... samples per pixel (CSV, SVG plot); see docs/convergence.md");
     c->add_option("scene", command.scene, "Scene file (JSON); not needed with --replot");
-    add_scene_define_option(*c);
+    add_scene_options(*c);
     c->add_option("--reference,-r", command.reference,
                   "Reference image (.exr or .pfm) of the same size: the true error is measured. "
                   "Without one the error is estimated from the even/odd half images");

@@ -17,7 +17,7 @@ CLI::App* add_export_mitsuba_subcommand(CLI::App& app, ExportMitsubaCommand& com
         "export-mitsuba", "Write the scene as a Mitsuba 3 XML scene, with its triangles as one "
                           "PLY file per material beside it (docs/mitsuba-export.md)");
     e->add_option("scene", command.scene, "Scene file (JSON)")->required();
-    add_scene_define_option(*e);
+    add_scene_options(*e);
     e->add_option("out", command.out, "The Mitsuba scene to write (.xml)")->required();
     e->add_option("--spp,-s", command.spp, "Samples per pixel of Mitsuba's sampler")
         ->capture_default_str()

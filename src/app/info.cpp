@@ -274,7 +274,7 @@ CLI::App* add_info_subcommand(CLI::App& app, InfoCommand& command) {
     i->add_option("scene", command.scene,
                   "Scene file (JSON), or an image (.exr, .png, .pfm) whose metadata to print")
         ->required();
-    add_scene_define_option(*i);
+    add_scene_options(*i);
     add_device_option(*i, command.device);
     // All of them, since the estimator's options are build options too.
     add_integrator_options(*i, command.integrator);
@@ -286,7 +286,7 @@ CLI::App* add_kernel_source_subcommand(CLI::App& app, KernelSourceCommand& comma
         "kernel-source", "Print the kernel build options of a scene; write the expanded source");
     k->group(""); // hidden: a tool for scripts (.ci/gpu-targets-check), not for users
     k->add_option("scene", command.scene, "Scene file (JSON)")->required();
-    add_scene_define_option(*k);
+    add_scene_options(*k);
     k->add_option("--source", command.source,
                   "Write the program text, every #include expanded as the host does");
     add_integrator_options(*k, command.integrator);
@@ -295,7 +295,7 @@ CLI::App* add_kernel_source_subcommand(CLI::App& app, KernelSourceCommand& comma
 
 int run_kernel_source(const KernelSourceCommand& command) {
     check_output(command.source);
-    const Scene scene = load_scene(command.scene, scene_defines());
+    const Scene scene = load_scene(command.scene, scene_read_options());
     const IntegratorOptions& options = command.integrator;
     const SceneFeatures compiled = compiled_features(integrator_features(scene, options), options);
     if (!command.source.empty()) {
@@ -309,7 +309,7 @@ int run_kernel_source(const KernelSourceCommand& command) {
 int run_info(const InfoCommand& command) {
     if (is_image_path(command.scene))
         return print_image_info(command.scene);
-    Scene scene = load_scene(command.scene, scene_defines());
+    Scene scene = load_scene(command.scene, scene_read_options());
     print_scene(command.scene, scene);
 
     DeviceContext device(select_device(command.device));

@@ -19,7 +19,7 @@ std::optional<int> run_render_as_mpi_worker(const RenderCommand& command) {
         return run_mpi_worker(
             job,
             [&] {
-                Scene scene = load_scene(command.scene, scene_defines());
+                Scene scene = load_scene(command.scene, scene_read_options());
                 if (command.width > 0)
                     scene.camera.width = command.width;
                 if (command.height > 0)

@@ -137,9 +137,23 @@ ChosenLaunchPlan choose_launch_plan(LaunchPlan requested, const DeviceInfo& devi
     return chosen;
 }
 
+namespace {
+
+// A scene with hide_emitters (Mitsuba's) leaves out the light a camera ray
+// sees directly: the camera path type, which the kernels then track
+// (kernels/path_type.h); --path-types may have left out others already.
+IntegratorOptions with_scene_settings(IntegratorOptions options, const Scene& scene) {
+    if (scene.hide_emitters)
+        options.path_types &= ~(1u << WP_PATH_TYPE_CAMERA);
+    return options;
+}
+
+} // namespace
+
 WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const Scene& scene,
                                          IntegratorOptions options)
-    : device_(device), features_(integrator_features(scene, options)), options_(options),
+    : device_(device), features_(integrator_features(scene, with_scene_settings(options, scene))),
+      options_(with_scene_settings(options, scene)),
       group_size_(wp::work_group_size_for(device.info)) {
     const int width = scene.camera.width, height = scene.camera.height;
     pixel_count_ = static_cast<std::uint32_t>(width) * static_cast<std::uint32_t>(height);

@@ -1031,17 +1031,26 @@ Scene parse_scene(std::string_view json_text, const std::string& source_name) {
 }
 
 Scene load_scene(const std::filesystem::path& path) {
-    return load_scene(path, {});
+    return load_scene(path, SceneReadOptions{});
 }
 
 Scene load_scene(const std::filesystem::path& path,
                  const std::map<std::string, std::string>& defines) {
+    return load_scene(path, SceneReadOptions{defines});
+}
+
+Scene load_scene(const std::filesystem::path& path, const SceneReadOptions& options) {
     if (lower_extension(path) == ".xml")
-        return load_mitsuba_scene(path, defines);
+        return load_mitsuba_scene(path, options);
+    const auto& defines = options.defines;
     if (!defines.empty())
         throw SceneError(one_line("-D " + defines.begin()->first + "=...: '" + path.string() +
                                   "' is a JSON scene, which has no $names to set (-D is for "
                                   "Mitsuba XML scenes)"));
+    if (options.lenient)
+        throw SceneError(one_line("--lenient: '" + path.string() +
+                                  "' is a JSON scene, which wavepath reads strictly (--lenient "
+                                  "is for Mitsuba XML scenes)"));
     const std::string name = path.string();
     std::string text;
     try {

@@ -12,6 +12,7 @@
 #include <string_view>
 
 #include "scene/scene.hpp"
+#include "scene/scene_read_options.hpp"
 
 namespace wp {
 
@@ -27,6 +28,10 @@ Scene load_scene(const std::filesystem::path& path);
 // defines given for one are a SceneError that says so.
 Scene load_scene(const std::filesystem::path& path,
                  const std::map<std::string, std::string>& defines);
+
+// The same with -D's defines and --lenient (scene_read_options.hpp); a JSON
+// scene refuses either, as it has no `$name`s and is read strictly.
+Scene load_scene(const std::filesystem::path& path, const SceneReadOptions& options);
 
 // Parses and validates a scene from JSON text. source_name is used in messages
 // and stored in Scene::source; mesh files named by the scene are found relative

@@ -52,11 +52,12 @@ std::string read_whole_file(const std::filesystem::path& path) {
 // Throws unless the name has a mesh extension; checked before the file is read.
 void check_mesh_extension(const std::filesystem::path& path) {
     const std::string ext = lower_extension(path);
-    if (ext != ".obj" && ext != ".ply")
-        throw MeshError::in_file(path, ext.empty() ? "unknown mesh format: the file name has no "
-                                                     "extension (expected .obj or .ply)"
-                                                   : "unknown mesh format '" + ext +
-                                                         "' (expected .obj or .ply)");
+    if (ext != ".obj" && ext != ".ply" && ext != ".serialized")
+        throw MeshError::in_file(path, ext.empty()
+                                           ? "unknown mesh format: the file name has no "
+                                             "extension (expected .obj, .ply or .serialized)"
+                                           : "unknown mesh format '" + ext +
+                                                 "' (expected .obj, .ply or .serialized)");
 }
 
 std::string format_number(double x) {
@@ -151,10 +152,11 @@ TriangleMesh load_mesh(const std::filesystem::path& path, const MeshLoadOptions&
 TriangleMesh parse_mesh(const std::string& bytes, const std::filesystem::path& name,
                         const MeshLoadOptions& options) {
     check_mesh_extension(name);
-    PolygonMesh poly = lower_extension(name) == ".obj"
-                           ? read_obj(name, bytes, options.normals == NormalSource::File,
-                                      options.texture_coordinates)
-                           : read_ply(name, bytes);
+    const std::string ext = lower_extension(name);
+    PolygonMesh poly = ext == ".obj" ? read_obj(name, bytes, options.normals == NormalSource::File,
+                                                options.texture_coordinates)
+                       : ext == ".ply" ? read_ply(name, bytes)
+                                       : read_serialized(name, bytes, options.shape_index);
     return finish(name, std::move(poly), options);
 }
 

@@ -1,10 +1,11 @@
 // Triangle meshes read from files: Wavefront OBJ (obj_reader.cpp, through
-// Debian's tinyobjloader) and PLY in ASCII and both binary byte orders
-// (ply_reader.cpp). load_mesh() reads a file, triangulates its polygons and
-// strips, drops degenerate triangles, applies the object's transform and, on
-// request, computes smooth vertex normals. The result is an indexed mesh in
-// double precision; turning it into scene triangles is the scene loader's job.
-// Formats, options and every error message are described in docs/meshes.md.
+// Debian's tinyobjloader), PLY in ASCII and both binary byte orders
+// (ply_reader.cpp) and Mitsuba's zlib-compressed .serialized
+// (serialized_reader.cpp, through Debian's zlib). load_mesh() reads a file, triangulates its
+// polygons and strips, drops degenerate triangles, applies the object's transform and, on request,
+// computes smooth vertex normals. The result is an indexed mesh in double precision; turning it
+// into scene triangles is the scene loader's job. Formats, options and every error message are
+// described in docs/meshes.md.
 #pragma once
 
 #include <array>
@@ -61,6 +62,9 @@ struct MeshLoadOptions {
     // split along texture seams too, which a scene without textures has no
     // use for (and "smooth" normals would then differ across the seams).
     bool texture_coordinates = true;
+    // Which mesh of a .serialized file, which may hold several (Mitsuba's
+    // shape_index); other formats hold one and ignore it.
+    std::uint32_t shape_index = 0;
 };
 
 // An indexed triangle mesh. Every triangle has a non-zero area (degenerate ones
@@ -89,7 +93,8 @@ struct TriangleMesh {
     bool has_normals() const { return !normals.empty(); }
 };
 
-// Reads the mesh file, choosing the format by extension (.obj or .ply, any case).
+// Reads the mesh file, choosing the format by extension (.obj, .ply or .serialized,
+// any case).
 // Throws MeshError for a missing or unreadable file, an unknown extension, and
 // every problem listed in docs/meshes.md (bad indices, faces with fewer than three
 // vertices, non-finite coordinates, coordinates beyond scene_limits::max_coordinate

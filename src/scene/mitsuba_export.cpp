@@ -280,14 +280,16 @@ std::string area_emitter(const Material& m) {
            "\n        </emitter>\n";
 }
 
-std::string integrator() {
+std::string integrator(const Scene& scene) {
     // wavepath ends paths by Russian roulette and cuts them at 1024 bounces as
     // a guard against lossless mirror corridors; no path reaches the cap in a
     // scene that absorbs anything. Mitsuba's `path` with no depth limit (-1)
     // and its own roulette (from depth rr_depth = 5) estimates the same
     // integral: both are unbiased, so the images agree in expectation.
-    return "    <integrator type=\"path\">\n"
-           "        <integer name=\"max_depth\" value=\"-1\"/>\n"
+    return std::string("    <integrator type=\"path\">\n"
+                       "        <integer name=\"max_depth\" value=\"-1\"/>\n") +
+           (scene.hide_emitters ? "        <boolean name=\"hide_emitters\" value=\"true\"/>\n"
+                                : "") +
            "    </integrator>\n";
 }
 
@@ -485,7 +487,7 @@ MitsubaExport export_mitsuba(const Scene& scene, const std::string& mesh_prefix,
                      "; render with Mitsuba 3 (docs/mitsuba-export.md)") +
          "\n";
     x += "<scene version=\"3.0.0\">\n";
-    x += integrator();
+    x += integrator(scene);
     x += sensor(scene, options);
     for (std::size_t i = 0; i < scene.materials.size(); ++i)
         x += bsdf(scene, scene.materials[i], i);

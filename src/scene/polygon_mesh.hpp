@@ -38,12 +38,15 @@ struct PolygonMesh {
     }
 };
 
-// The readers, chosen by load_mesh(). `text` is the whole file; `file` names it in
-// messages. Both throw MeshError. read_obj splits vertices by normal only when
+// The readers, chosen by load_mesh() by the file's extension. `text` is the whole file; `file`
+// names it in messages. Both throw MeshError. read_obj splits vertices by normal only when
 // keep_normals is set (an OBJ corner pairs a position with a normal of its own),
 // and by texture coordinate only when keep_uvs is.
 PolygonMesh read_obj(const std::filesystem::path& file, const std::string& text, bool keep_normals,
                      bool keep_uvs = true);
 PolygonMesh read_ply(const std::filesystem::path& file, const std::string& bytes);
+// Mitsuba's .serialized (serialized_reader.cpp): the mesh at shape_index.
+PolygonMesh read_serialized(const std::filesystem::path& file, const std::string& bytes,
+                            std::uint32_t shape_index);
 
 } // namespace wp

@@ -214,6 +214,11 @@ struct Scene {
     std::vector<Sphere> spheres;
     std::vector<Texture> textures; // named by materials' *_texture
     std::vector<Emitter> emitters; // point, spot, directional, constant, envmap: one environment
+    // Mitsuba's path integrator's hide_emitters: what emits is black where the
+    // camera sees it directly (a light's surface, the environment), and lights
+    // as before everywhere else, reflections included. The renderer leaves
+    // out the camera path type (WP_PATH_TYPE_CAMERA).
+    bool hide_emitters = false;
     std::vector<std::string> warnings; // e.g. skipped zero-area triangles
 };
 

@@ -21,6 +21,7 @@ std::vector<wp::MeshLoadOptions> fuzzer_options() {
     wp::MeshLoadOptions smooth_mirrored;
     smooth_mirrored.normals = wp::NormalSource::Smooth;
     smooth_mirrored.transform = wp::Transform::scale(glm::dvec3(-1.0, 2.0, 0.5));
+    smooth_mirrored.shape_index = 1; // as the fuzzer: a .serialized file's second mesh
     return {file_normals, smooth_mirrored};
 }
 
@@ -64,7 +65,7 @@ TEST_CASE("fuzz regressions: PLY inputs give clean errors", "[fuzz][mesh][ply]")
 
 TEST_CASE("parse_mesh reads a file's bytes as load_mesh reads the file", "[fuzz][mesh]") {
     for (const char* file : {"cube.obj", "crease.obj", "l_shape.obj", "relative.obj",
-                             "cube_ascii.ply", "strips.ply"}) {
+                             "cube_ascii.ply", "strips.ply", "two-meshes.serialized"}) {
         INFO(file);
         const std::filesystem::path path = mesh_test::data_dir() / file;
         const std::string bytes = fuzz_regressions::read_bytes(path);
@@ -83,10 +84,10 @@ TEST_CASE("parse_mesh reads a file's bytes as load_mesh reads the file", "[fuzz]
     }
     // The format comes from the name alone, as for a file.
     CHECK_THROWS_WITH(wp::parse_mesh("v 0 0 0\n", "mesh.stl"),
-                      "mesh.stl: unknown mesh format '.stl' (expected .obj or .ply)");
+                      "mesh.stl: unknown mesh format '.stl' (expected .obj, .ply or .serialized)");
     CHECK_THROWS_WITH(wp::parse_mesh("ply\n", "mesh"),
-                      "mesh: unknown mesh format: the file name has no extension (expected .obj "
-                      "or .ply)");
+                      "mesh: unknown mesh format: the file name has no extension (expected .obj, "
+                      ".ply or .serialized)");
 }
 
 TEST_CASE("OBJ statements a triangle mesh does not use are ignored, whatever they hold",

@@ -51,7 +51,8 @@ TEST_CASE("loader: every mesh-file error is one line naming the scene, the field
         {"a directory", R"({"type": "mesh", "material": "white", "file": "folder.obj"})",
          "/shapes/0/file: " + d + "/folder.obj: cannot open mesh file: it is a directory"},
         {"unknown format", R"({"type": "mesh", "material": "white", "file": "model.stl"})",
-         "/shapes/0/file: " + d + "/model.stl: unknown mesh format '.stl' (expected .obj or .ply)"},
+         "/shapes/0/file: " + d +
+             "/model.stl: unknown mesh format '.stl' (expected .obj, .ply or .serialized)"},
         {"mesh error with a line",
          R"({"type": "mesh", "material": "white", "file": "bad-index.obj"})",
          "/shapes/0/file: " + d +

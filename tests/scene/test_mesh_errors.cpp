@@ -68,10 +68,11 @@ TEST_CASE("mesh errors: missing file, directory and unknown format", "[mesh][err
     std::filesystem::create_directories(dir);
     CHECK(error_of(dir) == dir.string() + ": cannot open mesh file: it is a directory");
     const auto stl = write_file("model.stl", "solid x\n");
-    CHECK(error_of(stl) == stl.string() + ": unknown mesh format '.stl' (expected .obj or .ply)");
+    CHECK(error_of(stl) ==
+          stl.string() + ": unknown mesh format '.stl' (expected .obj, .ply or .serialized)");
     const auto bare = write_file("model", "v 0 0 0\n");
     CHECK(error_of(bare) == bare.string() + ": unknown mesh format: the file name has no "
-                                            "extension (expected .obj or .ply)");
+                                            "extension (expected .obj, .ply or .serialized)");
 }
 
 TEST_CASE("mesh errors: OBJ indices", "[mesh][errors][obj]") {

@@ -13,6 +13,7 @@
 #include <glm/geometric.hpp>
 
 #include "scene/load.hpp"
+#include "scene/mitsuba_export.hpp"
 #include "support/temp_dir.hpp"
 
 namespace {
@@ -209,10 +210,59 @@ TEST_CASE("mitsuba import: point, spot, directional and constant emitters at the
     CHECK(s.emitters[4].value == glm::dvec3(0.5));
 }
 
+TEST_CASE("mitsuba import: serialized shapes by shape_index, placed and flipped",
+          "[scene][mitsuba][import][serialized]") {
+    wp::test::TempDir dir;
+    fs::copy_file(fs::path(WAVEPATH_SOURCE_DIR) / "tests/data/meshes/two-meshes.serialized",
+                  dir / "m.serialized");
+    // Mesh 1 of the file (its vertex 0 at (2, 0, 0), no normals: smooth ones
+    // are computed, as Mitsuba does), moved by to_world; mesh 0 with its
+    // file normals, flipped; mesh 0 again with face_normals.
+    const wp::Scene s = load(dir, R"(<shape type="serialized">
+        <string name="filename" value="m.serialized"/><integer name="shape_index" value="1"/>
+        <transform name="to_world"><translate z="-1"/></transform></shape>
+    <shape type="serialized"><string name="filename" value="m.serialized"/>
+        <boolean name="flip_normals" value="true"/></shape>
+    <shape type="serialized"><string name="filename" value="m.serialized"/>
+        <boolean name="face_normals" value="true"/></shape>)");
+    REQUIRE(s.triangles.size() == 2 + 6);
+    check_near(s.triangles[2].v[0], {2, 0, -1});
+    CHECK(s.triangles[2].has_normals);
+    // Vertex 3 lies in triangle (1, 3, 2) alone: its smooth normal is that
+    // face's, (-1, -1, 2) / sqrt(6) (Mitsuba 3.9.1 gives the same).
+    check_near(s.triangles[3].normals[1], glm::normalize(glm::dvec3(-1, -1, 2)));
+    // flip_normals turns the winding and the file's normals round.
+    check_near(normal_of(s.triangles[4]), {0, 0, -1});
+    check_near(s.triangles[4].normals[0], {0, 0, -1});
+    CHECK_FALSE(s.triangles[6].has_normals);
+    check_near(normal_of(s.triangles[6]), {0, 0, 1});
+    // A texture coordinate of the file, as it is.
+    CHECK(s.triangles[4].uvs[0] == glm::dvec2(0, 0));
+}
+
+TEST_CASE("mitsuba import: the path integrator's hide_emitters, read and exported",
+          "[scene][mitsuba][import]") {
+    wp::test::TempDir dir;
+    const wp::Scene shown = load(dir, R"(<integrator type="path"/>)");
+    CHECK_FALSE(shown.hide_emitters);
+    const wp::Scene hidden = load(
+        dir,
+        R"(<integrator type="path"><boolean name="hide_emitters" value="true"/></integrator>)");
+    CHECK(hidden.hide_emitters);
+    // export-mitsuba writes it, and the export reads back with it.
+    for (const wp::Scene* scene : {&shown, &hidden}) {
+        const wp::MitsubaExport out = wp::export_mitsuba(*scene, "back");
+        wp::write_mitsuba(out, dir / "back.xml");
+        CHECK(wp::load_scene(dir / "back.xml").hide_emitters == scene->hide_emitters);
+    }
+}
+
 TEST_CASE("mitsuba import: bad input is one line with the file, line and column",
           "[scene][mitsuba][import][errors]") {
     wp::test::TempDir dir;
     const std::string bad = (dir / "bad.xml").string();
+    fs::copy_file(fs::path(WAVEPATH_SOURCE_DIR) / "tests/data/meshes/two-meshes.serialized",
+                  dir / "m.serialized");
     struct Case {
         const char* what;
         std::string xml;
@@ -224,8 +274,8 @@ TEST_CASE("mitsuba import: bad input is one line with the file, line and column"
         {"malformed XML", head + "<shape type=\"cube\">\n</scene>\n", "3:3", "malformed XML"},
         {"not a scene", "<sensor type=\"perspective\"/>\n", "1:1", "root element must be <scene>"},
         {"old version", "<scene version=\"0.6.0\">\n</scene>\n", "1:1", "versions 2.x and 3.x"},
-        {"unsupported shape", head + "  <shape type=\"serialized\"/>\n</scene>\n", "2:3",
-         "unsupported shape type 'serialized' (wavepath reads obj, ply"},
+        {"unsupported shape", head + "  <shape type=\"cylinder\"/>\n</scene>\n", "2:3",
+         "unsupported shape type 'cylinder' (wavepath reads obj, ply, serialized"},
         {"unsupported BSDF",
          head + kSensor + "\n<shape type=\"cube\"><bsdf type=\"hair\"/></shape></scene>", "7:20",
          "unsupported BSDF type 'hair' (wavepath reads diffuse"},
@@ -275,6 +325,14 @@ TEST_CASE("mitsuba import: bad input is one line with the file, line and column"
          head + "<shape type=\"obj\">\n<string name=\"filename\" value=\"no.obj\"/>"
                 "</shape></scene>",
          "3:1", "no.obj"},
+        {"serialized: a negative shape_index",
+         head + "<shape type=\"serialized\"><string name=\"filename\" value=\"m.serialized\"/>"
+                "\n<integer name=\"shape_index\" value=\"-1\"/></shape></scene>",
+         "3:1", "must be a mesh's index in the file (0 or more), got -1"},
+        {"serialized: shape_index past the file's meshes",
+         head + "<shape type=\"serialized\">\n<string name=\"filename\" value=\"m.serialized\"/>"
+                "<integer name=\"shape_index\" value=\"2\"/></shape></scene>",
+         "3:1", "m.serialized: shape_index 2 is out of range: the file holds 2 meshes (0 to 1)"},
         {"include cycle", head + "<include filename=\"bad.xml\"/>\n</scene>\n", "2:1",
          "include cycle"},
         {"non-uniform sphere",

@@ -149,11 +149,19 @@ Emitter read_scene_emitter(const Object& emitter) {
     return e;
 }
 
+// The top-level emitters read_scene_emitter reads (--lenient leaves the
+// others out).
+bool is_supported_scene_emitter(const std::string& type) {
+    return type == "point" || type == "spot" || type == "directional" || type == "constant" ||
+           type == "envmap";
+}
+
 // Mitsuba's `path` integrator. wavepath's paths end by Russian roulette
 // alone (a cap of 1024 bounces guards lossless corridors), which is
 // Mitsuba's max_depth -1; a finite max_depth is noted, since it darkens
 // Mitsuba's image. rr_depth changes the noise only.
-void read_integrator(const Object& integrator, std::vector<std::string>& warnings) {
+void read_integrator(const Object& integrator, Scene& scene) {
+    std::vector<std::string>& warnings = scene.warnings;
     Parameters p(integrator);
     if (integrator.type != "path")
         p.fail("unsupported integrator (wavepath's is Mitsuba's path)");
@@ -164,9 +172,7 @@ void read_integrator(const Object& integrator, std::vector<std::string>& warning
                            " is not applied: wavepath ends paths by Russian roulette only (as "
                            "max_depth -1); set --max-depth for a cap");
     p.ignore("rr_depth");
-    if (p.boolean("hide_emitters").value_or(false))
-        p.fail("hide_emitters", "hide_emitters is not supported (wavepath shows the lights a "
-                                "camera ray hits)");
+    scene.hide_emitters = p.boolean("hide_emitters").value_or(false);
     for (const auto& child : integrator.children)
         fail_at(child->where, child->element(),
                 "wavepath does not support a <" + child->tag + "> inside " + integrator.element());
@@ -175,6 +181,8 @@ void read_integrator(const Object& integrator, std::vector<std::string>& warning
 
 class SceneAssembler {
   public:
+    explicit SceneAssembler(bool lenient) : lenient_(lenient) {}
+
     Scene assemble(const std::filesystem::path& path,
                    const std::map<std::string, std::string>& defines) {
         const Document document = read_document(path, defines);
@@ -193,12 +201,27 @@ class SceneAssembler {
                 scene_.camera = read_sensor(object, scene_.warnings);
                 has_sensor = true;
             } else if (object.tag == "shape") {
+                if (lenient_ && !is_supported_shape(object.type)) {
+                    left_out(object, "left out: wavepath has no '" +
+                                         json::shorten(object.type, 40) + "' shape");
+                    continue;
+                }
                 add_shape_with_material(object);
             } else if (object.tag == "integrator") {
-                read_integrator(object, scene_.warnings);
+                if (lenient_ && object.type != "path") {
+                    left_out(object, "left out: wavepath renders with its path tracer (Mitsuba's "
+                                     "path) and that integrator's defaults");
+                    continue;
+                }
+                read_integrator(object, scene_);
             } else if ((object.tag == "bsdf" || object.tag == "texture") && !object.id.empty()) {
                 // Declared for <ref>s; read where a shape uses it.
             } else if (object.tag == "emitter") {
+                if (lenient_ && !is_supported_scene_emitter(object.type)) {
+                    left_out(object, "left out: wavepath has no '" +
+                                         json::shorten(object.type, 40) + "' emitter");
+                    continue;
+                }
                 const Emitter e = read_scene_emitter(object);
                 if ((e.kind == EmitterKind::Constant || e.kind == EmitterKind::Envmap) &&
                     find_environment(scene_.emitters))
@@ -260,7 +283,8 @@ class SceneAssembler {
         if (cached == bsdfs_.end()) {
             Material m;
             if (bsdf) {
-                m = read_bsdf(*bsdf, textures_, scene_.warnings);
+                m = lenient_ ? read_bsdf_or_grey(*bsdf)
+                             : read_bsdf(*bsdf, textures_, scene_.warnings);
                 m.name = bsdf->id.empty() ? "bsdf at " + bsdf->where.text() : bsdf->id;
             } else {
                 m.kind = MaterialKind::Diffuse;
@@ -289,6 +313,40 @@ class SceneAssembler {
         return index;
     }
 
+    // --lenient: a BSDF wavepath cannot read, for whatever reason, becomes
+    // Mitsuba's default BSDF, a diffuse 0.5, with a warning that says why;
+    // the textures it added before it failed are dropped with it.
+    Material read_bsdf_or_grey(const Object& bsdf) {
+        const TextureTable textures_before = textures_;
+        const std::size_t warnings_before = scene_.warnings.size();
+        try {
+            return read_bsdf(bsdf, textures_, scene_.warnings);
+        } catch (const SceneError& error) {
+            textures_ = textures_before;
+            scene_.warnings.resize(warnings_before);
+            // The refusal without its place when it is this element's own.
+            std::string reason = error.what();
+            const std::string own = bsdf.where.text() + ": " + bsdf.element() + ": ";
+            if (reason.rfind(own, 0) == 0)
+                reason.erase(0, own.size());
+            scene_.warnings.push_back(bsdf.where.text() + ": " + bsdf.element() +
+                                      ": replaced by a grey diffuse (reflectance 0.5), as "
+                                      "--lenient asks: " +
+                                      reason);
+            Material grey;
+            grey.kind = MaterialKind::Diffuse;
+            grey.reflectance = glm::dvec3(0.5);
+            return grey;
+        }
+    }
+
+    // --lenient: an element of a plugin wavepath does not have, left out.
+    void left_out(const Object& object, const std::string& what) {
+        scene_.warnings.push_back(object.where.text() + ": " + object.element() + ": " + what +
+                                  " (--lenient)");
+    }
+
+    bool lenient_;
     Scene scene_;
     TextureTable textures_;
     std::map<const Object*, Material> bsdfs_;
@@ -298,9 +356,8 @@ class SceneAssembler {
 } // namespace
 } // namespace mitsuba
 
-Scene load_mitsuba_scene(const std::filesystem::path& path,
-                         const std::map<std::string, std::string>& defines) {
-    return mitsuba::SceneAssembler().assemble(path, defines);
+Scene load_mitsuba_scene(const std::filesystem::path& path, const SceneReadOptions& options) {
+    return mitsuba::SceneAssembler(options.lenient).assemble(path, options.defines);
 }
 
 } // namespace wp

@@ -10,13 +10,15 @@
 #include <string>
 
 #include "scene/scene.hpp"
+#include "scene/scene_read_options.hpp"
 
 namespace wp {
 
 // Throws SceneError: one line naming the file, the line and column, the
-// element, and what wavepath supports there. `defines` set `$name`s as
-// Mitsuba's -D does (they win over the file's <default>s).
-Scene load_mitsuba_scene(const std::filesystem::path& path,
-                         const std::map<std::string, std::string>& defines = {});
+// element, and what wavepath supports there. `options.defines` set
+// `$name`s as Mitsuba's -D does (they win over the file's <default>s);
+// `options.lenient` turns the refusals docs/mitsuba-import.md lists under
+// "--lenient" into warnings in Scene::warnings, one per element.
+Scene load_mitsuba_scene(const std::filesystem::path& path, const SceneReadOptions& options = {});
 
 } // namespace wp

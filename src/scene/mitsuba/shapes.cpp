@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include <glm/geometric.hpp>
 
@@ -132,7 +133,7 @@ void add_triangles(Parameters& p, const std::vector<Corners>& local, bool keep_f
     }
 }
 
-// obj and ply through wavepath's mesh readers. Mitsuba shades a mesh by the
+// obj, ply and serialized through wavepath's mesh readers. Mitsuba shades a mesh by the
 // file's vertex normals, or by smooth ones it computes when the file has
 // none, unless face_normals is set; a mesh's front is the winding of its
 // transformed positions, so a mirroring to_world turns it around (where
@@ -150,6 +151,15 @@ void add_mesh_file(Parameters& p, const Object& shape, std::uint32_t material, S
     // The OBJ reader flips v as Mitsuba does by default (mesh.hpp); a file
     // that asks not to keeps the file's v.
     const bool flip_tex_coords = p.boolean("flip_tex_coords").value_or(true);
+    if (shape.type == "serialized") {
+        // Mitsuba refuses a negative index; wavepath's reader also checks
+        // the upper end against the file's dictionary.
+        const long long index = p.integer("shape_index").value_or(0);
+        if (index < 0 || index > std::numeric_limits<std::uint32_t>::max())
+            p.fail("shape_index",
+                   "must be a mesh's index in the file (0 or more), got " + std::to_string(index));
+        options.shape_index = static_cast<std::uint32_t>(index);
+    }
 
     const std::filesystem::path path = shape.folder() / *filename;
     scene.files.push_back(path.string());
@@ -239,11 +249,16 @@ void add_sphere(Parameters& p, std::uint32_t material, Scene& scene) {
 
 } // namespace
 
+bool is_supported_shape(const std::string& type) {
+    return type == "obj" || type == "ply" || type == "serialized" || type == "sphere" ||
+           type == "rectangle" || type == "cube" || type == "disk";
+}
+
 void add_shape(const Object& shape, std::uint32_t material, Scene& scene) {
     Parameters p(shape);
     refuse_other_children(shape);
     const std::string& type = shape.type;
-    if (type == "obj" || type == "ply") {
+    if (type == "obj" || type == "ply" || type == "serialized") {
         add_mesh_file(p, shape, material, scene);
     } else if (type == "sphere") {
         add_sphere(p, material, scene);
@@ -256,7 +271,7 @@ void add_shape(const Object& shape, std::uint32_t material, Scene& scene) {
                       type == "disk", material, scene);
     } else {
         p.fail("unsupported shape type '" + json::shorten(type, 40) +
-               "' (wavepath reads obj, ply, rectangle, cube, sphere and disk)");
+               "' (wavepath reads obj, ply, serialized, rectangle, cube, sphere and disk)");
     }
     p.finish();
 }
