@@ -13,6 +13,7 @@
 #include "scene_features.h"
 #include "sphere.h"
 #include "stage.h"
+#include "tangent.h"
 #include "triangle.h"
 
 #define WP_PRIMITIVE_TRIANGLE 0u
@@ -95,6 +96,11 @@ typedef struct {
      * (phi / 2 pi, theta / pi) about its centre, phi from +x towards +y in
      * [0, 2 pi), theta from +z. */
     float2 uv;
+#endif
+#if WP_HAS_ANISOTROPY
+    /* The direction alpha_u of an anisotropic BSDF runs along, before it is
+     * made perpendicular to the shading normal (tangent.h, bsdf/frame.h). */
+    float3 dp_du;
 #endif
 } WpSurface;
 
@@ -194,6 +200,9 @@ static inline void wp_surface_at(const WpSceneView* scene, wp_uint primitive, fl
 #if WP_HAS_TEXTURES
         s.uv = wp_sphere_uv(s.normal);
 #endif
+#if WP_HAS_ANISOTROPY
+        s.dp_du = wp_sphere_dp_du(s.normal);
+#endif
     } else
 #endif
     {
@@ -204,6 +213,9 @@ static inline void wp_surface_at(const WpSceneView* scene, wp_uint primitive, fl
         s.material = wp_triangle_material(&triangle);
 #if WP_HAS_TEXTURES
         s.uv = wp_triangle_uv(scene, &triangle, s.position);
+#endif
+#if WP_HAS_ANISOTROPY
+        s.dp_du = wp_triangle_dp_du(scene, &triangle, s.normal);
 #endif
 #if WP_HAS_SHADING_NORMALS
         if (wp_triangle_normals(&triangle) != 0u) {

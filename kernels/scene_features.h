@@ -80,6 +80,12 @@ enum { WP_TEXTURES(WP_TEXTURE_FEATURE_CHECK) wp_texture_features_checked };
 #undef WP_TEXTURE_FEATURE_CHECK
 #define WP_TEXTURE_FEATURE_TERM(KIND, Name, name, value) || WP_HAS_##KIND##_TEXTURE
 #define WP_HAS_TEXTURES (0 WP_TEXTURES(WP_TEXTURE_FEATURE_TERM))
+/* Anisotropic roughness (alpha_u != alpha_v, or two different textures):
+ * the surface record carries the tangent dp/du that alpha_u runs along
+ * (tangent.h, bsdf/frame.h). */
+#ifndef WP_HAS_ANISOTROPY
+#define WP_HAS_ANISOTROPY 1
+#endif
 #ifndef WP_HAS_SHADING_NORMALS /* triangles with vertex normals */
 #define WP_HAS_SHADING_NORMALS 1
 #endif

@@ -243,6 +243,9 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
     WpShadingPoint point;
     point.n = surface.front_face ? surface.shading_normal : -surface.shading_normal;
     point.front_face = surface.front_face;
+#if WP_HAS_ANISOTROPY /* alpha_u's direction (bsdf/frame.h) */
+    wp_shading_tangent(surface.dp_du, &point);
+#endif
 
     float3 beta = throughput[slot].xyz;
     wp_uint depth = path_depth[slot];

@@ -39,12 +39,18 @@
 #ifndef WP_BSDF_INTERFACE_H
 #define WP_BSDF_INTERFACE_H
 
+#include "scene_features.h"
 #include "wp_shared.h"
 
 /* What a BSDF sees of the surface point: the surface record. */
 typedef struct {
     float3 n;       /* unit shading normal, on the side the ray came from */
     int front_face; /* the ray came from the primitive's front side */
+#if WP_HAS_ANISOTROPY
+    /* Unit, perpendicular to n: dp/du made perpendicular to it (the direction
+     * alpha_u runs along; bsdf/frame.h). */
+    float3 tangent;
+#endif
 } WpShadingPoint;
 
 typedef struct {

@@ -6,15 +6,13 @@
  * the normals visible from v (bsdf/microfacet.h), so the weight f cos / pdf is
  * F G1(l, h) and the density of l is D_v(h) / (4 dot(v, h)).
  *
- * The local frame is the shading normal n with the tangent and bitangent of
- * wp_make_basis(n); alpha_u runs along that tangent. The surface record has no
- * tangents yet (UV parameterisations come with textures), so the direction of
- * an anisotropic highlight is fixed by the normal alone, not by the shape's
- * parameterisation as in Mitsuba. Reflection only: a direction below the
+ * The local frame is bsdf/frame.h's: alpha_u runs along the surface's
+ * tangent dp/du, as in Mitsuba. Reflection only: a direction below the
  * shading hemisphere, seen or sampled, carries nothing. */
 #ifndef WP_BSDF_ROUGHCONDUCTOR_H
 #define WP_BSDF_ROUGHCONDUCTOR_H
 
+#include "bsdf/frame.h"
 #include "bsdf/fresnel.h"
 #include "bsdf/interface.h"
 #include "bsdf/microfacet.h"
@@ -24,7 +22,7 @@ static inline void wp_roughconductor_sample(const WpMaterial* m, float3 wo,
                                             WpBsdfSample* out) {
     float3 n = point->n;
     float3 t, b;
-    wp_make_basis(n, &t, &b);
+    wp_bsdf_frame(m, point, &t, &b);
     float3 v = (float3)(-dot(wo, t), -dot(wo, b), -dot(wo, n));
     if (!(v.z > 0.0f)) {
         wp_bsdf_no_sample(out);
@@ -51,8 +49,7 @@ static inline void wp_roughconductor_sample(const WpMaterial* m, float3 wo,
 
 static inline float3 wp_roughconductor_eval_pi(const WpMaterial* m, float3 wo, float3 wi,
                                                const WpShadingPoint* point) {
-    float3 n = point->n;
-    float3 v = -wp_to_local(wo, n), l = wp_to_local(wi, n);
+    float3 v = -wp_bsdf_to_local(m, point, wo), l = wp_bsdf_to_local(m, point, wi);
     if (!(v.z > 0.0f && l.z > 0.0f))
         return (float3)(0.0f);
     float3 h = normalize(v + l);
@@ -66,8 +63,7 @@ static inline float3 wp_roughconductor_eval_pi(const WpMaterial* m, float3 wo, f
 
 static inline float wp_roughconductor_pdf(const WpMaterial* m, float3 wo, float3 wi,
                                           const WpShadingPoint* point) {
-    float3 n = point->n;
-    float3 v = -wp_to_local(wo, n), l = wp_to_local(wi, n);
+    float3 v = -wp_bsdf_to_local(m, point, wo), l = wp_bsdf_to_local(m, point, wi);
     if (!(v.z > 0.0f && l.z > 0.0f))
         return 0.0f;
     float3 h = normalize(v + l);

@@ -2,7 +2,8 @@
  * dielectric interface made of microfacets (Walter et al., "Microfacet Models
  * for Refraction through Rough Surfaces", EGSR 2007), with Mitsuba's
  * distributions, roughness and separable Smith masking (bsdf/microfacet.h).
- * In the local frame of the shading normal on the ray's side, v = -wo the
+ * In the local frame of the shading normal on the ray's side (bsdf/frame.h:
+ * alpha_u along the surface's tangent dp/du), v = -wo the
  * direction towards the viewer (v.z > 0), eta the index beyond relative to
  * the ray's side (as for `dielectric`), h the microfacet normal:
  *
@@ -33,6 +34,7 @@
 #define WP_BSDF_ROUGHDIELECTRIC_H
 
 #include "bsdf/dielectric.h"
+#include "bsdf/frame.h"
 #include "bsdf/fresnel.h"
 #include "bsdf/interface.h"
 #include "bsdf/microfacet.h"
@@ -97,7 +99,7 @@ static inline void wp_roughdielectric_sample(const WpMaterial* m, float3 wo,
                                              const WpShadingPoint* p, float u1, float u2,
                                              WpBsdfSample* out) {
     float3 t, b, n = p->n;
-    wp_make_basis(n, &t, &b);
+    wp_bsdf_frame(m, p, &t, &b);
     float3 v = (float3)(-dot(wo, t), -dot(wo, b), -dot(wo, n));
     float eta = wp_dielectric_eta(m, p);
     if (!(v.z > 0.0f)) {
@@ -146,7 +148,7 @@ static inline float3 wp_roughdielectric_eval_pi(const WpMaterial* m, float3 wo, 
                                                 const WpShadingPoint* p) {
     float3 f_pi;
     float pdf;
-    wp_roughdielectric_eval_local(m, -wp_to_local(wo, p->n), wp_to_local(wi, p->n),
+    wp_roughdielectric_eval_local(m, -wp_bsdf_to_local(m, p, wo), wp_bsdf_to_local(m, p, wi),
                                   wp_dielectric_eta(m, p), &f_pi, &pdf);
     return f_pi;
 }
@@ -155,7 +157,7 @@ static inline float wp_roughdielectric_pdf(const WpMaterial* m, float3 wo, float
                                            const WpShadingPoint* p) {
     float3 f_pi;
     float pdf;
-    wp_roughdielectric_eval_local(m, -wp_to_local(wo, p->n), wp_to_local(wi, p->n),
+    wp_roughdielectric_eval_local(m, -wp_bsdf_to_local(m, p, wo), wp_bsdf_to_local(m, p, wi),
                                   wp_dielectric_eta(m, p), &f_pi, &pdf);
     return pdf;
 }

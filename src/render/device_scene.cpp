@@ -34,6 +34,26 @@ std::string flag(const char* name, bool on) {
 }
 
 // Appends `word` to a space-separated list.
+// Whether a primitive of the scene has an anisotropic microfacet material:
+// alpha_u != alpha_v, or roughnesses from two different textures (the
+// kernels' test, after the textures, is kernels/bsdf/frame.h's). Its BSDF
+// then needs the surface's tangent dp/du (WP_HAS_ANISOTROPY), and its
+// triangles their texture coordinates, which dp/du comes from.
+bool has_anisotropy(const Scene& scene) {
+    auto anisotropic = [&](std::uint32_t material) {
+        const Material& m = scene.materials[material];
+        if (m.kind != MaterialKind::RoughConductor && m.kind != MaterialKind::RoughDielectric)
+            return false;
+        if (m.alpha_u_texture != m.alpha_v_texture)
+            return true;
+        return m.alpha_u_texture == 0 && m.alpha_u != m.alpha_v;
+    };
+    return std::any_of(scene.triangles.begin(), scene.triangles.end(),
+                       [&](const Triangle& t) { return anisotropic(t.material); }) ||
+           std::any_of(scene.spheres.begin(), scene.spheres.end(),
+                       [&](const Sphere& s) { return anisotropic(s.material); });
+}
+
 void append_word(std::string& list, const std::string& word) {
     if (!list.empty())
         list += ' ';
@@ -486,6 +506,7 @@ SceneFeatures analyse_features(const Scene& scene, std::uint32_t max_fixed_count
             return scene.materials[s.material].kind == MaterialKind::Mirror;
         });
     f.lens = scene.camera.aperture_radius > 0.0;
+    f.anisotropy = has_anisotropy(scene);
     // One feature per texture kind: on when a material uses one.
 #define WP_TEXTURE_FEATURE_USED(features, KIND, Name, name, value)                                 \
     features.name##_texture =                                                                      \
@@ -628,9 +649,10 @@ DeviceScene flatten_scene(const Scene& scene, bool hierarchy) {
         out.materials.push_back(w);
     }
     flatten_textures(scene, out);
-    // Texture coordinates only where a texture can read them: a scene
-    // without textures keeps its triangles (and images) as they were.
-    const bool uvs = !scene.textures.empty();
+    // Texture coordinates only where a texture or an anisotropic BSDF's
+    // tangent can read them: any other scene keeps its triangles (and
+    // images) as they were.
+    const bool uvs = !scene.textures.empty() || has_anisotropy(scene);
 
     // Coordinates in float32's comfortable range, exactly (render/float_range.hpp).
     const FloatFrame frame = float_frame(scene);

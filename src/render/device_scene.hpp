@@ -45,6 +45,7 @@ inline constexpr std::uint32_t kMinBvhPrimitives = kMaxFixedCountPrimitives + 1;
     X(spheres, WP_HAS_SPHERES)                                                                     \
     WP_MATERIAL_FEATURES(X)                    /* material kinds in use */                         \
     X(shading_normals, WP_HAS_SHADING_NORMALS) /* triangles with vertex normals */                 \
+    X(anisotropy, WP_HAS_ANISOTROPY)           /* alpha_u != alpha_v: the tangent, dp/du */        \
     X(lights, WP_HAS_LIGHTS)                   /* emissive triangles for next-event estimation */  \
     X(planar_mirrors, WP_HAS_PLANAR_MIRRORS)   /* flat mirror triangles, and lights */             \
     X(mirror_spheres, WP_HAS_MIRROR_SPHERES)   /* spheres of a mirror material, and lights */      \

@@ -32,6 +32,10 @@ WpShadingPoint shading_point(float4 n) {
     WpShadingPoint p;
     p.n = n.xyz;
     p.front_face = n.w == 0.0f;
+#if WP_HAS_ANISOTROPY /* the frame the host reference takes (make_basis below) */
+    float3 b;
+    wp_make_basis(p.n, &p.tangent, &b);
+#endif
     return p;
 }
 

@@ -133,7 +133,7 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_CONDUCTOR=0 -D WP_HAS_ROUGHCONDUCTOR=0 -D WP_HAS_DIELECTRIC=0 -D "
           "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_PLASTIC=0 -D WP_HAS_ROUGHDIELECTRIC=0 -D "
           "WP_HAS_ROUGHPLASTIC=0 -D "
-          "WP_HAS_SHADING_NORMALS=0 "
+          "WP_HAS_SHADING_NORMALS=0 -D WP_HAS_ANISOTROPY=0 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D "
           "WP_HAS_LENS=0 -D WP_HAS_POINT_LIGHT=0 -D WP_HAS_SPOT_LIGHT=0 -D "
           "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D WP_HAS_ENVMAP_LIGHT=0 -D "
@@ -149,7 +149,7 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_CONDUCTOR=0 -D WP_HAS_ROUGHCONDUCTOR=0 -D WP_HAS_DIELECTRIC=0 -D "
           "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_PLASTIC=0 -D WP_HAS_ROUGHDIELECTRIC=0 -D "
           "WP_HAS_ROUGHPLASTIC=0 -D "
-          "WP_HAS_SHADING_NORMALS=0 "
+          "WP_HAS_SHADING_NORMALS=0 -D WP_HAS_ANISOTROPY=0 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=0 -D "
           "WP_HAS_LENS=0 -D WP_HAS_POINT_LIGHT=0 -D WP_HAS_SPOT_LIGHT=0 -D "
           "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D WP_HAS_ENVMAP_LIGHT=0 -D "
@@ -165,7 +165,7 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_CONDUCTOR=0 -D WP_HAS_ROUGHCONDUCTOR=0 -D WP_HAS_DIELECTRIC=0 -D "
           "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_PLASTIC=0 -D WP_HAS_ROUGHDIELECTRIC=0 -D "
           "WP_HAS_ROUGHPLASTIC=0 -D "
-          "WP_HAS_SHADING_NORMALS=0 "
+          "WP_HAS_SHADING_NORMALS=0 -D WP_HAS_ANISOTROPY=0 "
           "-D WP_HAS_LIGHTS=0 -D WP_HAS_PLANAR_MIRRORS=0 -D WP_HAS_MIRROR_SPHERES=0 -D "
           "WP_HAS_LENS=0 -D WP_HAS_POINT_LIGHT=0 -D WP_HAS_SPOT_LIGHT=0 -D "
           "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D WP_HAS_ENVMAP_LIGHT=0 -D "
@@ -180,7 +180,7 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_CONDUCTOR=0 -D WP_HAS_ROUGHCONDUCTOR=0 -D WP_HAS_DIELECTRIC=0 -D "
           "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_PLASTIC=0 -D WP_HAS_ROUGHDIELECTRIC=0 -D "
           "WP_HAS_ROUGHPLASTIC=0 -D "
-          "WP_HAS_SHADING_NORMALS=0 "
+          "WP_HAS_SHADING_NORMALS=0 -D WP_HAS_ANISOTROPY=0 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=0 -D WP_HAS_MIRROR_SPHERES=0 -D "
           "WP_HAS_LENS=0 -D WP_HAS_POINT_LIGHT=0 -D WP_HAS_SPOT_LIGHT=0 -D "
           "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D WP_HAS_ENVMAP_LIGHT=0 -D "
@@ -196,7 +196,7 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_CONDUCTOR=0 -D WP_HAS_ROUGHCONDUCTOR=0 -D WP_HAS_DIELECTRIC=0 -D "
           "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_PLASTIC=0 -D WP_HAS_ROUGHDIELECTRIC=0 -D "
           "WP_HAS_ROUGHPLASTIC=0 -D "
-          "WP_HAS_SHADING_NORMALS=0 "
+          "WP_HAS_SHADING_NORMALS=0 -D WP_HAS_ANISOTROPY=0 "
           "-D WP_HAS_LIGHTS=0 -D WP_HAS_PLANAR_MIRRORS=0 -D WP_HAS_MIRROR_SPHERES=0 -D "
           "WP_HAS_LENS=0 -D WP_HAS_POINT_LIGHT=0 -D WP_HAS_SPOT_LIGHT=0 -D "
           "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D WP_HAS_ENVMAP_LIGHT=0 -D "
@@ -212,7 +212,7 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_CONDUCTOR=0 -D WP_HAS_ROUGHCONDUCTOR=0 -D WP_HAS_DIELECTRIC=0 -D "
           "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_PLASTIC=0 -D WP_HAS_ROUGHDIELECTRIC=0 -D "
           "WP_HAS_ROUGHPLASTIC=0 -D "
-          "WP_HAS_SHADING_NORMALS=0 "
+          "WP_HAS_SHADING_NORMALS=0 -D WP_HAS_ANISOTROPY=0 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D "
           "WP_HAS_LENS=0 -D WP_HAS_POINT_LIGHT=0 -D WP_HAS_SPOT_LIGHT=0 -D "
           "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D WP_HAS_ENVMAP_LIGHT=0 -D "
@@ -225,7 +225,7 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_CONDUCTOR=1 -D WP_HAS_ROUGHCONDUCTOR=1 -D WP_HAS_DIELECTRIC=1 -D "
           "WP_HAS_THINDIELECTRIC=1 -D WP_HAS_PLASTIC=1 -D WP_HAS_ROUGHDIELECTRIC=1 -D "
           "WP_HAS_ROUGHPLASTIC=1 -D "
-          "WP_HAS_SHADING_NORMALS=1 "
+          "WP_HAS_SHADING_NORMALS=1 -D WP_HAS_ANISOTROPY=1 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D "
           "WP_HAS_LENS=1 -D WP_HAS_POINT_LIGHT=1 -D WP_HAS_SPOT_LIGHT=1 -D "
           "WP_HAS_DIRECTIONAL_LIGHT=1 -D WP_HAS_CONSTANT_LIGHT=1 -D WP_HAS_ENVMAP_LIGHT=1 -D "
@@ -239,7 +239,7 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_CONDUCTOR=1 -D WP_HAS_ROUGHCONDUCTOR=1 -D WP_HAS_DIELECTRIC=1 -D "
           "WP_HAS_THINDIELECTRIC=1 -D WP_HAS_PLASTIC=1 -D WP_HAS_ROUGHDIELECTRIC=1 -D "
           "WP_HAS_ROUGHPLASTIC=1 -D "
-          "WP_HAS_SHADING_NORMALS=1 "
+          "WP_HAS_SHADING_NORMALS=1 -D WP_HAS_ANISOTROPY=1 "
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D "
           "WP_HAS_LENS=1 -D WP_HAS_POINT_LIGHT=1 -D WP_HAS_SPOT_LIGHT=1 -D "
           "WP_HAS_DIRECTIONAL_LIGHT=1 -D WP_HAS_CONSTANT_LIGHT=1 -D WP_HAS_ENVMAP_LIGHT=1 -D "
@@ -272,7 +272,7 @@ TEST_CASE("features: describe() names the features and the compiled-in counts") 
           "triangles spheres diffuse mirror lights planar_mirrors mirror_spheres; bvh");
     CHECK(SceneFeatures::all().describe() ==
           "triangles spheres diffuse mirror conductor roughconductor dielectric thindielectric "
-          "plastic roughdielectric roughplastic shading_normals lights "
+          "plastic roughdielectric roughplastic shading_normals anisotropy lights "
           "planar_mirrors mirror_spheres lens point_light spot_light directional_light "
           "constant_light envmap_light sphere_light tent_filter gaussian_filter bitmap_texture "
           "checkerboard_texture");
@@ -350,6 +350,20 @@ TEST_CASE("features: specialised and general kernels render bit-identical images
         scene.emitters.push_back(sun);
         check_specialised_equals_general(scene);
     }
+    // The tangent frame (WP_HAS_ANISOTROPY): the mirror wall's triangles
+    // (no texture coordinates) and the mirror sphere turned anisotropic, and
+    // the isotropic rough kinds beside them keep wp_make_basis either way.
+    SECTION("anisotropic rough conductors") {
+        Scene scene = hexroom();
+        for (Material& m : scene.materials)
+            if (m.kind == MaterialKind::Mirror) {
+                m.kind = MaterialKind::RoughConductor;
+                m.alpha_u = 0.05;
+                m.alpha_v = 0.3;
+            }
+        REQUIRE(analyse_features(scene).anisotropy);
+        check_specialised_equals_general(scene);
+    }
     SECTION("a point light and a constant sky, no area light") {
         Scene scene = no_light();
         Emitter point;
@@ -394,4 +408,25 @@ TEST_CASE("features: the hierarchy and the loop over every primitive render the 
         }
         CHECK(a.stats.camera_rays == b.stats.camera_rays);
     }
+}
+
+TEST_CASE("features: anisotropy is on only for alpha_u != alpha_v on a rough kind in use") {
+    Scene scene = hexroom();
+    CHECK_FALSE(analyse_features(scene).anisotropy);
+    Material& m = scene.materials[scene.spheres[0].material];
+    m.kind = MaterialKind::RoughConductor;
+    m.alpha_u = m.alpha_v = 0.2;
+    CHECK_FALSE(analyse_features(scene).anisotropy);
+    m.alpha_v = 0.3;
+    CHECK(analyse_features(scene).anisotropy);
+    // Textured roughness: the constants no longer count, the textures do.
+    m.alpha_u_texture = m.alpha_v_texture = 1;
+    CHECK_FALSE(analyse_features(scene).anisotropy);
+    m.alpha_v_texture = 2;
+    CHECK(analyse_features(scene).anisotropy);
+    m.alpha_v_texture = 0;
+    CHECK(analyse_features(scene).anisotropy);
+    // Diffuse and rough plastic have no alpha_u/alpha_v of their own.
+    m.kind = MaterialKind::RoughPlastic;
+    CHECK_FALSE(analyse_features(scene).anisotropy);
 }

@@ -173,6 +173,11 @@ TEST_CASE("Mitsuba 3 agreement: textures on a cube, rectangles, a disk and an OB
     check_agreement("textures-shapes", load_scene(kDir + "textures-shapes.xml"), 1024);
 }
 
+TEST_CASE("Mitsuba 3 agreement: anisotropic roughness along dp/du (sphere, rectangle, OBJ)",
+          "[render][mitsuba][anisotropy][statistical]") {
+    check_agreement("anisotropic", load_scene(kDir + "anisotropic.xml"), 1024);
+}
+
 TEST_CASE("Mitsuba 3 agreement: a point light", "[render][emitters][statistical]") {
     check_agreement("point", 1024);
 }
