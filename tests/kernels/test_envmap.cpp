@@ -9,10 +9,10 @@
 #include "render/device_scene.hpp"
 #include "render/environment_tables.hpp"
 #include "support/chi_square.hpp"
+#include "support/float_image.hpp"
 #include "support/kernel_test_util.hpp"
 #include "support/scene_builder.hpp"
 
-#include <bit>
 #include <cmath>
 #include <memory>
 #include <random>
@@ -52,18 +52,6 @@ __kernel void sample(__global const WpEmitter* emitter, __global const float* cd
 )CL";
 
 constexpr double kPi = 3.14159265358979323846;
-
-std::shared_ptr<const TextureImage> float_image(std::uint32_t w, std::uint32_t h,
-                                                const std::vector<glm::dvec3>& texels) {
-    auto image = std::make_shared<TextureImage>();
-    image->width = w;
-    image->height = h;
-    image->encoding = TexelEncoding::Float32;
-    for (const glm::dvec3& c : texels)
-        for (int k = 0; k < 3; ++k)
-            image->texels.push_back(std::bit_cast<std::uint32_t>(static_cast<float>(c[k])));
-    return image;
-}
 
 // The image of the Mitsuba measurements: texel (i, j) is (i + 1, 10 (j + 1), 1).
 std::shared_ptr<const TextureImage> counting_image(std::uint32_t w, std::uint32_t h) {

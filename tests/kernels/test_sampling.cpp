@@ -338,11 +338,8 @@ TEST_CASE("wp_random: the two BSDF dimensions of a bounce are independent",
     CHECK(statistic < chi_square_limit(histogram.size() - 1));
 }
 
-// lights.h picks the light for next-event estimation by searching the light
-// table's cumulative area fractions: the first light whose cdf exceeds u, so
-// each light is picked for an interval of u as long as its share of the area.
-TEST_CASE("wp_pick_light returns the first light whose cdf exceeds u", "[cl][sampling]") {
-    const char* const source = R"CL(
+// wp_pick_light for each u (lights.h).
+const char* const kPickLightsSource = R"CL(
 #include "lights.h"
 __kernel void pick_lights(__global const WpLight* lights, uint light_count, uint count,
                           __global const float* u, __global uint* out) {
@@ -351,6 +348,11 @@ __kernel void pick_lights(__global const WpLight* lights, uint light_count, uint
     out[i] = wp_pick_light(lights, light_count, u[i]);
 }
 )CL";
+
+// lights.h picks the light for next-event estimation by searching the light
+// table's cumulative area fractions: the first light whose cdf exceeds u, so
+// each light is picked for an interval of u as long as its share of the area.
+TEST_CASE("wp_pick_light returns the first light whose cdf exceeds u", "[cl][sampling]") {
     // Areas 1, 0 (a degenerate light, never to be picked), 2.5, 0.5 and 4.
     const double areas[] = {1.0, 0.0, 2.5, 0.5, 4.0};
     const double total = 8.0;
@@ -384,7 +386,8 @@ __kernel void pick_lights(__global const WpLight* lights, uint light_count, uint
             INFO(light_count << " lights" << (fixed ? ", WP_LIGHT_COUNT compiled in" : ""));
             const std::string options =
                 fixed ? "-D WP_LIGHT_COUNT=" + std::to_string(light_count) : "";
-            cl::Kernel kernel(program(source, "pick_light_test.cl", options), "pick_lights");
+            cl::Kernel kernel(program(kPickLightsSource, "pick_light_test.cl", options),
+                              "pick_lights");
             cl::Buffer light_buffer = upload(lights), u_buffer = upload(us);
             cl::Buffer out = upload(std::vector<cl_uint>(us.size(), 0xffffffffu));
             set_args(kernel, light_buffer, light_count, cl_uint(us.size()), u_buffer, out);
@@ -417,15 +420,6 @@ __kernel void pick_lights(__global const WpLight* lights, uint light_count, uint
 // edges k / count and at random u.
 TEST_CASE("wp_pick_light's guided search finds the binary search's light among 10^4",
           "[cl][sampling]") {
-    const char* const source = R"CL(
-#include "lights.h"
-__kernel void pick_lights(__global const WpLight* lights, uint light_count, uint count,
-                          __global const float* u, __global uint* out) {
-    uint i = get_global_id(0);
-    if (i >= count) return;
-    out[i] = wp_pick_light(lights, light_count, u[i]);
-}
-)CL";
     const std::size_t n = 10007;
     std::vector<double> areas(n);
     for (std::size_t i = 0; i < n; ++i)
@@ -456,7 +450,7 @@ __kernel void pick_lights(__global const WpLight* lights, uint light_count, uint
         us.push_back(wp_random(5u, i, 0u, 0u, WP_DIM_LIGHT_PICK));
     for (float& u : us)
         u = std::max(0.0f, u);
-    cl::Kernel kernel(program(source, "pick_light_test.cl"), "pick_lights");
+    cl::Kernel kernel(program(kPickLightsSource, "pick_light_test.cl"), "pick_lights");
     cl::Buffer light_buffer = upload(lights), u_buffer = upload(us);
     cl::Buffer out = upload(std::vector<cl_uint>(us.size(), 0xffffffffu));
     set_args(kernel, light_buffer, cl_uint(n), cl_uint(us.size()), u_buffer, out);

@@ -6,7 +6,6 @@
 // held to five standard errors of the estimate.
 #include <catch2/catch.hpp>
 
-#include <bit>
 #include <cmath>
 #include <memory>
 #include <vector>
@@ -15,26 +14,16 @@
 
 #include "render/device_scene.hpp"
 #include "render/environment_tables.hpp"
+#include "support/float_image.hpp"
 #include "support/render_helpers.hpp"
 #include "support/scene_builder.hpp"
 
 using namespace wp;
+using wp::test::float_image;
 
 namespace {
 
 constexpr double kSigmas = 5.0;
-
-std::shared_ptr<const TextureImage> float_image(std::uint32_t w, std::uint32_t h,
-                                                const std::vector<glm::dvec3>& texels) {
-    auto image = std::make_shared<TextureImage>();
-    image->width = w;
-    image->height = h;
-    image->encoding = TexelEncoding::Float32;
-    for (const glm::dvec3& c : texels)
-        for (int k = 0; k < 3; ++k)
-            image->texels.push_back(std::bit_cast<std::uint32_t>(static_cast<float>(c[k])));
-    return image;
-}
 
 Emitter envmap(std::shared_ptr<const TextureImage> image, const glm::dmat3& to_world,
                double scale) {
