@@ -320,6 +320,13 @@ TEST_CASE("features: specialised and general kernels render bit-identical images
     SECTION("more primitives than fixed counts allow") {
         check_specialised_equals_general(large());
     }
+}
+
+// The same for the features of lights, camera and materials, a test case of
+// their own so that ctest runs the two halves side by side (each section
+// builds its programs, most of this test's time when the cache is cold).
+TEST_CASE("features: specialised and general kernels render bit-identical images: lens, "
+          "filters, emitters, anisotropy") {
     // The camera's switches: the lens and a filter compiled in alone, and
     // chosen at run time among all of them.
     SECTION("a thin lens and the tent filter") {
