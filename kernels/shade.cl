@@ -111,6 +111,9 @@ static inline float3 wp_shade_environment(__global const WpEmitter* e,
                                           __global const wp_uint* texels, float3 direction,
                                           wp_uint flags, float bsdf_pdf, float3 beta) {
     float3 found = (float3)(0.0f);
+    /* The light sample's density, needed only after a non-delta bounce (a
+     * camera ray that misses, the commonest escape, weighs 1). */
+    int weighed = WP_USE_NEE && !(flags & WP_PATH_SPECULAR);
     float light_pdf = 0.0f;
 #if WP_HAS_CONSTANT_LIGHT
     if (e->kind == WP_EMITTER_CONSTANT) {
@@ -121,15 +124,14 @@ static inline float3 wp_shade_environment(__global const WpEmitter* e,
 #if WP_HAS_ENVMAP_LIGHT
     if (e->kind == WP_EMITTER_ENVMAP) {
         found = wp_envmap_radiance(texels, e, direction);
-        light_pdf = e->pick * wp_envmap_pdf(environment_cdf, e, direction);
+        if (weighed)
+            light_pdf = e->pick * wp_envmap_pdf(environment_cdf, e, direction);
     }
-#endif
-#if WP_USE_NEE
-    if (!(flags & WP_PATH_SPECULAR))
-        found *= wp_mis_bsdf_hit(bsdf_pdf, light_pdf);
 #else
-    (void)flags, (void)bsdf_pdf, (void)light_pdf, (void)environment_cdf;
+    (void)environment_cdf, (void)texels, (void)direction;
 #endif
+    if (weighed)
+        found *= wp_mis_bsdf_hit(bsdf_pdf, light_pdf);
     return beta * found;
 }
 #endif
