@@ -81,6 +81,45 @@ typedef struct {
     float enter;
 } WpBvhEntry;
 
+/* Pushes the children of node n that the ray meets before `closest`,
+ * farthest first, so that the nearest is on top. */
+static inline void wp_bvh_push_children(__global const WpBvhNode* n, const WpBoxRay* box_ray,
+                                        float closest, WpBvhEntry* stack, int* top) {
+    int base = *top;
+    for (int i = 0; i < 4; ++i) {
+        float enter;
+        wp_uint count = n->count[i];
+        if (count != WP_BVH_EMPTY && wp_hit_child_box(n, i, box_ray, closest, &enter)) {
+            /* Insert, keeping this node's entries nearest on top. */
+            int j = (*top)++;
+            while (j > base && stack[j - 1].enter < enter) {
+                stack[j] = stack[j - 1];
+                --j;
+            }
+            stack[j].child = n->child[i];
+            stack[j].count = count;
+            stack[j].enter = enter;
+        }
+    }
+}
+
+/* Next: the nearest pushed child that may still hold a closer hit, into
+ * *current; 0 when none is left. */
+static inline int wp_bvh_pop(WpBvhEntry* stack, int* top, float closest, WpBvhEntry* current) {
+    while (*top > 0) {
+        --*top;
+        if (stack[*top].enter <= closest) {
+            *current = stack[*top];
+            return 1;
+        }
+    }
+    return 0;
+}
+
+#if WP_TRACE_INSTANCES
+#include "instance_trace.h"
+#endif
+
 static inline wp_uint wp_bvh_trace(const WpSceneView* scene, float3 origin, float3 direction,
                                    float t_max, int any_hit, float* t_hit) {
     wp_uint hit = WP_NO_HIT;
@@ -97,27 +136,29 @@ static inline wp_uint wp_bvh_trace(const WpSceneView* scene, float3 origin, floa
     current.enter = 0.0f;
     for (;;) {
         if (current.count == 0u) {
-            __global const WpBvhNode* n = &scene->bvh_nodes[current.child];
-            int base = top;
-            for (int i = 0; i < 4; ++i) {
-                float enter;
-                wp_uint count = n->count[i];
-                if (count != WP_BVH_EMPTY && wp_hit_child_box(n, i, &box_ray, closest, &enter)) {
-                    /* Insert, keeping this node's entries nearest on top. */
-                    int j = top++;
-                    while (j > base && stack[j - 1].enter < enter) {
-                        stack[j] = stack[j - 1];
-                        --j;
-                    }
-                    stack[j].child = n->child[i];
-                    stack[j].count = count;
-                    stack[j].enter = enter;
-                }
-            }
+            wp_bvh_push_children(&scene->bvh_nodes[current.child], &box_ray, closest, stack, &top);
         } else {
             for (wp_uint k = 0; k < current.count; ++k) {
                 wp_uint primitive = current.child + k;
                 float t;
+#if WP_TRACE_INSTANCES
+                /* Past the plain primitives: an instance, traversed in its
+                 * object space (instance.h). */
+                wp_uint plain = scene->triangle_count + scene->sphere_count;
+                if (primitive >= plain) {
+                    wp_uint instance_hit = wp_instance_trace(scene, primitive - plain, origin,
+                                                             direction, closest, any_hit, &t);
+                    if (instance_hit != WP_NO_HIT) {
+                        closest = t;
+                        hit = instance_hit;
+                        if (any_hit) {
+                            *t_hit = closest;
+                            return hit;
+                        }
+                    }
+                    continue;
+                }
+#endif
                 if (wp_intersect_primitive(scene, &sheared, origin, direction, primitive, closest,
                                            &t)) {
                     closest = t;
@@ -129,17 +170,7 @@ static inline wp_uint wp_bvh_trace(const WpSceneView* scene, float3 origin, floa
                 }
             }
         }
-        /* Next: the nearest pushed child that may still hold a closer hit. */
-        int found = 0;
-        while (top > 0) {
-            --top;
-            if (stack[top].enter <= closest) {
-                current = stack[top];
-                found = 1;
-                break;
-            }
-        }
-        if (!found)
+        if (!wp_bvh_pop(stack, &top, closest, &current))
             break;
     }
     *t_hit = closest;

@@ -1,7 +1,8 @@
 /* What a primitive number means, and the surface a ray hit.
  *
  * Primitives are numbered triangles first, then spheres: triangle i is
- * primitive i, sphere j is primitive triangle_count + j. This file is the
+ * primitive i, sphere j is primitive triangle_count + j, and past them the
+ * triangles of instances (WP_PRIMITIVE_INSTANCE). This file is the
  * only place that decodes a number (traverse.h, the only place that makes
  * them, numbers them the same way); a new shape gets its kind here and its
  * surface record below.
@@ -15,9 +16,17 @@
 #include "stage.h"
 #include "tangent.h"
 #include "triangle.h"
+#if WP_TRACE_INSTANCES
+#include "instance.h"
+#endif
 
 #define WP_PRIMITIVE_TRIANGLE 0u
 #define WP_PRIMITIVE_SPHERE 1u
+/* A triangle of an instance's shape group (instance.h): numbered after the
+ * spheres, not a triangle of triangles[], and never a light or a planar
+ * mirror of the host's tables (groups hold no emitters; a path off an
+ * instanced mirror keeps the weight of any delta bounce). */
+#define WP_PRIMITIVE_INSTANCE 2u
 
 /* The loops over primitives run over the scene's counts, or, when the
  * program is specialised for a small scene (-D WP_TRIANGLE_COUNT=n
@@ -39,6 +48,10 @@ static inline wp_uint wp_sphere_primitive(const WpSceneView* scene, wp_uint sphe
 }
 
 static inline wp_uint wp_primitive_kind(const WpSceneView* scene, wp_uint primitive) {
+#if WP_TRACE_INSTANCES
+    if (primitive >= scene->triangle_count + scene->sphere_count)
+        return WP_PRIMITIVE_INSTANCE;
+#endif
 #if WP_HAS_SPHERES
     if (primitive >= scene->triangle_count)
         return WP_PRIMITIVE_SPHERE;
@@ -159,11 +172,12 @@ static inline float3 wp_terminator_point(float3 p, float3 b, const WpTriangle* t
 #endif
 }
 
-/* The shading normal and the spawn points of a hit on a triangle with vertex
- * normals; s->position is already on the triangle's plane. */
-static inline void wp_shade_with_vertex_normals(const WpSceneView* scene, const WpTriangle* t,
-                                                WpSurface* s) {
-    WpShadingNormals n = scene->triangle_normals[wp_triangle_normals(t) - 1u];
+/* The shading normal and the spawn points of a hit on triangle t with vertex
+ * normals `normals` (unit, in t's frame); s->position is already on the
+ * triangle's plane. */
+static inline void wp_shade_with_vertex_normals(const WpTriangle* t,
+                                                const WpShadingNormals* normals, WpSurface* s) {
+    WpShadingNormals n = *normals;
     /* Barycentrics of the hit point from the sub-triangles' areas. */
     float3 e1 = t->v1.xyz - t->v0.xyz, e2 = t->v2.xyz - t->v0.xyz, w = s->position - t->v0.xyz;
     float3 ng = cross(e1, e2);
@@ -206,8 +220,27 @@ static inline void wp_surface_at(const WpSceneView* scene, wp_uint primitive, fl
     } else
 #endif
     {
+#if WP_TRACE_INSTANCES
+        WpTriangle triangle;
+        __global const WpInstance* instance = 0;
+        if (wp_primitive_kind(scene, primitive) == WP_PRIMITIVE_INSTANCE) {
+            wp_uint number, group_triangle;
+            wp_instance_hit(scene, primitive, &number, &group_triangle);
+            instance = &scene->instances[number];
+            wp_instance_world_triangle(instance, &scene->group_triangles[group_triangle],
+                                       &triangle);
+        } else {
+            triangle = scene->triangles[primitive];
+        }
+        /* A mirrored instance's front is its object normal's side, against
+         * the world winding (Mitsuba's instance, measured). */
+        s.normal = normalize(wp_triangle_normal(&triangle));
+        if (instance && instance->mirrored)
+            s.normal = -s.normal;
+#else
         WpTriangle triangle = scene->triangles[primitive];
         s.normal = normalize(wp_triangle_normal(&triangle));
+#endif
         s.position = position - dot(position - triangle.v0.xyz, s.normal) * s.normal;
         s.scale = wp_triangle_scale(&triangle);
         s.material = wp_triangle_material(&triangle);
@@ -220,7 +253,12 @@ static inline void wp_surface_at(const WpSceneView* scene, wp_uint primitive, fl
 #if WP_HAS_SHADING_NORMALS
         if (wp_triangle_normals(&triangle) != 0u) {
             s.front_face = dot(direction, s.normal) < 0.0f;
-            wp_shade_with_vertex_normals(scene, &triangle, &s);
+            WpShadingNormals normals = scene->triangle_normals[wp_triangle_normals(&triangle) - 1u];
+#if WP_TRACE_INSTANCES
+            if (instance)
+                wp_instance_world_normals(instance, &normals);
+#endif
+            wp_shade_with_vertex_normals(&triangle, &normals, &s);
             *out = s;
             return;
         }

@@ -126,6 +126,11 @@ enum { WP_TEXTURES(WP_TEXTURE_FEATURE_CHECK) wp_texture_features_checked };
 #ifndef WP_HAS_MIRROR_SPHERES /* mirror spheres and lights (kernels/mirror_light.h) */
 #define WP_HAS_MIRROR_SPHERES 1
 #endif
+/* Instances of shape groups (kernels/instance.h): a two-level hierarchy, the
+ * instances' meshes traversed in their object space. Only with WP_USE_BVH. */
+#ifndef WP_HAS_INSTANCES
+#define WP_HAS_INSTANCES 1
+#endif
 
 /* Acceleration switch, not a scene feature: traverse a bounding volume
  * hierarchy (bvh.h) instead of testing every primitive. The host turns it on
@@ -135,6 +140,9 @@ enum { WP_TEXTURES(WP_TEXTURE_FEATURE_CHECK) wp_texture_features_checked };
 #ifndef WP_USE_BVH
 #define WP_USE_BVH 0
 #endif
+/* Instances are reached only through the hierarchy (the host builds one for
+ * every scene that has them). */
+#define WP_TRACE_INSTANCES (WP_HAS_INSTANCES && WP_USE_BVH)
 
 /* The shadow terminator fix of shading normals (primitive.h): on unless a test
  * turns it off to show what it fixes. */

@@ -35,6 +35,7 @@ typedef struct {
     wp_uint mirror_sphere_count;
     wp_uint emitter_count;
     float emitter_pick; /* the probability of choosing an emitter, not a triangle (lights.h) */
+    wp_uint instance_count;
 } WpSceneView;
 
 #define WP_SCENE_ASSIGN(name, type) view->name = name;
@@ -51,6 +52,7 @@ static inline void wp_scene_view(WpSceneView* view,
     view->mirror_sphere_count = frame.mirror_sphere_count;
     view->emitter_count = frame.emitter_count;
     view->emitter_pick = frame.emitter_pick;
+    view->instance_count = frame.instance_count;
 }
 
 /* The stages' per-item work lives in functions that take the stage's own

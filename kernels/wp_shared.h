@@ -390,6 +390,28 @@ typedef struct {
 
 #define WP_BVH_EMPTY 0xffffffffu
 
+/* An instance of a shape group (Mitsuba's shapegroup and instance,
+ * kernels/instance.h): the group's triangles, stored once in object space in
+ * group_triangles[] under their own hierarchy in group_bvh_nodes[] (nodes
+ * as above, leaves naming group_triangles), placed in the scene by an affine
+ * map. to_world's rows take an object point p to the device's world frame,
+ * world_i = dot(to_world[i].xyz, p) + to_world[i].w; to_object's rows are
+ * the inverse. The top-level hierarchy (bvh_nodes) holds instances as
+ * primitives after the triangles and spheres; a hit on triangle k of the
+ * group's, k counted from first_triangle, is primitive number
+ * triangle_count + sphere_count + first_primitive + (k - first_triangle)
+ * (primitive.h decodes it). mirrored: the map's determinant is negative, so
+ * the world winding normal is the object normal's reverse (the front face
+ * follows the object normal, as in Mitsuba). */
+typedef struct {
+    wp_float4 to_world[3];
+    wp_float4 to_object[3];
+    wp_uint root;            /* its group's root node in group_bvh_nodes[] */
+    wp_uint first_triangle;  /* its group's first triangle in group_triangles[] */
+    wp_uint first_primitive; /* its hits' numbers past the plain primitives (above) */
+    wp_uint mirrored;
+} WpInstance;
+
 /* The traversal stack's entries (kernels/bvh.h); the host checks that no
  * path through the hierarchy needs more. */
 #define WP_BVH_STACK_SIZE 64
@@ -471,6 +493,7 @@ typedef struct {
     wp_float emitter_pick;       /* the probability of choosing an emitter rather than the
                                     emissive triangles: 0 without emitters, so that a frame
                                     left zero samples the triangles alone */
+    wp_uint instance_count;      /* WpInstance entries (kernels/instance.h) */
 } WpFrame;
 
 /* What changes from one launch of a stage to the next, passed by value after
@@ -518,7 +541,10 @@ typedef struct {
     X(textures, WpTexture)         /* with textures; a dummy without */                            \
     X(texels, wp_uint)             /* the bitmaps' texels (WpTexture.format) */                    \
     X(emitters, WpEmitter)         /* point, spot, directional, constant, envmap, sphere */        \
-    X(environment_cdf, wp_float)   /* an envmap's sampling tables (kernels/lights/envmap.h) */
+    X(environment_cdf, wp_float)   /* an envmap's sampling tables (kernels/lights/envmap.h) */     \
+    X(instances, WpInstance)       /* with WP_HAS_INSTANCES; a dummy without */                    \
+    X(group_triangles, WpTriangle) /* the shape groups' triangles, in object space */              \
+    X(group_bvh_nodes, WpBvhNode)  /* their hierarchies, one per group */
 
 #define WP_PATH_BUFFERS(X)                                                                         \
     /* path state, one entry per slot (structure of arrays) */                                     \

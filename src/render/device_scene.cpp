@@ -9,12 +9,15 @@
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
 
 #include "render/environment_tables.hpp"
 #include "render/float_range.hpp"
 #include "render/planar_mirrors.hpp"
 #include "render/shadow_occluders.hpp"
+#include "scene/instancing.hpp"
 #include "scene/material.hpp"
+#include "scene/scene_box.hpp"
 
 namespace wp {
 
@@ -48,10 +51,11 @@ bool has_anisotropy(const Scene& scene) {
             return true;
         return m.alpha_u_texture == 0 && m.alpha_u != m.alpha_v;
     };
-    return std::any_of(scene.triangles.begin(), scene.triangles.end(),
-                       [&](const Triangle& t) { return anisotropic(t.material); }) ||
-           std::any_of(scene.spheres.begin(), scene.spheres.end(),
-                       [&](const Sphere& s) { return anisotropic(s.material); });
+    bool found = false;
+    for_each_defined_triangle(scene,
+                              [&](const Triangle& t) { found = found || anisotropic(t.material); });
+    return found || std::any_of(scene.spheres.begin(), scene.spheres.end(),
+                                [&](const Sphere& s) { return anisotropic(s.material); });
 }
 
 void append_word(std::string& list, const std::string& word) {
@@ -85,17 +89,21 @@ struct BinaryNode {
 };
 
 // The builder's tree with primitive numbers in leaf order (DeviceScene's
-// triangles and spheres are permuted so that each leaf's are contiguous), so
-// that a leaf names a range of primitive numbers and needs no index array. A
-// leaf that holds both triangles and spheres, whose numbers cannot form one
-// range, becomes an inner node over a leaf of each kind.
+// triangles, spheres and instances are permuted so that each leaf's are
+// contiguous), so that a leaf names a range of primitive numbers and needs no
+// index array. A leaf that holds two kinds (triangles, spheres, instances),
+// whose numbers cannot form one range, becomes an inner node over a leaf of
+// the first kind and the rest: a leaf, or with three kinds another such node.
 class BinaryWriter {
   public:
     BinaryWriter(const Bvh& bvh, const std::vector<Bounds3f>& boxes,
                  const std::vector<wp_uint>& new_number, wp_uint triangle_count,
-                 std::vector<BinaryNode>& out)
+                 wp_uint plain_count, std::vector<BinaryNode>& out)
         : bvh_(bvh), boxes_(boxes), new_number_(new_number), triangle_count_(triangle_count),
-          out_(out) {}
+          plain_count_(plain_count), out_(out) {}
+
+    // 0 a triangle, 1 a sphere, 2 an instance (by the builder's numbers).
+    int kind(std::uint32_t p) const { return p < triangle_count_ ? 0 : p < plain_count_ ? 1 : 2; }
 
     void write(std::uint32_t index) {
         const BvhNode& node = bvh_.nodes[index];
@@ -106,23 +114,28 @@ class BinaryWriter {
             write(node.second_child);
             return;
         }
+        // build_hierarchy sorted a leaf's primitives by kind.
         const std::uint32_t* first = &bvh_.primitives[node.first_primitive];
-        const std::uint32_t* last = first + node.primitive_count;
-        const auto triangles = static_cast<std::uint32_t>(
-            std::count_if(first, last, [&](std::uint32_t p) { return p < triangle_count_; }));
-        if (triangles == 0 || triangles == node.primitive_count) {
-            push(node.bounds, new_number_[*first], node.primitive_count);
-            return;
-        }
-        // build_hierarchy put a mixed leaf's triangles first.
-        const std::uint32_t spheres = node.primitive_count - triangles;
-        const std::size_t at = push(node.bounds, 0, 0);
-        push(bounds_of(first, triangles), new_number_[first[0]], triangles);
-        out_[at].offset = static_cast<wp_uint>(out_.size());
-        push(bounds_of(first + triangles, spheres), new_number_[first[triangles]], spheres);
+        write_runs(node.bounds, first, first + node.primitive_count);
     }
 
   private:
+    // A leaf of [first, last), split at its kinds' boundaries.
+    void write_runs(const Bounds3f& bounds, const std::uint32_t* first, const std::uint32_t* last) {
+        const std::uint32_t* run_end = first;
+        while (run_end != last && kind(*run_end) == kind(*first))
+            ++run_end;
+        const auto run = static_cast<std::uint32_t>(run_end - first);
+        if (run_end == last) {
+            push(bounds, new_number_[*first], run);
+            return;
+        }
+        const std::size_t at = push(bounds, 0, 0);
+        push(bounds_of(first, run), new_number_[first[0]], run);
+        out_[at].offset = static_cast<wp_uint>(out_.size());
+        write_runs(bounds_of(run_end, static_cast<std::uint32_t>(last - run_end)), run_end, last);
+    }
+
     std::size_t push(const Bounds3f& b, wp_uint offset, wp_uint count) {
         out_.push_back({b, offset, count});
         return out_.size() - 1;
@@ -139,6 +152,7 @@ class BinaryWriter {
     const std::vector<Bounds3f>& boxes_;
     const std::vector<wp_uint>& new_number_;
     wp_uint triangle_count_;
+    wp_uint plain_count_; // triangles and spheres; instances after them
     std::vector<BinaryNode>& out_;
 };
 
@@ -207,55 +221,208 @@ class WideWriter {
     std::vector<WpBvhNode>& out_;
 };
 
-// The hierarchy over every primitive, with the primitives put in its leaf
-// order and every primitive number (the lights') renumbered to match.
-void build_hierarchy(DeviceScene& scene) {
-    const std::vector<Bounds3f> boxes = primitive_boxes(scene);
+// The build options of every hierarchy: the top level's and the groups'.
+BvhBuildOptions hierarchy_options(std::uint32_t split_levels) {
     BvhBuildOptions options;
-    options.max_depth = WP_BVH_MAX_DEPTH - 1; // a mixed leaf's split adds a level
+    options.max_depth = WP_BVH_MAX_DEPTH - split_levels; // mixed leaves' splits add levels
     // A four-wide node tests four boxes at once: SAH weighs its visit as two
     // triangle tests, which makes fewer, fuller leaves (docs/performance.md:
     // measured smaller and no slower than the default 1).
     options.traversal_cost = 2.0;
     options.max_leaf_size = 8;
-    Bvh bvh = build_bvh(boxes, options);
+    return options;
+}
+
+// The binary tree of `bvh` as four-wide nodes appended to `nodes`; throws if
+// a path through it would overflow the traversal stack.
+void write_wide(const Bvh& bvh, const std::vector<Bounds3f>& boxes,
+                const std::vector<wp_uint>& new_number, wp_uint triangle_count, wp_uint plain_count,
+                std::vector<WpBvhNode>& nodes) {
+    std::vector<BinaryNode> binary;
+    binary.reserve(bvh.nodes.size());
+    BinaryWriter(bvh, boxes, new_number, triangle_count, plain_count, binary).write(0);
+    nodes.reserve(nodes.size() + bvh.nodes.size() / 3 + 1);
+    if (WideWriter(binary, nodes).write(0) > WP_BVH_STACK_SIZE)
+        throw std::logic_error("BVH too deep for the traversal stack");
+}
+
+// The hierarchy over every primitive, with the primitives put in its leaf
+// order and every primitive number (the lights') renumbered to match. Each
+// instance's first_primitive holds its group's triangle count on entry and
+// its hits' first number on return (they follow the instances' new order).
+void build_hierarchy(DeviceScene& scene) {
+    const std::vector<Bounds3f> boxes = primitive_boxes(scene);
+    Bvh bvh = build_bvh(boxes, hierarchy_options(scene.instances.empty() ? 1 : 2));
     const auto triangle_count = static_cast<wp_uint>(scene.triangles.size());
-    // Within each leaf, triangles before spheres (BinaryWriter splits mixed leaves there).
+    const auto plain_count = triangle_count + static_cast<wp_uint>(scene.spheres.size());
+    auto kind = [&](std::uint32_t p) { return p < triangle_count ? 0 : p < plain_count ? 1 : 2; };
+    // Within each leaf, triangles, then spheres, then instances (BinaryWriter
+    // splits mixed leaves there).
     for (const BvhNode& node : bvh.nodes)
         if (node.is_leaf())
-            std::stable_partition(bvh.primitives.begin() + node.first_primitive,
-                                  bvh.primitives.begin() + node.first_primitive +
-                                      node.primitive_count,
-                                  [&](std::uint32_t p) { return p < triangle_count; });
+            std::stable_sort(bvh.primitives.begin() + node.first_primitive,
+                             bvh.primitives.begin() + node.first_primitive + node.primitive_count,
+                             [&](std::uint32_t a, std::uint32_t b) { return kind(a) < kind(b); });
 
     std::vector<wp_uint> new_number(bvh.primitives.size());
     std::vector<WpTriangle> triangles;
     std::vector<WpSphere> spheres;
+    std::vector<WpInstance> instances;
+    std::vector<Bounds3f> instance_boxes;
     triangles.reserve(scene.triangles.size());
     spheres.reserve(scene.spheres.size());
+    instances.reserve(scene.instances.size());
     for (std::uint32_t p : bvh.primitives)
         if (p < triangle_count) {
             new_number[p] = static_cast<wp_uint>(triangles.size());
             triangles.push_back(scene.triangles[p]);
-        } else {
+        } else if (p < plain_count) {
             new_number[p] = triangle_count + static_cast<wp_uint>(spheres.size());
             spheres.push_back(scene.spheres[p - triangle_count]);
+        } else {
+            new_number[p] = plain_count + static_cast<wp_uint>(instances.size());
+            instances.push_back(scene.instances[p - plain_count]);
+            instance_boxes.push_back(scene.instance_boxes[p - plain_count]);
         }
     scene.triangles = std::move(triangles);
     scene.spheres = std::move(spheres);
+    scene.instances = std::move(instances);
+    scene.instance_boxes = std::move(instance_boxes);
+    wp_uint next = 0; // validate_scene keeps the numbers within 32 bits
+    for (WpInstance& m : scene.instances) {
+        const wp_uint count = m.first_primitive;
+        m.first_primitive = next;
+        next += count;
+    }
     for (WpLight& light : scene.lights)
         light.triangle = new_number[light.triangle];
     for (WpEmitter& e : scene.emitters)
         if (e.kind == WP_EMITTER_SPHERE)
             e.sphere = new_number[triangle_count + e.sphere] - triangle_count;
 
-    std::vector<BinaryNode> binary;
-    binary.reserve(bvh.nodes.size());
-    BinaryWriter(bvh, boxes, new_number, triangle_count, binary).write(0);
-    scene.bvh_nodes.reserve(bvh.nodes.size() / 3 + 1);
-    if (WideWriter(binary, scene.bvh_nodes).write(0) > WP_BVH_STACK_SIZE)
-        throw std::logic_error("BVH too deep for the traversal stack");
+    write_wide(bvh, boxes, new_number, triangle_count, plain_count, scene.bvh_nodes);
     scene.bvh_stats = bvh.stats;
+}
+
+// A triangle's float record: material, vertex normals and texture
+// coordinates (appended to out's tables), vertices mapped by `point`.
+template <typename Point>
+WpTriangle flatten_triangle(const Triangle& t, bool uvs, Point&& point, DeviceScene& out) {
+    WpTriangle w{};
+    w.v0 = to_float4(point(t.v[0]));
+    w.v1 = to_float4(point(t.v[1]));
+    w.v2 = to_float4(point(t.v[2]));
+    wp_set_triangle_material(&w, t.material);
+    if (t.has_normals) {
+        WpShadingNormals n{};
+        n.n0 = to_float4(t.normals[0]);
+        n.n1 = to_float4(t.normals[1]);
+        n.n2 = to_float4(t.normals[2]);
+        out.triangle_normals.push_back(n);
+        wp_set_triangle_normals(&w, static_cast<wp_uint>(out.triangle_normals.size())); // k + 1
+    }
+    if (uvs && t.has_uvs) {
+        WpTriangleUvs c{};
+        for (int k = 0; k < 3; ++k) {
+            c.u.s[k] = static_cast<float>(t.uvs[k].x);
+            c.v.s[k] = static_cast<float>(t.uvs[k].y);
+        }
+        out.triangle_uvs.push_back(c);
+        wp_set_triangle_uvs(&w, static_cast<wp_uint>(out.triangle_uvs.size())); // k + 1
+    }
+    return w;
+}
+
+// The shape groups (their triangles in object space, in each group's
+// hierarchy's leaf order, and the hierarchies) and the instances (their maps
+// into the float frame and their boxes there). A group is built once however
+// many instances place it; instances of a group that lost every triangle
+// (zero-area ones are skipped) place nothing and are left out.
+//
+// An instance's box is its group's box mapped to the world, widened for the
+// rounding of the ray's map into object space: the kernel finds hits along
+// the rounded object-space ray, a few ulps of the ray's coordinates times the
+// map's condition number from the exact one. The slack is 2^-16 of the
+// frame's largest coordinate (the ray origins lie within it), which covers
+// condition numbers up to about 2^7 with room; a box a little too large only
+// costs a few extra visits.
+void flatten_instances(const Scene& scene, const FloatFrame& frame, bool uvs, DeviceScene& out) {
+    struct GroupRecord {
+        wp_uint root = 0, first = 0, count = 0;
+        Bounds3f box;
+    };
+    std::vector<GroupRecord> groups;
+    for (const ShapeGroup& group : scene.shape_groups) {
+        GroupRecord g;
+        g.first = static_cast<wp_uint>(out.group_triangles.size());
+        g.count = static_cast<wp_uint>(group.triangles.size());
+        std::vector<WpTriangle> triangles;
+        triangles.reserve(group.triangles.size());
+        for (const Triangle& t : group.triangles)
+            triangles.push_back(flatten_triangle(
+                t, uvs, [](const glm::dvec3& p) { return p; }, out));
+        if (triangles.empty()) {
+            groups.push_back(g);
+            continue;
+        }
+        std::vector<Bounds3f> boxes;
+        boxes.reserve(triangles.size());
+        for (const WpTriangle& t : triangles) {
+            Bounds3f b;
+            for (const wp_float4* v : {&t.v0, &t.v1, &t.v2})
+                b.extend(glm::vec3(v->s[0], v->s[1], v->s[2]));
+            boxes.push_back(widened(b));
+            g.box.extend(boxes.back());
+        }
+        const Bvh bvh = build_bvh(boxes, hierarchy_options(1));
+        std::vector<wp_uint> new_number(triangles.size());
+        for (std::uint32_t p : bvh.primitives) {
+            new_number[p] = static_cast<wp_uint>(out.group_triangles.size());
+            out.group_triangles.push_back(triangles[p]);
+        }
+        g.root = static_cast<wp_uint>(out.group_bvh_nodes.size());
+        write_wide(bvh, boxes, new_number, g.count, g.count, out.group_bvh_nodes);
+        groups.push_back(g);
+    }
+
+    // The frame's largest coordinate: the scene's box mapped (render/float_range.hpp).
+    const SceneBox world = scene_box(scene);
+    const double magnitude =
+        std::max(glm::length(frame.point(world.lower)), glm::length(frame.point(world.upper)));
+    const double slack = magnitude * 0x1p-16;
+    for (const Instance& instance : scene.instances) {
+        const GroupRecord& g = groups[instance.group];
+        if (g.count == 0)
+            continue;
+        // p -> frame.scale (to_world p - origin): the frame after the instance's map.
+        glm::dmat4 to_frame = instance.to_world;
+        for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 3; ++r)
+                to_frame[c][r] *= frame.scale;
+        for (int r = 0; r < 3; ++r)
+            to_frame[3][r] -= frame.scale * frame.origin[r];
+        const glm::dmat4 to_object = glm::inverse(to_frame);
+        WpInstance m{};
+        for (int r = 0; r < 3; ++r) {
+            m.to_world[r] = to_float4(glm::dvec3(to_frame[0][r], to_frame[1][r], to_frame[2][r]),
+                                      to_frame[3][r]);
+            m.to_object[r] = to_float4(
+                glm::dvec3(to_object[0][r], to_object[1][r], to_object[2][r]), to_object[3][r]);
+        }
+        m.root = g.root;
+        m.first_triangle = g.first;
+        m.first_primitive = g.count; // the hits' numbers follow the hierarchy (build_hierarchy)
+        m.mirrored = glm::determinant(glm::dmat3(to_frame)) < 0.0 ? 1u : 0u;
+        out.instances.push_back(m);
+        DoubleBox object;
+        object.extend(glm::dvec3(g.box.lower));
+        object.extend(glm::dvec3(g.box.upper));
+        const DoubleBox mapped = mapped_box(object, to_frame);
+        Bounds3f b;
+        b.lower = glm::vec3(mapped.lower - glm::dvec3(slack));
+        b.upper = glm::vec3(mapped.upper + glm::dvec3(slack));
+        out.instance_boxes.push_back(widened(b));
+    }
 }
 
 // The mean of a colour's channels: what a light's power is compared by.
@@ -291,6 +458,10 @@ void flatten_emitters(const Scene& scene, const FloatFrame& frame, double triang
     for (const Sphere& s : scene.spheres) {
         lo = glm::min(lo, frame.point(s.center) - glm::dvec3(frame.scale * s.radius));
         hi = glm::max(hi, frame.point(s.center) + glm::dvec3(frame.scale * s.radius));
+    }
+    for (const Bounds3f& b : out.instance_boxes) { // flatten_instances came first
+        lo = glm::min(lo, glm::dvec3(b.lower));
+        hi = glm::max(hi, glm::dvec3(b.upper));
     }
     const double diagonal = glm::length(hi - lo);
     const double radius = 0.5 * diagonal / frame.scale; // scene units, for the power
@@ -463,17 +634,20 @@ SceneFeatures analyse_features(const Scene& scene, std::uint32_t max_fixed_count
     SceneFeatures f;
     f.triangles = !scene.triangles.empty();
     f.spheres = !scene.spheres.empty();
+    f.instances = !scene.instances.empty();
     auto uses = [&](MaterialKind kind) {
-        for (const Triangle& t : scene.triangles)
-            if (scene.materials[t.material].kind == kind)
-                return true;
+        bool used = false;
+        for_each_defined_triangle(scene, [&](const Triangle& t) {
+            used = used || scene.materials[t.material].kind == kind;
+        });
         for (const Sphere& s : scene.spheres)
             if (scene.materials[s.material].kind == kind)
                 return true;
-        return false;
+        return used;
     };
-    f.shading_normals = std::any_of(scene.triangles.begin(), scene.triangles.end(),
-                                    [](const Triangle& t) { return t.has_normals; });
+    f.shading_normals = false;
+    for_each_defined_triangle(scene,
+                              [&](const Triangle& t) { f.shading_normals |= t.has_normals; });
     // One feature per material kind with a BSDF: on when the scene uses it.
 #define WP_MATERIAL_FEATURE_USED(features, KIND, Name, name, value, bsdf, glossy)                  \
     WP_IF(bsdf)(features.name = uses(MaterialKind::Name);)
@@ -520,7 +694,8 @@ SceneFeatures analyse_features(const Scene& scene, std::uint32_t max_fixed_count
     WP_FILTERS_WITH(WP_FILTER_FEATURE_USED, f)
 #undef WP_FILTER_FEATURE_USED
     const std::size_t primitives = scene.triangles.size() + scene.spheres.size();
-    f.bvh = primitives >= kMinBvhPrimitives;
+    // Instances are traversed only through the hierarchy (kernels/instance.h).
+    f.bvh = primitives >= kMinBvhPrimitives || f.instances;
     f.fixed_counts = !f.bvh && primitives <= max_fixed_count_primitives;
     if (f.fixed_counts) {
         f.triangle_count = static_cast<std::uint32_t>(scene.triangles.size());
@@ -588,13 +763,15 @@ void flatten_textures(const Scene& scene, DeviceScene& out) {
 }
 
 DeviceScene flatten_scene(const Scene& scene, bool hierarchy) {
-    const auto count = [&](auto has) {
-        return static_cast<std::size_t>(
-            std::count_if(scene.triangles.begin(), scene.triangles.end(), has));
-    };
-    check_triangle_indices(scene.materials.size(),
-                           count([](const Triangle& t) { return t.has_normals; }));
-    check_triangle_indices(0, count([](const Triangle& t) { return t.has_uvs; }));
+    std::size_t normal_sets = 0, uv_sets = 0; // with the shape groups', which share the tables
+    for_each_defined_triangle(scene, [&](const Triangle& t) {
+        normal_sets += t.has_normals;
+        uv_sets += t.has_uvs;
+    });
+    check_triangle_indices(scene.materials.size(), normal_sets);
+    check_triangle_indices(0, uv_sets);
+    if (!scene.instances.empty() && !hierarchy)
+        throw std::logic_error("a scene with instances is traversed through a hierarchy");
     DeviceScene out;
     out.width = scene.camera.width;
     out.height = scene.camera.height;
@@ -662,29 +839,8 @@ DeviceScene flatten_scene(const Scene& scene, bool hierarchy) {
     double triangle_power = 0.0; // sum of mean radiance x area: the triangles' power / pi
     for (std::size_t i = 0; i < scene.triangles.size(); ++i) {
         const Triangle& t = scene.triangles[i];
-        WpTriangle w{};
-        w.v0 = to_float4(frame.point(t.v[0]));
-        w.v1 = to_float4(frame.point(t.v[1]));
-        w.v2 = to_float4(frame.point(t.v[2]));
-        wp_set_triangle_material(&w, t.material);
-        if (t.has_normals) {
-            WpShadingNormals n{};
-            n.n0 = to_float4(t.normals[0]);
-            n.n1 = to_float4(t.normals[1]);
-            n.n2 = to_float4(t.normals[2]);
-            out.triangle_normals.push_back(n);
-            wp_set_triangle_normals(&w, static_cast<wp_uint>(out.triangle_normals.size())); // k + 1
-        }
-        if (uvs && t.has_uvs) {
-            WpTriangleUvs c{};
-            for (int k = 0; k < 3; ++k) {
-                c.u.s[k] = static_cast<float>(t.uvs[k].x);
-                c.v.s[k] = static_cast<float>(t.uvs[k].y);
-            }
-            out.triangle_uvs.push_back(c);
-            wp_set_triangle_uvs(&w, static_cast<wp_uint>(out.triangle_uvs.size())); // k + 1
-        }
-        out.triangles.push_back(w);
+        out.triangles.push_back(flatten_triangle(
+            t, uvs, [&](const glm::dvec3& p) { return frame.point(p); }, out));
         if (scene.materials[t.material].is_emissive()) {
             const glm::dvec3 e1 = frame.scale * (t.v[1] - t.v[0]);
             const glm::dvec3 e2 = frame.scale * (t.v[2] - t.v[0]);
@@ -707,6 +863,7 @@ DeviceScene flatten_scene(const Scene& scene, bool hierarchy) {
     set_light_guides(out.lights);
     out.light_area = static_cast<float>(total_area);
 
+    flatten_instances(scene, frame, uvs, out);
     flatten_emitters(scene, frame, triangle_power / (frame.scale * frame.scale), out);
 
     // Planar mirrors in the float frame: the plane from the frame's vertices
@@ -791,6 +948,7 @@ std::vector<Bounds3f> primitive_boxes(const DeviceScene& scene) {
         b.extend(glm::vec3(c + glm::dvec3(r)));
         boxes.push_back(widened(b));
     }
+    boxes.insert(boxes.end(), scene.instance_boxes.begin(), scene.instance_boxes.end());
     return boxes;
 }
 

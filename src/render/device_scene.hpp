@@ -56,6 +56,7 @@ inline constexpr std::uint32_t kMinBvhPrimitives = kMaxFixedCountPrimitives + 1;
     X(constant_light, WP_HAS_CONSTANT_LIGHT)                                                       \
     X(envmap_light, WP_HAS_ENVMAP_LIGHT)                                                           \
     X(sphere_light, WP_HAS_SPHERE_LIGHT) /* spheres of an emissive material */                     \
+    X(instances, WP_HAS_INSTANCES)       /* instances of shape groups (kernels/instance.h) */      \
     WP_FILTER_FEATURES(X)                /* the pixel filter, unless the box */                    \
     WP_TEXTURE_FEATURES(X)               /* texture kinds in use */
 
@@ -129,10 +130,16 @@ struct DeviceScene {
     std::vector<wp_uint> mirror_spheres;            // with lights: the spheres of a mirror material
     std::vector<WpTriangleUvs> triangle_uvs; // of the triangles that have them (with textures)
     std::vector<WpTexture> textures;
-    std::vector<wp_uint> texels;           // the bitmaps' (WpTexture.first)
-    std::vector<WpEmitter> emitters;       // point, spot, directional, constant, envmap; the
-                                           // environment (constant or envmap) first
-    std::vector<wp_float> environment_cdf; // an envmap's sampling tables (lights/envmap.h)
+    std::vector<wp_uint> texels;             // the bitmaps' (WpTexture.first)
+    std::vector<WpEmitter> emitters;         // point, spot, directional, constant, envmap; the
+                                             // environment (constant or envmap) first
+    std::vector<wp_float> environment_cdf;   // an envmap's sampling tables (lights/envmap.h)
+    std::vector<WpInstance> instances;       // in the top-level hierarchy's leaf order
+    std::vector<WpTriangle> group_triangles; // every shape group's once, in object space
+    std::vector<WpBvhNode> group_bvh_nodes;  // a hierarchy per group (WpInstance.root)
+    // Host only: each instance's box in the device's world frame, widened
+    // for the rounding of its ray's map into object space (device_scene.cpp).
+    std::vector<Bounds3f> instance_boxes;
     BvhStats bvh_stats;
     float light_area = 0.0f; // total emissive area
     // The probability that next-event estimation chooses an emitter rather
@@ -156,8 +163,11 @@ void check_triangle_indices(std::size_t materials, std::size_t normal_sets);
 void set_light_guides(std::vector<WpLight>& lights);
 
 // Converts to float32 and builds the light table, and with `hierarchy` the
-// bounding volume hierarchy over triangles and spheres; the camera basis is
-// scaled so that film coordinates in [-1, 1] span the field of view.
+// bounding volume hierarchy over triangles, spheres and instances (a scene
+// with instances needs it: std::logic_error without); the camera basis is
+// scaled so that film coordinates in [-1, 1] span the field of view. Each
+// shape group gets its own hierarchy, built once however many instances
+// place it.
 DeviceScene flatten_scene(const Scene& scene, bool hierarchy = false);
 
 // The scene's textures as WpTexture rows into out.textures, their bitmaps'
@@ -165,9 +175,10 @@ DeviceScene flatten_scene(const Scene& scene, bool hierarchy = false);
 // flatten_scene.
 void flatten_textures(const Scene& scene, DeviceScene& out);
 
-// The box the hierarchy gives each primitive (the triangles' first): the
-// primitive's float32 bounds, widened so that every hit the device's
-// intersection tests report lies inside (see device_scene.cpp).
+// The box the hierarchy gives each primitive (the triangles' first, then the
+// spheres', then the instances'): the primitive's float32 bounds, widened so
+// that every hit the device's intersection tests report lies inside (see
+// device_scene.cpp).
 std::vector<Bounds3f> primitive_boxes(const DeviceScene& scene);
 
 } // namespace wp

@@ -207,6 +207,7 @@ WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const Scene& sce
     frame_.mirror_sphere_count = static_cast<wp_uint>(scene_.mirror_spheres.size());
     frame_.emitter_count = static_cast<wp_uint>(scene_.emitters.size());
     frame_.emitter_pick = scene_.emitter_pick;
+    frame_.instance_count = static_cast<wp_uint>(scene_.instances.size());
     frame_.max_depth = options_.max_depth;
     frame_.path_types = options_.path_types;
 

@@ -19,6 +19,7 @@
 #include "image/image.hpp"
 #include "image/texture_image.hpp"
 #include "scene/camera.hpp"
+#include "scene/instancing.hpp"
 #include "scene/json_reader.hpp"
 #include "scene/material.hpp"
 #include "scene/mesh.hpp"
@@ -855,6 +856,113 @@ class SceneReader : private json::Reader {
         check_keys(s, p, {"type", "vertices", "uvs", "triangles", "material", "name"});
     }
 
+    // {"type": "shapegroup", "id": "tree", "shapes": [triangles, quads,
+    // meshes]}: Mitsuba's shapegroup, shapes read once into a ShapeGroup
+    // that instances place (scene/scene.hpp).
+    void read_shape_group(const Json& s, const Ptr& p) {
+        check_keys(s, p, {"type", "id", "shapes", "name"});
+        if (const auto it = s.find("name"); it != s.end())
+            expect_string(*it, p / "name");
+        const std::string& id = expect_string(require(s, p, "id"), p / "id");
+        if (id.empty())
+            fail(p / "id", "must name the shape group (instances refer to it by this id)");
+        if (group_numbers_.contains(id))
+            fail(p / "id", "a second shape group '" + shorten(id, 40) + "' (ids are unique)");
+        const Ptr pg = p / "shapes";
+        const Json& shapes = require(s, p, "shapes");
+        if (!shapes.is_array() || shapes.empty())
+            fail(pg, "expected a non-empty array of shapes (triangle, quad, mesh), got " +
+                         describe(shapes));
+        // The group's shapes are read as the scene's, into an empty list.
+        std::vector<Triangle> outside = std::move(scene_.triangles);
+        scene_.triangles.clear();
+        for (std::size_t i = 0; i < shapes.size(); ++i) {
+            const Ptr ps = pg / i;
+            const Json& shape = shapes[i];
+            expect_object(shape, ps, "a shape object");
+            const std::string& type = expect_string(require(shape, ps, "type"), ps / "type");
+            if (type != "triangle" && type != "quad" && type != "mesh")
+                fail(ps / "type", "a shape group holds triangles, quads and meshes, not '" +
+                                      shorten(type, 40) +
+                                      "' (spheres and nested groups or instances are not "
+                                      "supported inside a group)");
+            read_shape(shape, ps, type);
+        }
+        ShapeGroup group;
+        group.name = id;
+        group.triangles = std::move(scene_.triangles);
+        scene_.triangles = std::move(outside);
+        if (const std::string problem = group_material_problem(group, scene_.materials);
+            !problem.empty())
+            fail(p, problem);
+        group_numbers_.emplace(id, static_cast<std::uint32_t>(scene_.shape_groups.size()));
+        scene_.shape_groups.push_back(std::move(group));
+    }
+
+    // {"type": "instance", "shapegroup": "tree", "to_world": [transform
+    // steps]}: Mitsuba's instance of a shape group defined before it.
+    void read_instance(const Json& s, const Ptr& p) {
+        check_keys(s, p, {"type", "shapegroup", "to_world", "name"});
+        if (const auto it = s.find("name"); it != s.end())
+            expect_string(*it, p / "name");
+        const std::string& id = expect_string(require(s, p, "shapegroup"), p / "shapegroup");
+        const auto found = group_numbers_.find(id);
+        if (found == group_numbers_.end()) {
+            std::string known;
+            for (const ShapeGroup& g : scene_.shape_groups)
+                known += (known.empty() ? "" : ", ") + shorten(g.name, 40);
+            fail(p / "shapegroup", "unknown shape group '" + shorten(id, 40) + "' (" +
+                                       (known.empty() ? std::string("none is defined")
+                                                      : "defined before this instance: " + known) +
+                                       ")");
+        }
+        Instance instance;
+        instance.group = found->second;
+        if (const auto it = s.find("to_world"); it != s.end())
+            instance.to_world = read_transform(*this, *it, p / "to_world").matrix();
+        if (const std::string problem = instance_transform_problem(instance.to_world);
+            !problem.empty())
+            fail(p / "to_world", problem);
+        scene_.instances.push_back(instance);
+    }
+
+    // One triangle, quad, mesh or sphere shape, its keys checked.
+    void read_shape(const Json& s, const Ptr& ps, const std::string& type) {
+        if (type == "triangle" || type == "quad") {
+            check_keys(s, ps, {"type", "vertices", "uvs", "material", "name"});
+        } else if (type == "mesh") {
+            check_mesh_keys(s, ps);
+        } else if (type == "sphere") {
+            check_keys(s, ps, {"type", "center", "radius", "material", "name"});
+        } else {
+            fail(ps / "type", "unknown shape type '" + shorten(type, 40) +
+                                  "' (expected triangle, quad, mesh, sphere, shapegroup or "
+                                  "instance)");
+        }
+        if (const auto it = s.find("name"); it != s.end())
+            expect_string(*it, ps / "name");
+        const std::uint32_t material = material_ref(s, ps);
+
+        if (type == "triangle") {
+            const auto v = points(require(s, ps, "vertices"), ps / "vertices", 3);
+            const std::vector<glm::dvec2> uv = read_uvs(s, ps, 3);
+            const std::array<glm::dvec2, 3> uvs{uv.empty() ? glm::dvec2(0.0) : uv[0],
+                                                uv.empty() ? glm::dvec2(0.0) : uv[1],
+                                                uv.empty() ? glm::dvec2(0.0) : uv[2]};
+            add_triangle(v[0], v[1], v[2], material, pointer_text(ps), "",
+                         uv.empty() ? nullptr : &uvs);
+        } else if (type == "quad") {
+            read_quad(s, points(require(s, ps, "vertices"), ps / "vertices", 4), material, ps);
+        } else if (type == "mesh") {
+            if (s.contains("file"))
+                read_mesh_file(s, material, ps);
+            else
+                read_mesh(s, material, ps);
+        } else {
+            read_sphere(s, material, ps);
+        }
+    }
+
     void read_shapes(const Json& shapes, const Ptr& p) {
         if (!shapes.is_array())
             fail(p, "expected an array of shapes, got " + describe(shapes));
@@ -865,40 +973,14 @@ class SceneReader : private json::Reader {
             const Json& s = shapes[i];
             expect_object(s, ps, "a shape object");
             const std::string& type = expect_string(require(s, ps, "type"), ps / "type");
-            if (type == "triangle" || type == "quad") {
-                check_keys(s, ps, {"type", "vertices", "uvs", "material", "name"});
-            } else if (type == "mesh") {
-                check_mesh_keys(s, ps);
-            } else if (type == "sphere") {
-                check_keys(s, ps, {"type", "center", "radius", "material", "name"});
-            } else {
-                fail(ps / "type", "unknown shape type '" + shorten(type, 40) +
-                                      "' (expected triangle, quad, mesh or sphere)");
-            }
-            if (const auto it = s.find("name"); it != s.end())
-                expect_string(*it, ps / "name");
-            const std::uint32_t material = material_ref(s, ps);
-
-            if (type == "triangle") {
-                const auto v = points(require(s, ps, "vertices"), ps / "vertices", 3);
-                const std::vector<glm::dvec2> uv = read_uvs(s, ps, 3);
-                const std::array<glm::dvec2, 3> uvs{uv.empty() ? glm::dvec2(0.0) : uv[0],
-                                                    uv.empty() ? glm::dvec2(0.0) : uv[1],
-                                                    uv.empty() ? glm::dvec2(0.0) : uv[2]};
-                add_triangle(v[0], v[1], v[2], material, pointer_text(ps), "",
-                             uv.empty() ? nullptr : &uvs);
-            } else if (type == "quad") {
-                read_quad(s, points(require(s, ps, "vertices"), ps / "vertices", 4), material, ps);
-            } else if (type == "mesh") {
-                if (s.contains("file"))
-                    read_mesh_file(s, material, ps);
-                else
-                    read_mesh(s, material, ps);
-            } else {
-                read_sphere(s, material, ps);
-            }
+            if (type == "shapegroup")
+                read_shape_group(s, ps);
+            else if (type == "instance")
+                read_instance(s, ps);
+            else
+                read_shape(s, ps, type);
         }
-        if (scene_.triangles.empty() && scene_.spheres.empty())
+        if (scene_.triangles.empty() && scene_.spheres.empty() && scene_.instances.empty())
             fail(p, "every shape was skipped (all triangles have zero area): nothing to render");
     }
 
@@ -1015,6 +1097,7 @@ class SceneReader : private json::Reader {
 
     std::filesystem::path folder_;
     Scene scene_;
+    std::map<std::string, std::uint32_t> group_numbers_; // shape group id -> Scene::shape_groups
     std::unordered_map<std::string, std::uint32_t> material_index_;
     std::map<std::pair<std::string, bool>, std::shared_ptr<const TextureImage>> texture_images_;
 };

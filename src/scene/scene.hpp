@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <glm/mat3x3.hpp>
+#include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -155,6 +156,25 @@ struct Sphere {
     std::uint32_t material = 0;
 };
 
+// Shapes defined once and placed many times (Mitsuba's shapegroup): the
+// group's triangles in its own object space. Only triangles (meshes, quads,
+// ...): no spheres, and no emitting material (Mitsuba refuses emitters in a
+// shape group; the loaders do too).
+struct ShapeGroup {
+    std::string name; // its id, for messages and the export
+    std::vector<Triangle> triangles;
+};
+
+// One placement of a shape group (Mitsuba's instance): the group's triangles
+// mapped by to_world, an invertible affine map (its last row 0 0 0 1). A map
+// with a negative determinant mirrors the group; the front faces stay on the
+// side of the object normals mapped by the inverse transpose, as Mitsuba's
+// instances keep them (kernels/instance.h).
+struct Instance {
+    std::uint32_t group = 0; // index into Scene::shape_groups
+    glm::dmat4 to_world{1.0};
+};
+
 // The emitters that are not emitting surfaces, Mitsuba 3's plugins of the
 // same names (docs/lights-and-camera.md), with the kernels' values
 // (WP_EMITTER_*, kernels/wp_shared.h).
@@ -212,6 +232,8 @@ struct Scene {
     std::vector<Material> materials;
     std::vector<Triangle> triangles; // quads and meshes are split into triangles
     std::vector<Sphere> spheres;
+    std::vector<ShapeGroup> shape_groups; // shared meshes, placed by `instances`
+    std::vector<Instance> instances;
     std::vector<Texture> textures; // named by materials' *_texture
     std::vector<Emitter> emitters; // point, spot, directional, constant, envmap: one environment
     // Mitsuba's path integrator's hide_emitters: what emits is black where the
@@ -221,6 +243,17 @@ struct Scene {
     bool hide_emitters = false;
     std::vector<std::string> warnings; // e.g. skipped zero-area triangles
 };
+
+// The triangles of the plain shapes and of every shape group (not the
+// instances' copies, which are never made): what the material, normal and
+// texture features of the kernels depend on.
+template <typename F> void for_each_defined_triangle(const Scene& scene, F&& f) {
+    for (const Triangle& t : scene.triangles)
+        f(t);
+    for (const ShapeGroup& g : scene.shape_groups)
+        for (const Triangle& t : g.triangles)
+            f(t);
+}
 
 // Whether some sphere has an emissive material (a sphere light, sampled by
 // the cone it subtends: kernels/lights/sphere.h).

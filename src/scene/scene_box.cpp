@@ -5,6 +5,8 @@
 
 #include <glm/common.hpp>
 
+#include "scene/instancing.hpp"
+
 namespace wp {
 
 double SceneBox::size() const {
@@ -29,6 +31,16 @@ SceneBox scene_box(const Scene& scene) {
     for (const Sphere& s : scene.spheres) {
         add(s.center - glm::dvec3(s.radius));
         add(s.center + glm::dvec3(s.radius));
+    }
+    std::vector<DoubleBox> groups;
+    for (const ShapeGroup& g : scene.shape_groups)
+        groups.push_back(group_box(g));
+    for (const Instance& instance : scene.instances) {
+        const DoubleBox b = mapped_box(groups[instance.group], instance.to_world);
+        if (!b.empty()) {
+            add(b.lower);
+            add(b.upper);
+        }
     }
     return box;
 }

@@ -9,6 +9,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "scene/instancing.hpp"
 #include "scene/scene_box.hpp"
 
 namespace wp {
@@ -259,7 +260,43 @@ class Checker {
                         "one");
         }
 
-        if (scene_.triangles.empty() && scene_.spheres.empty())
+        for (std::size_t g = 0; g < scene_.shape_groups.size(); ++g) {
+            const ShapeGroup& group = scene_.shape_groups[g];
+            for (std::size_t i = 0; i < group.triangles.size(); ++i) {
+                const Triangle& t = group.triangles[i];
+                if (passes(t))
+                    continue;
+                const std::string f = "shape_groups[" + std::to_string(g) + "] ('" + group.name +
+                                      "').triangles[" + std::to_string(i) + "]";
+                for (int k = 0; k < 3; ++k)
+                    point(t.v[static_cast<std::size_t>(k)], f + ".v[" + std::to_string(k) + "]");
+                material_index(t.material, f + ".material");
+                fail(f, "zero-area triangle (the loader skips these)");
+            }
+            if (const std::string problem = group_material_problem(group, scene_.materials);
+                !problem.empty())
+                fail("shape_groups[" + std::to_string(g) + "]", problem);
+        }
+        for (std::size_t i = 0; i < scene_.instances.size(); ++i) {
+            const Instance& instance = scene_.instances[i];
+            const std::string f = "instances[" + std::to_string(i) + "]";
+            if (instance.group >= scene_.shape_groups.size())
+                fail(f + ".group", "shape group index " + std::to_string(instance.group) +
+                                       " out of range (" +
+                                       std::to_string(scene_.shape_groups.size()) + " groups)");
+            if (const std::string problem = instance_transform_problem(instance.to_world);
+                !problem.empty())
+                fail(f + ".to_world", problem);
+        }
+        // Instanced hits are numbered past the plain primitives in 32 bits
+        // (kernels/wp_shared.h, WpInstance).
+        const std::uint64_t numbered = instanced_triangle_count(scene_) + scene_.triangles.size() +
+                                       scene_.spheres.size() + scene_.instances.size();
+        if (numbered >= 0xffffffffull)
+            fail("instances", "the instances place " + std::to_string(numbered) +
+                                  " triangles; the device numbers at most 2^32 - 2 primitives");
+
+        if (scene_.triangles.empty() && scene_.spheres.empty() && scene_.instances.empty())
             fail("shapes", "the scene has no shapes");
         extent();
     }

@@ -1,0 +1,61 @@
+/* The traversal of one instance's group (instance.h has the model):
+ * included by bvh.h after its traversal helpers, which it shares. */
+#ifndef WP_INSTANCE_TRACE_H
+#define WP_INSTANCE_TRACE_H
+
+#include "instance.h"
+
+/* The triangles of instance `instance` hit by origin + t direction (world),
+ * 0 < t < t_max: the closest, or with any_hit the first found. Returns the
+ * hit's primitive number (wp_shared.h, WpInstance) or WP_NO_HIT, and its t in
+ * *t_hit. */
+static inline wp_uint wp_instance_trace(const WpSceneView* scene, wp_uint instance, float3 origin,
+                                        float3 direction, float t_max, int any_hit, float* t_hit) {
+    __global const WpInstance* m = &scene->instances[instance];
+    float3 o =
+        (float3)(wp_affine_row(m->to_object[0], origin), wp_affine_row(m->to_object[1], origin),
+                 wp_affine_row(m->to_object[2], origin));
+    float3 d = (float3)(wp_linear_row(m->to_object[0], direction),
+                        wp_linear_row(m->to_object[1], direction),
+                        wp_linear_row(m->to_object[2], direction));
+    wp_uint hit = WP_NO_HIT;
+    float closest = t_max;
+    WpShearedRay sheared = wp_shear_ray(o, d);
+    WpBoxRay box_ray = wp_box_ray(o, d);
+    WpBvhEntry stack[WP_BVH_STACK_SIZE];
+    int top = 0;
+    WpBvhEntry current;
+    current.child = m->root;
+    current.count = 0u;
+    current.enter = 0.0f;
+    for (;;) {
+        if (current.count == 0u) {
+            wp_bvh_push_children(&scene->group_bvh_nodes[current.child], &box_ray, closest, stack,
+                                 &top);
+        } else {
+            for (wp_uint k = 0; k < current.count; ++k) {
+                wp_uint triangle = current.child + k;
+                __global const WpTriangle* tri = &scene->group_triangles[triangle];
+                float t;
+                if (wp_intersect_triangle(&sheared, tri->v0.xyz, tri->v1.xyz, tri->v2.xyz, closest,
+                                          &t)) {
+                    closest = t;
+                    hit = triangle;
+                    if (any_hit)
+                        break;
+                }
+            }
+            if (any_hit && hit != WP_NO_HIT)
+                break;
+        }
+        if (!wp_bvh_pop(stack, &top, closest, &current))
+            break;
+    }
+    *t_hit = closest;
+    if (hit == WP_NO_HIT)
+        return WP_NO_HIT;
+    return scene->triangle_count + scene->sphere_count + m->first_primitive +
+           (hit - m->first_triangle);
+}
+
+#endif /* WP_INSTANCE_TRACE_H */
