@@ -38,6 +38,19 @@ static inline float3 wp_instance_to_world(__global const WpInstance* m, float3 p
                     wp_affine_row(m->to_world[2], p));
 }
 
+/* The world ray origin + t direction in object space: the same t reaches
+ * the image of the same point (the direction is not renormalised). */
+static inline void wp_instance_object_ray(__global const WpInstance* m, float3 origin,
+                                          float3 direction, float3* object_origin,
+                                          float3* object_direction) {
+    *object_origin =
+        (float3)(wp_affine_row(m->to_object[0], origin), wp_affine_row(m->to_object[1], origin),
+                 wp_affine_row(m->to_object[2], origin));
+    *object_direction = (float3)(wp_linear_row(m->to_object[0], direction),
+                                 wp_linear_row(m->to_object[1], direction),
+                                 wp_linear_row(m->to_object[2], direction));
+}
+
 /* An object-space normal in the world: by the inverse transpose of to_world,
  * the transpose of to_object's linear part (not normalised). */
 static inline float3 wp_instance_normal_to_world(__global const WpInstance* m, float3 n) {

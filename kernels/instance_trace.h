@@ -12,12 +12,8 @@
 static inline wp_uint wp_instance_trace(const WpSceneView* scene, wp_uint instance, float3 origin,
                                         float3 direction, float t_max, int any_hit, float* t_hit) {
     __global const WpInstance* m = &scene->instances[instance];
-    float3 o =
-        (float3)(wp_affine_row(m->to_object[0], origin), wp_affine_row(m->to_object[1], origin),
-                 wp_affine_row(m->to_object[2], origin));
-    float3 d = (float3)(wp_linear_row(m->to_object[0], direction),
-                        wp_linear_row(m->to_object[1], direction),
-                        wp_linear_row(m->to_object[2], direction));
+    float3 o, d;
+    wp_instance_object_ray(m, origin, direction, &o, &d);
     wp_uint hit = WP_NO_HIT;
     float closest = t_max;
     WpShearedRay sheared = wp_shear_ray(o, d);

@@ -26,7 +26,8 @@ namespace {
     X(WpTriangleUvs)                                                                               \
     X(WpTexture)                                                                                   \
     X(WpMaterial)                                                                                  \
-    X(WpLight) X(WpEmitter) X(WpMirrorGroup) X(WpBvhNode) X(WpCamera) X(WpFrame) X(WpLaunch)
+    X(WpLight)                                                                                     \
+    X(WpEmitter) X(WpMirrorGroup) X(WpBvhNode) X(WpInstance) X(WpCamera) X(WpFrame) X(WpLaunch)
 
 #define WP_LAYOUT_FIELDS(X)                                                                        \
     X(WpTriangle, v0)                                                                              \
@@ -132,6 +133,13 @@ namespace {
     X(WpFrame, path_types)                                                                         \
     X(WpFrame, emitter_count)                                                                      \
     X(WpFrame, emitter_pick)                                                                       \
+    X(WpFrame, instance_count)                                                                     \
+    X(WpInstance, to_world)                                                                        \
+    X(WpInstance, to_object)                                                                       \
+    X(WpInstance, root)                                                                            \
+    X(WpInstance, first_triangle)                                                                  \
+    X(WpInstance, first_primitive)                                                                 \
+    X(WpInstance, mirrored)                                                                        \
     X(WpLaunch, count)                                                                             \
     X(WpLaunch, ray_queue)                                                                         \
     X(WpLaunch, from_finished)                                                                     \

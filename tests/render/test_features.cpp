@@ -137,7 +137,7 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D "
           "WP_HAS_LENS=0 -D WP_HAS_POINT_LIGHT=0 -D WP_HAS_SPOT_LIGHT=0 -D "
           "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D WP_HAS_ENVMAP_LIGHT=0 -D "
-          "WP_HAS_SPHERE_LIGHT=0 -D "
+          "WP_HAS_SPHERE_LIGHT=0 -D WP_HAS_INSTANCES=0 -D "
           "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D WP_HAS_BITMAP_TEXTURE=0 -D "
           "WP_HAS_CHECKERBOARD_TEXTURE=0 -D "
           "WP_TRIANGLE_COUNT=26 -D "
@@ -153,7 +153,7 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=0 -D "
           "WP_HAS_LENS=0 -D WP_HAS_POINT_LIGHT=0 -D WP_HAS_SPOT_LIGHT=0 -D "
           "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D WP_HAS_ENVMAP_LIGHT=0 -D "
-          "WP_HAS_SPHERE_LIGHT=0 -D "
+          "WP_HAS_SPHERE_LIGHT=0 -D WP_HAS_INSTANCES=0 -D "
           "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D WP_HAS_BITMAP_TEXTURE=0 -D "
           "WP_HAS_CHECKERBOARD_TEXTURE=0 -D "
           "WP_TRIANGLE_COUNT=26 -D "
@@ -169,7 +169,7 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "-D WP_HAS_LIGHTS=0 -D WP_HAS_PLANAR_MIRRORS=0 -D WP_HAS_MIRROR_SPHERES=0 -D "
           "WP_HAS_LENS=0 -D WP_HAS_POINT_LIGHT=0 -D WP_HAS_SPOT_LIGHT=0 -D "
           "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D WP_HAS_ENVMAP_LIGHT=0 -D "
-          "WP_HAS_SPHERE_LIGHT=1 -D "
+          "WP_HAS_SPHERE_LIGHT=1 -D WP_HAS_INSTANCES=0 -D "
           "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D WP_HAS_BITMAP_TEXTURE=0 -D "
           "WP_HAS_CHECKERBOARD_TEXTURE=0 -D "
           "WP_TRIANGLE_COUNT=0 -D "
@@ -184,7 +184,7 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=0 -D WP_HAS_MIRROR_SPHERES=0 -D "
           "WP_HAS_LENS=0 -D WP_HAS_POINT_LIGHT=0 -D WP_HAS_SPOT_LIGHT=0 -D "
           "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D WP_HAS_ENVMAP_LIGHT=0 -D "
-          "WP_HAS_SPHERE_LIGHT=0 -D "
+          "WP_HAS_SPHERE_LIGHT=0 -D WP_HAS_INSTANCES=0 -D "
           "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D WP_HAS_BITMAP_TEXTURE=0 -D "
           "WP_HAS_CHECKERBOARD_TEXTURE=0 -D "
           "WP_TRIANGLE_COUNT=26 -D "
@@ -200,7 +200,7 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "-D WP_HAS_LIGHTS=0 -D WP_HAS_PLANAR_MIRRORS=0 -D WP_HAS_MIRROR_SPHERES=0 -D "
           "WP_HAS_LENS=0 -D WP_HAS_POINT_LIGHT=0 -D WP_HAS_SPOT_LIGHT=0 -D "
           "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D WP_HAS_ENVMAP_LIGHT=0 -D "
-          "WP_HAS_SPHERE_LIGHT=1 -D "
+          "WP_HAS_SPHERE_LIGHT=1 -D WP_HAS_INSTANCES=0 -D "
           "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D WP_HAS_BITMAP_TEXTURE=0 -D "
           "WP_HAS_CHECKERBOARD_TEXTURE=0 -D "
           "WP_TRIANGLE_COUNT=24 -D "
@@ -216,7 +216,7 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D "
           "WP_HAS_LENS=0 -D WP_HAS_POINT_LIGHT=0 -D WP_HAS_SPOT_LIGHT=0 -D "
           "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D WP_HAS_ENVMAP_LIGHT=0 -D "
-          "WP_HAS_SPHERE_LIGHT=0 -D "
+          "WP_HAS_SPHERE_LIGHT=0 -D WP_HAS_INSTANCES=0 -D "
           "WP_HAS_TENT_FILTER=0 -D WP_HAS_GAUSSIAN_FILTER=0 -D WP_HAS_BITMAP_TEXTURE=0 -D "
           "WP_HAS_CHECKERBOARD_TEXTURE=0 -D WP_USE_BVH=1");
     // The general kernels: every feature, runtime counts, the scene's hierarchy.
@@ -229,7 +229,7 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D "
           "WP_HAS_LENS=1 -D WP_HAS_POINT_LIGHT=1 -D WP_HAS_SPOT_LIGHT=1 -D "
           "WP_HAS_DIRECTIONAL_LIGHT=1 -D WP_HAS_CONSTANT_LIGHT=1 -D WP_HAS_ENVMAP_LIGHT=1 -D "
-          "WP_HAS_SPHERE_LIGHT=1 -D "
+          "WP_HAS_SPHERE_LIGHT=1 -D WP_HAS_INSTANCES=1 -D "
           "WP_HAS_TENT_FILTER=1 -D WP_HAS_GAUSSIAN_FILTER=1 -D WP_HAS_BITMAP_TEXTURE=1 -D "
           "WP_HAS_CHECKERBOARD_TEXTURE=1 -D WP_USE_BVH=1");
     CHECK(SceneFeatures::general_for(analyse_features(hexroom())).build_options() ==
@@ -243,7 +243,7 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D "
           "WP_HAS_LENS=1 -D WP_HAS_POINT_LIGHT=1 -D WP_HAS_SPOT_LIGHT=1 -D "
           "WP_HAS_DIRECTIONAL_LIGHT=1 -D WP_HAS_CONSTANT_LIGHT=1 -D WP_HAS_ENVMAP_LIGHT=1 -D "
-          "WP_HAS_SPHERE_LIGHT=1 -D "
+          "WP_HAS_SPHERE_LIGHT=1 -D WP_HAS_INSTANCES=1 -D "
           "WP_HAS_TENT_FILTER=1 -D WP_HAS_GAUSSIAN_FILTER=1 -D WP_HAS_BITMAP_TEXTURE=1 -D "
           "WP_HAS_CHECKERBOARD_TEXTURE=1");
 }
@@ -274,7 +274,8 @@ TEST_CASE("features: describe() names the features and the compiled-in counts") 
           "triangles spheres diffuse mirror conductor roughconductor dielectric thindielectric "
           "plastic roughdielectric roughplastic shading_normals anisotropy lights "
           "planar_mirrors mirror_spheres lens point_light spot_light directional_light "
-          "constant_light envmap_light sphere_light tent_filter gaussian_filter bitmap_texture "
+          "constant_light envmap_light sphere_light instances tent_filter gaussian_filter "
+          "bitmap_texture "
           "checkerboard_texture");
 }
 
