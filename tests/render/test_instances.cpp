@@ -1,0 +1,106 @@
+// Instanced scenes render what the same geometry flattened into plain
+// triangles renders: a box lit from its ceiling holding smooth (vertex
+// normals) diffuse and glass balls placed by scaled, rotated and mirrored
+// instances. A mirrored instance keeps its front on its object normals' side
+// (kernels/instance.h), so the glass must bend light the same way in both;
+// the flattened copy reverses a mirrored triangle's winding to match
+// (tests/support/instancing.hpp). Both render with the same seed, and every
+// 8x8 block's mean must agree within 5 standard errors.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <random>
+
+#include <glm/geometric.hpp>
+
+#include "render/device_scene.hpp"
+#include "scene/transform.hpp"
+#include "support/instancing.hpp"
+#include "support/render_helpers.hpp"
+#include "support/scene_builder.hpp"
+
+using namespace wp;
+
+namespace {
+
+// A ball of `rings` x 2 `rings` quads with its vertex normals (smooth).
+ShapeGroup ball(const std::string& name, std::uint32_t material, int rings) {
+    ShapeGroup group{name, {}};
+    auto at = [&](int i, int j) {
+        const double theta = M_PI * i / rings, phi = M_PI * j / rings;
+        return glm::dvec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                          std::cos(theta));
+    };
+    auto add = [&](glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) {
+        Triangle t{{a, b, c}, material};
+        t.has_normals = true;
+        t.normals = {a, b, c}; // unit: points of the unit sphere
+        if (glm::length(glm::cross(b - a, c - a)) > 1e-9)
+            group.triangles.push_back(t);
+    };
+    for (int i = 0; i < rings; ++i)
+        for (int j = 0; j < 2 * rings; ++j) { // outward winding
+            add(at(i, j), at(i + 1, j), at(i + 1, j + 1));
+            add(at(i, j), at(i + 1, j + 1), at(i, j + 1));
+        }
+    return group;
+}
+
+Scene instanced_box() {
+    Scene scene;
+    scene.camera = test::make_camera({0.5, 0.05, 0.5}, {0.5, 1, 0.45}, {0, 0, 1}, 60.0, 48, 48);
+    const auto white = test::add_material(scene, MaterialKind::Diffuse, glm::dvec3(0.7));
+    const auto red = test::add_material(scene, MaterialKind::Diffuse, glm::dvec3(0.7, 0.2, 0.1));
+    const auto glass = test::add_material(scene, MaterialKind::Dielectric, glm::dvec3(1.0));
+    const auto light =
+        test::add_material(scene, MaterialKind::Emitter, glm::dvec3(0.0), glm::dvec3(8.0));
+    test::add_box_inward(scene, glm::dvec3(0.0), glm::dvec3(1.0), white);
+    test::add_quad(scene, {0.4, 0.4, 0.999}, {0.4, 0.6, 0.999}, {0.6, 0.6, 0.999},
+                   {0.6, 0.4, 0.999}, light);
+    scene.shape_groups = {ball("diffuse ball", red, 6), ball("glass ball", glass, 6)};
+    std::mt19937 generator(7);
+    for (int k = 0; k < 6; ++k) {
+        const glm::dmat4 placement =
+            test::random_placement(generator, k % 2 == 1, {0.3, 0.45, 0.3}, {0.7, 0.8, 0.6});
+        const Transform shrink = Transform::scale(0.12);
+        scene.instances.push_back({static_cast<std::uint32_t>(k % 2), placement * shrink.matrix()});
+    }
+    return scene;
+}
+
+} // namespace
+
+TEST_CASE("instances: an instanced scene renders the image of its flattened copy within noise",
+          "[render][instances]") {
+    const Scene instanced = instanced_box();
+    const Scene flat = test::flattened_copy(instanced);
+    REQUIRE(analyse_features(instanced).instances);
+    REQUIRE_FALSE(analyse_features(flat).instances);
+    const test::Rendered a = test::render(instanced, 32, 11);
+    const test::Rendered b = test::render(flat, 32, 11);
+    const Image mean_a = a.film.mean(), mean_b = b.film.mean();
+    const Image var_a = a.film.variance_of_mean(), var_b = b.film.variance_of_mean();
+    const int block = 8, w = instanced.camera.width, h = instanced.camera.height;
+    double worst = 0.0, total_a = 0.0;
+    for (int by = 0; by < h / block; ++by)
+        for (int bx = 0; bx < w / block; ++bx)
+            for (int c = 0; c < 3; ++c) {
+                double sa = 0, sb = 0, va = 0, vb = 0;
+                for (int y = by * block; y < (by + 1) * block; ++y)
+                    for (int x = bx * block; x < (bx + 1) * block; ++x) {
+                        const std::size_t i = (std::size_t(y) * w + x) * 3 + c;
+                        sa += mean_a.rgb[i];
+                        sb += mean_b.rgb[i];
+                        va += var_a.rgb[i];
+                        vb += var_b.rgb[i];
+                    }
+                total_a += sa;
+                const double sigma = std::sqrt(va + vb);
+                const double apart = std::fabs(sa - sb) / (sigma > 0 ? sigma : 1e-30);
+                INFO("block " << bx << "," << by << " channel " << c << ": " << sa << " vs " << sb);
+                CHECK(apart < 5.0);
+                worst = std::max(worst, apart);
+            }
+    CHECK(total_a > 0.0);
+    WARN("instanced against flattened: the worst 8x8 block is " << worst << " sigma apart");
+}
