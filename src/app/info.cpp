@@ -22,6 +22,7 @@
 #include "image/image_io.hpp"
 #include "render/device_scene.hpp"
 #include "render/wavefront.hpp"
+#include "scene/instancing.hpp"
 #include "scene/load.hpp"
 #include "util/file.hpp"
 
@@ -46,6 +47,20 @@ void print_geometry_memory(const DeviceScene& scene) {
         std::printf(" = %.1f bytes per triangle",
                     double(primitive_bytes + hierarchy_bytes) / double(scene.triangles.size()));
     std::printf("\n");
+    if (!scene.instances.empty()) {
+        // Each group's triangles and hierarchy once, and a record per instance.
+        const std::size_t group_bytes = scene.group_triangles.size() * sizeof(WpTriangle) +
+                                        scene.group_bvh_nodes.size() * sizeof(WpBvhNode);
+        const std::size_t instance_bytes = scene.instances.size() * sizeof(WpInstance);
+        const std::uint64_t placed = scene.instanced_triangles;
+        std::printf("instances on the device: %.1f MB shape groups (%zu triangles, %zu nodes) + "
+                    "%.1f MB for %zu instances, placing %llu triangles = %.3g bytes per placed "
+                    "triangle\n",
+                    1e-6 * double(group_bytes), scene.group_triangles.size(),
+                    scene.group_bvh_nodes.size(), 1e-6 * double(instance_bytes),
+                    scene.instances.size(), static_cast<unsigned long long>(placed),
+                    double(group_bytes + instance_bytes) / double(placed));
+    }
 }
 
 // Launches use this work-group size, as the integrator's do, so that a driver
@@ -203,6 +218,15 @@ void print_scene(const std::string& path, const Scene& scene) {
     std::printf("scene: %s\n", path.c_str());
     std::printf("  primitives: %zu triangles, %zu spheres\n", scene.triangles.size(),
                 scene.spheres.size());
+    if (!scene.instances.empty()) {
+        std::size_t defined = 0;
+        for (const ShapeGroup& g : scene.shape_groups)
+            defined += g.triangles.size();
+        std::printf("  instances: %zu of %zu shape groups (%zu triangles defined once, %llu "
+                    "placed)\n",
+                    scene.instances.size(), scene.shape_groups.size(), defined,
+                    static_cast<unsigned long long>(instanced_triangle_count(scene)));
+    }
     std::printf("  materials: %zu (%zu diffuse, %zu mirror, %zu emitter; %zu emissive)\n",
                 scene.materials.size(), kinds[0], kinds[1], kinds[2], emissive_materials);
     std::printf("  lights: %zu emissive triangles, total area %.6g\n", emissive, light_area);

@@ -294,6 +294,7 @@ void build_hierarchy(DeviceScene& scene) {
         m.first_primitive = next;
         next += count;
     }
+    scene.instanced_triangles = next;
     for (WpLight& light : scene.lights)
         light.triangle = new_number[light.triangle];
     for (WpEmitter& e : scene.emitters)

@@ -140,6 +140,7 @@ struct DeviceScene {
     // Host only: each instance's box in the device's world frame, widened
     // for the rounding of its ray's map into object space (device_scene.cpp).
     std::vector<Bounds3f> instance_boxes;
+    std::uint64_t instanced_triangles = 0; // host only: the triangles the instances place
     BvhStats bvh_stats;
     float light_area = 0.0f; // total emissive area
     // The probability that next-event estimation chooses an emitter rather
