@@ -178,6 +178,11 @@ TEST_CASE("Mitsuba 3 agreement: anisotropic roughness along dp/du (sphere, recta
     check_agreement("anisotropic", load_scene(kDir + "anisotropic.xml"), 1024);
 }
 
+TEST_CASE("Mitsuba 3 agreement: shapegroups placed by scaled, turned and mirrored instances",
+          "[render][mitsuba][instances][statistical]") {
+    check_agreement("instances", load_scene(kDir + "instances.xml"), 1024);
+}
+
 TEST_CASE("Mitsuba 3 agreement: a point light", "[render][emitters][statistical]") {
     check_agreement("point", 1024);
 }

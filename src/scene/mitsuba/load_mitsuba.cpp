@@ -11,6 +11,7 @@
 
 #include "image/image.hpp"
 #include "image/texture_image.hpp"
+#include "scene/instancing.hpp"
 #include "scene/json_reader.hpp"
 #include "scene/mitsuba/bsdfs.hpp"
 #include "scene/mitsuba/parameters.hpp"
@@ -200,6 +201,10 @@ class SceneAssembler {
                 }
                 scene_.camera = read_sensor(object, scene_.warnings);
                 has_sensor = true;
+            } else if (object.tag == "shape" && object.type == "shapegroup") {
+                (void)shape_group(object); // instances may refer to it
+            } else if (object.tag == "shape" && object.type == "instance") {
+                add_instance(object);
             } else if (object.tag == "shape") {
                 if (lenient_ && !is_supported_shape(object.type)) {
                     left_out(object, "left out: wavepath has no '" +
@@ -248,13 +253,82 @@ class SceneAssembler {
             fail_at(root.where, "<scene>",
                     "the scene has no <sensor> (wavepath needs a "
                     "perspective or thinlens camera)");
-        if (scene_.triangles.empty() && scene_.spheres.empty())
+        if (scene_.triangles.empty() && scene_.spheres.empty() && scene_.instances.empty())
             fail_at(root.where, "<scene>", "the scene has no shapes");
         validate_scene(scene_); // a backstop: the readers have checked all of this
         return std::move(scene_);
     }
 
   private:
+    // Mitsuba's shapegroup: its shapes read once, in object space, into a
+    // ShapeGroup (scene/scene.hpp). Triangle shapes only: a sphere, an area
+    // emitter (Mitsuba refuses those in a group too) or a nested group is
+    // refused with the group named. Returns the group's index; a group that
+    // an instance read first is not read again.
+    std::uint32_t shape_group(const Object& group) {
+        if (const auto it = groups_.find(&group); it != groups_.end())
+            return it->second;
+        Parameters p(group);
+        p.finish();
+        const std::string name = group.id.empty() ? "at " + group.where.text() : group.id;
+        std::vector<Triangle> outside = std::move(scene_.triangles);
+        scene_.triangles.clear();
+        const std::size_t spheres = scene_.spheres.size();
+        for (const auto& child : group.children) {
+            const Object& shape = *child;
+            if (shape.tag != "shape" || shape.type == "shapegroup" || shape.type == "instance")
+                fail_at(shape.where, shape.element(),
+                        "not supported inside shapegroup '" + name +
+                            "' (it holds triangle shapes: obj, ply, serialized, rectangle, cube, "
+                            "disk)");
+            for (const auto& grandchild : shape.children)
+                if (grandchild->tag == "emitter")
+                    fail_at(grandchild->where, grandchild->element(),
+                            "an emitter inside shapegroup '" + name +
+                                "': emitters cannot be instanced (as in Mitsuba); place the "
+                                "emitting shape outside the group");
+            if (shape.type == "sphere")
+                fail_at(shape.where, shape.element(),
+                        "a sphere inside shapegroup '" + name +
+                            "' is not supported (instances hold triangles: use a sphere mesh, "
+                            "or place the sphere outside the group)");
+            add_shape_with_material(shape);
+        }
+        if (scene_.spheres.size() != spheres)
+            fail_at(group.where, group.element(), "a sphere inside a shapegroup");
+        ShapeGroup out;
+        out.name = name;
+        out.triangles = std::move(scene_.triangles);
+        scene_.triangles = std::move(outside);
+        if (out.triangles.empty())
+            fail_at(group.where, group.element(), "an empty shapegroup");
+        const auto index = static_cast<std::uint32_t>(scene_.shape_groups.size());
+        scene_.shape_groups.push_back(std::move(out));
+        groups_.emplace(&group, index);
+        return index;
+    }
+
+    // Mitsuba's instance: one <ref> to a shapegroup, placed by to_world.
+    void add_instance(const Object& instance) {
+        Parameters p(instance);
+        const Object* group = nullptr;
+        for (const auto& child : instance.children) {
+            if (child->tag != "shape" || child->type != "shapegroup" || group)
+                fail_at(child->where, child->element(),
+                        "an instance takes exactly one shapegroup (a <ref> to its id)");
+            group = child.get();
+        }
+        if (!group)
+            p.fail("an instance without its shapegroup (give <ref id=\"...\"/>)");
+        Instance out;
+        out.group = shape_group(*group);
+        out.to_world = p.transform("to_world").value_or(wp::Transform()).matrix();
+        if (const std::string problem = instance_transform_problem(out.to_world); !problem.empty())
+            p.fail("to_world", problem);
+        p.finish();
+        scene_.instances.push_back(out);
+    }
+
     void add_shape_with_material(const Object& shape) {
         const Object* bsdf = nullptr;
         const Object* emitter = nullptr;
@@ -351,6 +425,7 @@ class SceneAssembler {
     TextureTable textures_;
     std::map<const Object*, Material> bsdfs_;
     std::map<std::tuple<const Object*, double, double, double>, std::uint32_t> materials_;
+    std::map<const Object*, std::uint32_t> groups_; // shapegroup -> Scene::shape_groups
 };
 
 } // namespace
