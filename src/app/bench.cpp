@@ -15,6 +15,7 @@
 #include "cl/memory_bandwidth.hpp"
 #include "render/wavefront.hpp"
 #include "report/profile_report.hpp"
+#include "scene/instancing.hpp"
 #include "scene/load.hpp"
 
 namespace wp {
@@ -31,6 +32,14 @@ void random_rays(const Scene& scene, std::size_t count, std::uint32_t seed,
             lo = glm::min(lo, v);
             hi = glm::max(hi, v);
         }
+    for (const Instance& instance : scene.instances) {
+        const DoubleBox b =
+            mapped_box(group_box(scene.shape_groups[instance.group]), instance.to_world);
+        if (!b.empty()) {
+            lo = glm::min(lo, b.lower);
+            hi = glm::max(hi, b.upper);
+        }
+    }
     glm::dvec3 centre = 0.5 * (lo + hi), half = 0.495 * (hi - lo);
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> u(-1.0, 1.0);

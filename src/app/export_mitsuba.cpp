@@ -51,7 +51,13 @@ int run_export_mitsuba(const ExportMitsubaCommand& command) {
               << ", " << command.spp << " spp) with " << exported.meshes.size() << " PLY mesh"
               << (exported.meshes.size() == 1 ? "" : "es") << " (" << scene.triangles.size()
               << " triangles) and " << scene.spheres.size() << " sphere"
-              << (scene.spheres.size() == 1 ? "" : "s") << "\n";
+              << (scene.spheres.size() == 1 ? "" : "s");
+    if (!scene.instances.empty())
+        std::cout << ", " << scene.shape_groups.size() << " shapegroup"
+                  << (scene.shape_groups.size() == 1 ? "" : "s") << " and "
+                  << scene.instances.size() << " instance"
+                  << (scene.instances.size() == 1 ? "" : "s");
+    std::cout << "\n";
     return 0;
 }
 

@@ -172,20 +172,23 @@ std::uint64_t scene_content_hash(const Scene& scene) {
     // index of refraction must not resume silently.
     for (const Material& m : scene.materials)
         std::apply([&](const auto&... field) { (h.field(field), ...); }, m.rendered_fields());
-    h.u64(scene.triangles.size());
-    for (const Triangle& t : scene.triangles) {
-        for (const glm::dvec3& v : t.v)
-            h.vec(v);
-        h.u64(t.material);
-        h.u64(t.has_normals ? 1 : 0);
-        if (t.has_normals)
-            for (const glm::dvec3& n : t.normals)
-                h.vec(n);
-        h.u64(t.has_uvs ? 1 : 0);
-        if (t.has_uvs)
-            for (const glm::dvec2& uv : t.uvs)
-                h.vec(glm::dvec3(uv, 0.0));
-    }
+    auto triangles = [&](const std::vector<Triangle>& list) {
+        h.u64(list.size());
+        for (const Triangle& t : list) {
+            for (const glm::dvec3& v : t.v)
+                h.vec(v);
+            h.u64(t.material);
+            h.u64(t.has_normals ? 1 : 0);
+            if (t.has_normals)
+                for (const glm::dvec3& n : t.normals)
+                    h.vec(n);
+            h.u64(t.has_uvs ? 1 : 0);
+            if (t.has_uvs)
+                for (const glm::dvec2& uv : t.uvs)
+                    h.vec(glm::dvec3(uv, 0.0));
+        }
+    };
+    triangles(scene.triangles);
     // A texture by its values, texels included: a changed image file under
     // the same name must not resume silently.
     h.u64(scene.textures.size());
@@ -222,6 +225,19 @@ std::uint64_t scene_content_hash(const Scene& scene) {
                 h.u64(static_cast<std::uint64_t>(e.image->encoding));
                 h.state = fnv1a64_bytes(e.image->texels.data(), e.image->bytes(), h.state);
             }
+        }
+    }
+    // Likewise only when there are any: shape groups by their triangles,
+    // instances by their group and map.
+    if (!scene.shape_groups.empty() || !scene.instances.empty()) {
+        h.u64(scene.shape_groups.size());
+        for (const ShapeGroup& g : scene.shape_groups)
+            triangles(g.triangles);
+        h.u64(scene.instances.size());
+        for (const Instance& instance : scene.instances) {
+            h.u64(instance.group);
+            for (int column = 0; column < 4; ++column)
+                h.vec(glm::dvec3(instance.to_world[column]));
         }
     }
     return h.state;

@@ -11,6 +11,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "scene/instancing.hpp"
 #include "util/file.hpp"
 #include "util/xml_escape.hpp"
 
@@ -84,10 +85,11 @@ void append_vector(std::vector<unsigned char>& out, const glm::dvec3& v) {
 // three vertices per triangle (positions, and normals when asked) and faces
 // (0, 1, 2), (3, 4, 5), ... that keep each triangle's winding, hence its
 // front face, which is the side Mitsuba's area emitters emit on.
-std::vector<unsigned char> encode_ply(const Scene& scene, const std::vector<std::size_t>& triangles,
-                                      bool with_normals, bool with_uvs) {
+std::vector<unsigned char> encode_ply(const Scene& scene, const std::vector<Triangle>& list,
+                                      const std::vector<std::size_t>& triangles, bool with_normals,
+                                      bool with_uvs) {
     const std::size_t vertices = 3 * triangles.size();
-    const Material& material = scene.materials[scene.triangles[triangles.front()].material];
+    const Material& material = scene.materials[list[triangles.front()].material];
     std::string header = "ply\nformat binary_little_endian 1.0\n";
     header += "comment wavepath export: material '" + file_name_part(material.name) + "', " +
               std::to_string(triangles.size()) + " triangles\n";
@@ -104,7 +106,7 @@ std::vector<unsigned char> encode_ply(const Scene& scene, const std::vector<std:
     out.reserve(out.size() + vertices * (12 + (with_normals ? 12 : 0) + (with_uvs ? 8 : 0)) +
                 triangles.size() * 13);
     for (std::size_t index : triangles) {
-        const Triangle& t = scene.triangles[index];
+        const Triangle& t = list[index];
         // A flat triangle among smooth ones keeps its facet: all three vertex
         // normals are the winding normal.
         const glm::dvec3 facet = glm::normalize(glm::cross(t.v[1] - t.v[0], t.v[2] - t.v[0]));
@@ -134,6 +136,12 @@ std::vector<unsigned char> encode_ply(const Scene& scene, const std::vector<std:
 
 std::string rgb(const std::string& name, const glm::dvec3& value) {
     return "<rgb name=\"" + name + "\" value=\"" + triple(value) + "\"/>";
+}
+
+// A shape group's id: its number, then its name as far as a file name may
+// hold it (the reader names the group by its id).
+std::string group_id(const Scene& scene, std::size_t index) {
+    return "group-" + std::to_string(index) + "-" + file_name_part(scene.shape_groups[index].name);
 }
 
 std::string material_id(std::size_t index) {
@@ -421,6 +429,17 @@ MitsubaCamera mitsuba_camera(const Scene& scene) {
             farthest = std::max(farthest, glm::length(v - c.eye));
     for (const Sphere& s : scene.spheres)
         farthest = std::max(farthest, glm::length(s.center - c.eye) + s.radius);
+    for (const Instance& instance : scene.instances) {
+        const DoubleBox b =
+            mapped_box(group_box(scene.shape_groups[instance.group]), instance.to_world);
+        if (!b.empty())
+            for (int corner = 0; corner < 8; ++corner)
+                farthest =
+                    std::max(farthest, glm::length(glm::dvec3(corner & 1 ? b.upper.x : b.lower.x,
+                                                              corner & 2 ? b.upper.y : b.lower.y,
+                                                              corner & 4 ? b.upper.z : b.lower.z) -
+                                                   c.eye));
+    }
 
     MitsubaCamera m;
     m.origin = c.eye;
@@ -442,38 +461,45 @@ MitsubaExport export_mitsuba(const Scene& scene, const std::string& mesh_prefix,
                              const MitsubaExportOptions& options) {
     MitsubaExport out;
 
-    // The triangles of each material, in the scene's order.
-    std::map<std::uint32_t, std::vector<std::size_t>> groups;
-    for (std::size_t i = 0; i < scene.triangles.size(); ++i)
-        groups[scene.triangles[i].material].push_back(i);
-
+    // The triangles of each material, in the list's order: one PLY file
+    // each, for the scene's own triangles (group -1) and each shape group's.
     std::size_t smooth_triangles = 0;
-    for (auto& [material_index, triangles] : groups) {
-        const Material& material = scene.materials[material_index];
-        const std::size_t smooth = static_cast<std::size_t>(
-            std::count_if(triangles.begin(), triangles.end(),
-                          [&](std::size_t i) { return scene.triangles[i].has_normals; }));
-        // Mitsuba's area emitter emits on the side of the interpolated normal
-        // where a mesh has vertex normals, wavepath's on the winding's side.
-        // An emissive material's triangles are therefore written flat; for an
-        // emitter, which reflects nothing, that changes nothing.
-        const bool with_normals = smooth > 0 && !material.is_emissive();
-        if (smooth > 0 && material.is_emissive() && material.kind != MaterialKind::Emitter)
-            out.warnings.push_back("material '" + material.name + "': " + std::to_string(smooth) +
-                                   " triangles with shading normals are emissive; they are "
-                                   "exported flat, since Mitsuba would emit by the normals");
-        if (with_normals)
-            smooth_triangles += smooth;
+    auto add_meshes = [&](const std::vector<Triangle>& list, int group) {
+        std::map<std::uint32_t, std::vector<std::size_t>> by_material;
+        for (std::size_t i = 0; i < list.size(); ++i)
+            by_material[list[i].material].push_back(i);
+        for (auto& [material_index, triangles] : by_material) {
+            const Material& material = scene.materials[material_index];
+            const std::size_t smooth = static_cast<std::size_t>(
+                std::count_if(triangles.begin(), triangles.end(),
+                              [&](std::size_t i) { return list[i].has_normals; }));
+            // Mitsuba's area emitter emits on the side of the interpolated normal
+            // where a mesh has vertex normals, wavepath's on the winding's side.
+            // An emissive material's triangles are therefore written flat; for an
+            // emitter, which reflects nothing, that changes nothing.
+            const bool with_normals = smooth > 0 && !material.is_emissive();
+            if (smooth > 0 && material.is_emissive() && material.kind != MaterialKind::Emitter)
+                out.warnings.push_back("material '" + material.name +
+                                       "': " + std::to_string(smooth) +
+                                       " triangles with shading normals are emissive; they are "
+                                       "exported flat, since Mitsuba would emit by the normals");
+            if (with_normals)
+                smooth_triangles += smooth;
 
-        MitsubaMesh mesh;
-        mesh.file_name = mesh_prefix + "-" + std::to_string(out.meshes.size()) + "-" +
-                         file_name_part(material.name) + ".ply";
-        mesh.material = material_index;
-        mesh.triangle_count = triangles.size();
-        mesh.has_normals = with_normals;
-        mesh.ply = encode_ply(scene, triangles, with_normals, !scene.textures.empty());
-        out.meshes.push_back(std::move(mesh));
-    }
+            MitsubaMesh mesh;
+            mesh.file_name = mesh_prefix + "-" + std::to_string(out.meshes.size()) + "-" +
+                             file_name_part(material.name) + ".ply";
+            mesh.material = material_index;
+            mesh.group = group;
+            mesh.triangle_count = triangles.size();
+            mesh.has_normals = with_normals;
+            mesh.ply = encode_ply(scene, list, triangles, with_normals, !scene.textures.empty());
+            out.meshes.push_back(std::move(mesh));
+        }
+    };
+    add_meshes(scene.triangles, -1);
+    for (std::size_t g = 0; g < scene.shape_groups.size(); ++g)
+        add_meshes(scene.shape_groups[g].triangles, static_cast<int>(g));
     if (smooth_triangles > 0)
         out.warnings.push_back(
             std::to_string(smooth_triangles) +
@@ -491,16 +517,42 @@ MitsubaExport export_mitsuba(const Scene& scene, const std::string& mesh_prefix,
     x += sensor(scene, options);
     for (std::size_t i = 0; i < scene.materials.size(); ++i)
         x += bsdf(scene, scene.materials[i], i);
-    for (const MitsubaMesh& mesh : out.meshes) {
+    auto ply_shape = [&](const MitsubaMesh& mesh, const std::string& indent) {
         const Material& material = scene.materials[mesh.material];
-        x += "    <shape type=\"ply\">\n";
-        x += "        <string name=\"filename\" value=\"" + xml_escape(mesh.file_name) + "\"/>\n";
+        x += indent + "<shape type=\"ply\">\n";
+        x += indent + "    <string name=\"filename\" value=\"" + xml_escape(mesh.file_name) +
+             "\"/>\n";
         // Without vertex normals Mitsuba would compute smooth ones; wavepath
         // shades these triangles by their facets.
-        x += std::string("        <boolean name=\"face_normals\" value=\"") +
+        x += indent + "    <boolean name=\"face_normals\" value=\"" +
              (mesh.has_normals ? "false" : "true") + "\"/>\n";
-        x += "        <ref id=\"" + material_id(mesh.material) + "\"/>\n";
-        x += area_emitter(material);
+        x += indent + "    <ref id=\"" + material_id(mesh.material) + "\"/>\n";
+        x += area_emitter(material); // never inside a group: groups hold no emitters
+        x += indent + "</shape>\n";
+    };
+    for (const MitsubaMesh& mesh : out.meshes)
+        if (mesh.group < 0)
+            ply_shape(mesh, "    ");
+    // Shape groups, each with its meshes, and their instances by a matrix
+    // written row by row, as Mitsuba's <matrix> reads it.
+    for (std::size_t g = 0; g < scene.shape_groups.size(); ++g) {
+        x += "    <shape type=\"shapegroup\" id=\"" + xml_escape(group_id(scene, g)) + "\">\n";
+        for (const MitsubaMesh& mesh : out.meshes)
+            if (mesh.group == static_cast<int>(g))
+                ply_shape(mesh, "        ");
+        x += "    </shape>\n";
+    }
+    for (const Instance& instance : scene.instances) {
+        x += "    <shape type=\"instance\">\n";
+        x += "        <ref id=\"" + xml_escape(group_id(scene, instance.group)) + "\"/>\n";
+        std::string rows;
+        for (int r = 0; r < 4; ++r)
+            for (int c = 0; c < 4; ++c) {
+                if (!rows.empty())
+                    rows += ' ';
+                rows += number(instance.to_world[c][r]);
+            }
+        x += "        <transform name=\"to_world\"><matrix value=\"" + rows + "\"/></transform>\n";
         x += "    </shape>\n";
     }
     for (const Sphere& s : scene.spheres) {

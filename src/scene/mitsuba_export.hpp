@@ -33,6 +33,7 @@ struct MitsubaExportOptions {
 struct MitsubaMesh {
     std::string file_name; // beside the XML, which names it by this relative path
     std::uint32_t material = 0;
+    int group = -1; // the shape group whose triangles it holds; -1, the scene's own
     std::size_t triangle_count = 0;
     bool has_normals = false;       // vertex normals written (shading normals)
     std::vector<unsigned char> ply; // the whole file

@@ -5,9 +5,11 @@
 
 #include <string>
 
+#include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
 #include "scene/load.hpp"
+#include "scene/mitsuba_export.hpp"
 #include "support/temp_dir.hpp"
 
 namespace {
@@ -96,4 +98,37 @@ TEST_CASE("Mitsuba reader: bad shapegroups and instances are one line with the p
         CHECK(message.find("s.xml:") != std::string::npos);
         CHECK(message.find('\n') == std::string::npos);
     }
+}
+
+TEST_CASE("Mitsuba export: shapegroups and instances written back read as the same scene",
+          "[scene][mitsuba][instances]") {
+    const wp::Scene original =
+        wp::load_scene(WAVEPATH_SOURCE_DIR "/tests/data/mitsuba/instances.xml");
+    wp::test::TempDir dir;
+    wp::write_mitsuba(wp::export_mitsuba(original, "round"), dir / "round.xml");
+    const std::string xml = wp::test::read_text(dir / "round.xml");
+    CHECK(xml.find("<shape type=\"shapegroup\" id=\"group-0-block\">") != std::string::npos);
+    CHECK(xml.find("<shape type=\"instance\">") != std::string::npos);
+    const wp::Scene back = wp::load_scene(dir / "round.xml");
+    REQUIRE(back.shape_groups.size() == original.shape_groups.size());
+    REQUIRE(back.instances.size() == original.instances.size());
+    for (std::size_t g = 0; g < back.shape_groups.size(); ++g) {
+        const auto& a = original.shape_groups[g].triangles;
+        const auto& b = back.shape_groups[g].triangles;
+        REQUIRE(a.size() == b.size());
+        // The PLY files hold float32 vertices: the same triangles to float's precision.
+        double largest = 0.0;
+        for (std::size_t i = 0; i < a.size(); ++i)
+            for (int k = 0; k < 3; ++k)
+                largest = std::max(largest, glm::length(a[i].v[k] - b[i].v[k]));
+        CHECK(largest < 1e-6);
+    }
+    for (std::size_t i = 0; i < back.instances.size(); ++i) {
+        CHECK(back.instances[i].group == original.instances[i].group);
+        for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 4; ++r)
+                CHECK(back.instances[i].to_world[c][r] ==
+                      Approx(original.instances[i].to_world[c][r]).margin(1e-15));
+    }
+    CHECK(back.triangles.size() == original.triangles.size());
 }
