@@ -559,6 +559,9 @@ double WavefrontIntegrator::time_launches(Stage stage, const WpLaunch& arguments
 
 SceneFeatures integrator_features(const Scene& scene, const IntegratorOptions& options) {
     SceneFeatures features = analyse_features(scene);
+    if (options.traversal == Traversal::Loop && features.instances)
+        throw std::runtime_error("--traversal loop: a scene with instances is traced through its "
+                                 "hierarchy only (docs/instancing.md)");
     if (options.traversal != Traversal::Auto) {
         features.bvh = options.traversal == Traversal::Hierarchy;
         if (features.bvh)
