@@ -197,7 +197,7 @@ Scene random_instanced_scene(unsigned seed) {
 } // namespace
 
 TEST_CASE("instances: the two-level hierarchy finds the closest and any hit of brute force, for "
-          "16000 rays on a random scene of 40 scaled, rotated and mirrored instances",
+          "10000 rays on a random scene of 40 scaled, rotated and mirrored instances",
           "[cl][bvh][instances]") {
     const Scene scene = random_instanced_scene(3);
     const Scene flat_scene = flattened_copy(scene);
@@ -209,7 +209,7 @@ TEST_CASE("instances: the two-level hierarchy finds the closest and any hit of b
         return glm::dvec3(r * std::cos(phi), z, r * std::sin(phi));
     };
     std::vector<cl_float4> origins, directions;
-    const int rays = 16000;
+    const int rays = 10000;
     const std::size_t plain = scene.triangles.size();
     for (int k = 0; k < rays; ++k) {
         glm::dvec3 o, d = direction();
