@@ -5,7 +5,9 @@
 // (kernels/instance.h), so the glass must bend light the same way in both;
 // the flattened copy reverses a mirrored triangle's winding to match
 // (tests/support/instancing.hpp). Both render with the same seed, and every
-// 8x8 block's mean must agree within 5 standard errors.
+// 8x8 block's mean must agree within 5 standard errors. Then instanced
+// mirrors beside a planar mirror, against next-event estimation through
+// their flattened copies.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -103,4 +105,71 @@ TEST_CASE("instances: an instanced scene renders the image of its flattened copy
             }
     CHECK(total_a > 0.0);
     WARN("instanced against flattened: the worst 8x8 block is " << worst << " sigma apart");
+}
+
+TEST_CASE("instances: instanced mirrors beside a planar mirror render what their flattened copies "
+          "do, where next-event estimation samples the copies through the mirrors",
+          "[render][instances][statistical]") {
+    // A lit box with a plain mirror on a wall (the host's planar mirrors:
+    // next-event estimation through it) and mirror tiles placed by three
+    // instances, one mirrored. In the instanced scene the tiles are delta
+    // bounces of weight 1 (kernels/primitive.h: never a planar mirror of the
+    // host's tables); flattened, they join the planar mirrors and light is
+    // also sampled through them. Different estimators of the same image.
+    Scene scene;
+    scene.camera = test::make_camera({0.5, 0.05, 0.5}, {0.5, 1, 0.45}, {0, 0, 1}, 70.0, 32, 32);
+    const auto white = test::add_material(scene, MaterialKind::Diffuse, glm::dvec3(0.7));
+    const auto mirror = test::add_material(scene, MaterialKind::Mirror, glm::dvec3(0.9));
+    const auto light =
+        test::add_material(scene, MaterialKind::Emitter, glm::dvec3(0.0), glm::dvec3(8.0));
+    test::add_box_inward(scene, glm::dvec3(0.0), glm::dvec3(1.0), white);
+    test::add_quad(scene, {0.4, 0.4, 0.999}, {0.4, 0.6, 0.999}, {0.6, 0.6, 0.999},
+                   {0.6, 0.4, 0.999}, light);
+    test::add_quad(scene, {0.001, 0.5, 0.2}, {0.001, 0.9, 0.2}, {0.001, 0.9, 0.7},
+                   {0.001, 0.5, 0.7}, mirror); // on the x = 0 wall, facing +x
+    ShapeGroup tile{"tile", {}};
+    tile.triangles.push_back(
+        {{glm::dvec3(-1, -1, 0), glm::dvec3(1, -1, 0), glm::dvec3(1, 1, 0)}, mirror});
+    tile.triangles.push_back(
+        {{glm::dvec3(-1, -1, 0), glm::dvec3(1, 1, 0), glm::dvec3(-1, 1, 0)}, mirror});
+    scene.shape_groups = {tile};
+    const Transform placements[3][3] = {{Transform::scale(0.12), Transform::rotate(-60, {1, 0, 0}),
+                                         Transform::translate({0.3, 0.6, 0.2})},
+                                        {Transform::scale(glm::dvec3(-0.15, 0.1, 0.1)),
+                                         Transform::rotate(-45, {1, 0.3, 0}),
+                                         Transform::translate({0.7, 0.7, 0.25})},
+                                        {Transform::scale(0.1), Transform::rotate(80, {0, 1, 0}),
+                                         Transform::translate({0.9, 0.5, 0.4})}};
+    for (const auto& steps : placements)
+        scene.instances.push_back({0, Transform::compose(steps).matrix()});
+    const Scene flat = test::flattened_copy(scene);
+    REQUIRE(analyse_features(scene).planar_mirrors);
+    REQUIRE(analyse_features(flat).planar_mirrors);
+    REQUIRE(flatten_scene(flat, true).mirror_triangles.size() >
+            flatten_scene(scene, true).mirror_triangles.size());
+
+    const test::Rendered a = test::render(scene, 128, 3);
+    const test::Rendered b = test::render(flat, 128, 4); // independent: other seed
+    const Image mean_a = a.film.mean(), mean_b = b.film.mean();
+    const Image var_a = a.film.variance_of_mean(), var_b = b.film.variance_of_mean();
+    double worst = 0.0;
+    for (int by = 0; by < 4; ++by)
+        for (int bx = 0; bx < 4; ++bx)
+            for (int c = 0; c < 3; ++c) {
+                double sa = 0, sb = 0, va = 0, vb = 0;
+                for (int y = by * 8; y < by * 8 + 8; ++y)
+                    for (int x = bx * 8; x < bx * 8 + 8; ++x) {
+                        const std::size_t i = (std::size_t(y) * 32 + x) * 3 + c;
+                        sa += mean_a.rgb[i];
+                        sb += mean_b.rgb[i];
+                        va += var_a.rgb[i];
+                        vb += var_b.rgb[i];
+                    }
+                const double apart = std::fabs(sa - sb) / std::sqrt(va + vb);
+                INFO("block " << bx << "," << by << " channel " << c);
+                CHECK(apart < 5.0);
+                worst = std::max(worst, apart);
+            }
+    WARN("instanced mirrors against flattened ones: the worst 8x8 block is " << worst
+                                                                             << " sigma apart");
 }
