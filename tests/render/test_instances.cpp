@@ -11,6 +11,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstring>
 #include <random>
 
 #include <glm/geometric.hpp>
@@ -105,6 +106,23 @@ TEST_CASE("instances: an instanced scene renders the image of its flattened copy
             }
     CHECK(total_a > 0.0);
     WARN("instanced against flattened: the worst 8x8 block is " << worst << " sigma apart");
+}
+
+TEST_CASE("instances: the scene's specialised kernels and the general ones render the same bits",
+          "[render][instances]") {
+    const Scene scene = instanced_box();
+    IntegratorOptions specialised;
+    specialised.launch_plan = LaunchPlan::Stages; // one plan for both (test_features.cpp says why)
+    IntegratorOptions general = specialised;
+    general.general_kernels = true;
+    const test::Rendered a = test::render(scene, 2, 7, 0, specialised);
+    const test::Rendered b = test::render(scene, 2, 7, 0, general);
+    const Image mean_a = a.film.mean(), mean_b = b.film.mean();
+    REQUIRE(mean_a.rgb.size() == mean_b.rgb.size());
+    CHECK(std::memcmp(mean_a.rgb.data(), mean_b.rgb.data(), mean_a.rgb.size() * sizeof(float)) ==
+          0);
+    CHECK(a.stats.bounce_rays == b.stats.bounce_rays);
+    CHECK(a.stats.shadow_rays == b.stats.shadow_rays);
 }
 
 TEST_CASE("instances: instanced mirrors beside a planar mirror render what their flattened copies "
