@@ -132,3 +132,23 @@ TEST_CASE("Mitsuba export: shapegroups and instances written back read as the sa
     }
     CHECK(back.triangles.size() == original.triangles.size());
 }
+
+TEST_CASE("Mitsuba reader: --lenient leaves out a shape wavepath has not inside a shapegroup",
+          "[scene][mitsuba][instances]") {
+    wp::test::TempDir dir;
+    CHECK(error_of(dir, R"(<shape type="shapegroup" id="g"><shape type="cylinder"/></shape>)")
+              .find("unsupported shape type 'cylinder'") != std::string::npos);
+    wp::test::write_text(
+        dir / "s.xml",
+        "<scene version=\"3.0.0\">\n    " + kSensor +
+            "\n    <shape type=\"shapegroup\" id=\"g\"><shape type=\"cylinder\"/><shape "
+            "type=\"rectangle\"/></shape>\n    <shape type=\"instance\"><ref id=\"g\"/></shape>\n"
+            "</scene>\n");
+    wp::SceneReadOptions options;
+    options.lenient = true;
+    const wp::Scene s = wp::load_scene(dir / "s.xml", options);
+    REQUIRE(s.shape_groups.size() == 1);
+    CHECK(s.shape_groups[0].triangles.size() == 2); // the rectangle
+    REQUIRE(s.warnings.size() == 1);
+    CHECK(s.warnings[0].find("<shape type=\"cylinder\">: left out") != std::string::npos);
+}

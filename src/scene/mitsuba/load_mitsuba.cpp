@@ -287,6 +287,11 @@ class SceneAssembler {
                             "an emitter inside shapegroup '" + name +
                                 "': emitters cannot be instanced (as in Mitsuba); place the "
                                 "emitting shape outside the group");
+            if (lenient_ && !is_supported_shape(shape.type)) {
+                left_out(shape,
+                         "left out: wavepath has no '" + json::shorten(shape.type, 40) + "' shape");
+                continue;
+            }
             if (shape.type == "sphere")
                 fail_at(shape.where, shape.element(),
                         "a sphere inside shapegroup '" + name +
