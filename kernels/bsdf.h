@@ -90,17 +90,35 @@ static inline float wp_bsdf_pdf(const WpMaterial* m, float3 wo, float3 wi,
 #define WP_GLOSSY_TERM(KIND, Name, name, value, bsdf, glossy) WP_IF(glossy)(|| WP_HAS_##KIND)
 #define WP_HAS_GLOSSY (0 WP_MATERIALS(WP_GLOSSY_TERM))
 
+/* Whether next-event estimation is weighed against BSDF sampling at every
+ * vertex that is not delta (a Lambertian one too), as Mitsuba 3's path
+ * integrator does: with the power heuristic (--mis power, the default) and
+ * cosine-weighted diffuse directions. The report's estimator
+ * (WP_DIFFUSE_REPORT) keeps pure light sampling at Lambertian vertices, as its
+ * images were made, and --mis light keeps it everywhere (lights.h gives its
+ * weights: 1 and 0). A constant for #if. */
+#define WP_MIS_EVERY_VERTEX                                                                        \
+    (WP_MIS_STRATEGY == WP_MIS_POWER && WP_DIFFUSE_SAMPLING == WP_DIFFUSE_COSINE)
+
+/* Whether the program has vertices where light samples and BSDF samples are
+ * weighed against each other (kernels/shade.cl): a constant for #if. */
+#define WP_HAS_WEIGHED_VERTICES (WP_HAS_GLOSSY || WP_MIS_EVERY_VERTEX)
+
 /* 1 where next-event estimation is weighed against BSDF sampling by multiple
- * importance sampling (kernels/shade.cl): the glossy kinds. A Lambertian
- * vertex keeps pure light sampling (emission its sampled rays find does not
- * count), the estimator of the report's images; a delta one has no next
- * event. */
+ * importance sampling (kernels/shade.cl): every kind that is not delta with
+ * WP_MIS_EVERY_VERTEX, else the glossy kinds. Elsewhere a non-delta vertex
+ * keeps pure light sampling (emission its sampled rays find does not count);
+ * a delta one has no next event. */
 #define WP_GLOSSY_KIND(KIND, Name, name, value, bsdf, glossy)                                      \
     WP_IF(glossy)(if (WP_HAS_##KIND && m->kind == WP_MATERIAL_##KIND) return 1;)
 static inline int wp_bsdf_weighs_light(const WpMaterial* m) {
+#if WP_MIS_EVERY_VERTEX
+    return !wp_bsdf_is_delta(m);
+#else
     WP_MATERIALS(WP_GLOSSY_KIND)
     (void)m;
     return 0;
+#endif
 }
 
 #endif /* WP_BSDF_H */

@@ -295,7 +295,7 @@ static inline int wp_sample_emitter(const WpSceneView* scene, __global const WpE
 #if WP_HAS_SPHERE_LIGHT
     } else if (kind == WP_EMITTER_SPHERE) {
         /* Uniform in the cone the sphere subtends (lights/sphere.h); found by
-         * a BSDF sample too, so weighed at glossy vertices as a triangle. */
+         * a BSDF sample too, so weighed as a triangle is (shade.cl). */
         float t, cone_pdf;
         if (!wp_sample_sphere_light(position, e->position, u, v, &wi, &t, &cone_pdf))
             return 0;

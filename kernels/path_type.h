@@ -7,8 +7,9 @@
  * (for next-event estimation: including the diffuse vertex itself) are its
  * history, and the history picks exactly one type:
  *   camera    none: an emitter seen directly
- *   direct    D: next-event estimation at the first vertex (or, without it,
- *             an emitter hit after one diffuse bounce)
+ *   direct    D: next-event estimation at the first vertex, and an emitter
+ *             hit after one diffuse bounce (weighed against it by multiple
+ *             importance sampling, or in full without it)
  *   indirect  D D..., no mirror anywhere
  *   mirror    S ...: the first vertex is a mirror (the light or the lit room
  *             seen in a mirror)

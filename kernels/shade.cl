@@ -1,16 +1,19 @@
 /* Stage 3, shade: what happens where each queued ray hit, in four steps.
  *
- *  1. Emission: an emitter's front face adds throughput x radiance, but only
- *     for camera rays and rays after a delta bounce. After a diffuse bounce
- *     the light was already counted by next-event estimation, and counting it
- *     again would count it twice; after a glossy bounce it counts with the
- *     multiple importance sampling weight of the BSDF sample against the
- *     light sample (the power heuristic). (With WP_USE_NEE=0 there is no
+ *  1. Emission: an emitter's front face adds throughput x radiance, in full
+ *     for camera rays and rays after a delta bounce. After a non-delta bounce
+ *     the light sample made there could have found the same light, so the
+ *     emission counts with the multiple importance sampling weight of the
+ *     BSDF sample against that light sample (the power heuristic,
+ *     WP_MIS_EVERY_VERTEX, bsdf.h). Where next-event estimation is not
+ *     weighed (--mis light; the report's estimator at a Lambertian vertex)
+ *     the light sample counted the light alone, and the emission counts 0:
+ *     counting it again would count it twice. (With WP_USE_NEE=0 there is no
  *     step 2 and emitters count after every bounce.)
  *  2. Next-event estimation (surfaces that are not delta BSDFs): sample a
  *     point on the lights (lights.h) and queue one shadow ray carrying the
- *     contribution it would make if nothing blocks it; at a glossy surface
- *     weighed against BSDF sampling, as step 1's emission is.
+ *     contribution it would make if nothing blocks it, weighed against BSDF
+ *     sampling as step 1's emission is.
  *  3. Scattering: the material's BSDF (bsdf.h) picks the next direction, the
  *     factor the throughput takes and what kind of bounce it was (flags).
  *     The new ray leaves by the side of the surface the sample's flags name
@@ -79,9 +82,10 @@ static inline void wp_shade_next_event(const WpSceneView* scene, const WpMateria
         return;
     float3 contribution = beta * wp_bsdf_eval_pi(material, wo, light.direction, point) *
                           light.irradiance * (1.0f / WP_PI);
-#if WP_HAS_GLOSSY || WP_HAS_ENVIRONMENT
-    /* Glossy BSDFs weigh every light sample; the environment is weighed at
-     * every vertex (a diffuse one too), as the ray that escapes is. */
+#if WP_HAS_WEIGHED_VERTICES || WP_HAS_ENVIRONMENT
+    /* Where BSDF samples' hits on lights count (wp_bsdf_weighs_light) every
+     * light sample is weighed; the environment is weighed at every non-delta
+     * vertex whatever the strategy, as the ray that escapes is. */
     if (wp_bsdf_weighs_light(material) || light.weigh_always)
         contribution *=
             wp_mis_light_sample(light.pdf, wp_bsdf_pdf(material, wo, light.direction, point));
@@ -255,9 +259,10 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
     WpPathRandom random = {frame.seed, path_pixel[slot], path_sample[slot], depth};
 
     float3 beta_emission = beta;
-#if WP_HAS_GLOSSY && WP_HAS_LIGHTS && WP_USE_NEE
-    /* After a glossy bounce from mirror_vertex: weighed against the light
-     * sample there: an emissive triangle here, a sphere below. */
+#if WP_HAS_WEIGHED_VERTICES && WP_HAS_LIGHTS && WP_USE_NEE
+    /* After a weighed bounce from mirror_vertex (WP_PATH_GLOSSY): weighed
+     * against the light sample there: an emissive triangle here, a sphere
+     * below. */
     if ((flags & WP_PATH_GLOSSY) && surface.front_face &&
         wp_primitive_kind(&scene, primitive) == WP_PRIMITIVE_TRIANGLE) {
         float4 vertex = mirror_vertex[slot];
@@ -269,7 +274,7 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
         beta_emission *= wp_mis_bsdf_hit(vertex.w, light_pdf);
     }
 #endif
-#if WP_HAS_GLOSSY && WP_HAS_SPHERE_LIGHT && WP_USE_NEE
+#if WP_HAS_WEIGHED_VERTICES && WP_HAS_SPHERE_LIGHT && WP_USE_NEE
     /* ... and on an emitting sphere, against its cone sample there. */
     if ((flags & WP_PATH_GLOSSY) && surface.front_face &&
         wp_primitive_kind(&scene, primitive) == WP_PRIMITIVE_SPHERE)
@@ -330,7 +335,7 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
         origin = origin_behind;
     int delta = wp_bsdf_sample_is_delta(&scattered);
 /* What the emission weight at the next vertex (or the escape) needs. */
-#if WP_MIRROR_NEE || WP_HAS_GLOSSY || WP_HAS_ENVIRONMENT
+#if WP_MIRROR_NEE || WP_HAS_WEIGHED_VERTICES || WP_HAS_ENVIRONMENT
     if (!delta)
         mirror_vertex[slot] = (float4)(surface.position, scattered.pdf);
 #endif

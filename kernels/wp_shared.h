@@ -47,7 +47,8 @@ typedef cl_float4 wp_float4;
  *                      scenes that use it; 0 for a kind with no BSDF at all;
  *   glossy             1 for a kind whose BSDF is neither Lambertian nor delta:
  *                      next-event estimation there is weighed against BSDF
- *                      sampling (kernels/shade.cl, WP_HAS_GLOSSY).
+ *                      sampling even where Lambertian vertices are not
+ *                      (kernels/bsdf.h, WP_HAS_GLOSSY and WP_MIS_EVERY_VERTEX).
  * Values are the order of the rows: they are stored in checkpoints' scene
  * hashes, so a new kind goes at the end. WP_MATERIALS_WITH(X, a) hands every
  * row to X with `a` first, for tables generated from this one (the host's
@@ -110,9 +111,11 @@ enum { WP_MATERIALS(WP_MATERIAL_ENUMERATOR) WP_MATERIAL_KIND_COUNT };
  * WP_PATH_SPHERE_SHIFT on hold. Set only with WP_MIRROR_NEE and
  * WP_HAS_MIRROR_SPHERES. */
 #define WP_PATH_SPHERE_MIRROR 32u
-/* The last bounce was glossy (kernels/shade.cl): emission found now takes the
- * multiple importance sampling weight against next-event estimation, with the
- * BSDF density of that bounce in mirror_vertex.w. */
+/* The last bounce was at a vertex whose light sample is weighed by multiple
+ * importance sampling (wp_bsdf_weighs_light, kernels/bsdf.h: every non-delta
+ * one with the default --mis power, else the glossy kinds): emission found
+ * now takes the weight against that next-event estimation, with the BSDF
+ * density of the bounce in mirror_vertex.w. */
 #define WP_PATH_GLOSSY 64u
 #define WP_PATH_SPHERE_SHIFT 8u
 #define WP_PATH_SPHERE_BITS 0xffffff00u

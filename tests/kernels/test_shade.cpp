@@ -77,6 +77,8 @@ struct PathIn {
     cl_uint primitive = WP_NO_HIT;
     D3 throughput{1, 1, 1}, radiance{0, 0, 0};
     cl_uint depth = 0, flags = WP_PATH_SPECULAR, pixel = 0, sample = 0;
+    D3 last_vertex{0, 0, 0}; // mirror_vertex: the last non-delta vertex and its BSDF pdf
+    double last_pdf = 0.0;
 };
 
 constexpr cl_uint kSeed = 1234, kMaxDepth = 5;
@@ -136,6 +138,7 @@ TEST_CASE("shade: mirrors, emitters, next-event estimation and roulette on hand-
         kDepthCap,
         kDepthCapKilled,
         kMiss,
+        kEmitterAfterWeighed,
         kNotQueued,
         kPastRayCount,
         kSlotCount
@@ -187,6 +190,32 @@ TEST_CASE("shade: mirrors, emitters, next-event estimation and roulette on hand-
     in[kDiffuseToLightA].throughput = {1, 0.5, 0.25}; // x reflectance: max 0.8
     in[kDiffuseToLightA].depth = 1;
     in[kDiffuseToLightA].pixel = find_pixel(300, picks(kDiffuseToLightA, false, 0.8, 1));
+    // The light point next-event estimation at kDiffuseToLightA samples, in
+    // double, with the random numbers its pixel gives it.
+    auto light_point_of = [&](cl_uint slot) {
+        const PathIn& p = in[slot];
+        double u_pick = random(p.pixel, p.sample, p.depth, WP_DIM_LIGHT_PICK);
+        double u = random(p.pixel, p.sample, p.depth, WP_DIM_LIGHT_U);
+        double v = random(p.pixel, p.sample, p.depth, WP_DIM_LIGHT_V);
+        const WpTriangle& light = flat.triangles[u_pick < cdf_a ? kLightA : kLightB];
+        double su = std::sqrt(u), b0 = 1.0 - su, b1 = v * su;
+        return b0 * vertex(light, 0) + b1 * vertex(light, 1) + (1.0 - b0 - b1) * vertex(light, 2);
+    };
+    // The same path found by BSDF sampling at that diffuse vertex: the light
+    // point hit after a weighed bounce (WP_PATH_GLOSSY), the vertex and the
+    // Lambertian density of the direction in mirror_vertex. Its emission
+    // weight and kDiffuseToLightA's light-sample weight must sum to 1.
+    place(kEmitterAfterWeighed,
+          {in[kDiffuseToLightA].hit_point, light_point_of(kDiffuseToLightA), kLightA});
+    in[kEmitterAfterWeighed].throughput = {0.5, 2, 1};
+    in[kEmitterAfterWeighed].radiance = {0.1, 0.2, 0.3};
+    in[kEmitterAfterWeighed].flags = WP_PATH_GLOSSY;
+    in[kEmitterAfterWeighed].last_vertex = in[kDiffuseToLightA].hit_point;
+    in[kEmitterAfterWeighed].last_pdf =
+        dot(D3(0, 1, 0),
+            normalize(in[kEmitterAfterWeighed].hit_point - in[kDiffuseToLightA].hit_point)) /
+        M_PI;
+
     place(kDiffuseToLightB, {{2, 3, 1}, {-1.5, 0, -2.5}, kFloor});
     in[kDiffuseToLightB].throughput = {0.7, 0.9, 0.8}; // x reflectance: max 0.56
     in[kDiffuseToLightB].radiance = {1, 1, 1};
@@ -219,7 +248,7 @@ TEST_CASE("shade: mirrors, emitters, next-event estimation and roulette on hand-
 
     // Upload: each slot's ray ends at its hit point.
     const std::size_t n = kSlotCount;
-    std::vector<cl_float4> origin(n), direction(n), throughput(n), radiance(n);
+    std::vector<cl_float4> origin(n), direction(n), throughput(n), radiance(n), last_vertex(n);
     std::vector<cl_float> hit_t(n);
     std::vector<cl_uint> primitive(n), depth(n), flags(n), pixel(n), sample(n);
     for (std::size_t i = 0; i < n; ++i) {
@@ -231,6 +260,7 @@ TEST_CASE("shade: mirrors, emitters, next-event estimation and roulette on hand-
         throughput[i] = to_float4(in[i].throughput);
         // w is not radiance: a marker that shows whether shade wrote the slot's radiance.
         radiance[i] = to_float4(in[i].radiance, 0.5);
+        last_vertex[i] = to_float4(in[i].last_vertex, in[i].last_pdf);
         depth[i] = in[i].depth;
         flags[i] = in[i].flags;
         pixel[i] = in[i].pixel;
@@ -263,6 +293,7 @@ TEST_CASE("shade: mirrors, emitters, next-event estimation and roulette on hand-
     buffers.path_flags = upload(flags);
     buffers.path_pixel = upload(pixel);
     buffers.path_sample = upload(sample);
+    buffers.mirror_vertex = upload(last_vertex);
     buffers.triangles = upload(flat.triangles);
     buffers.spheres = upload(flat.spheres);
     buffers.materials = upload(flat.materials);
@@ -291,6 +322,7 @@ TEST_CASE("shade: mirrors, emitters, next-event estimation and roulette on hand-
     auto out_radiance = download<cl_float4>(buffers.radiance, n);
     auto out_depth = download<cl_uint>(buffers.path_depth, n);
     auto out_flags = download<cl_uint>(buffers.path_flags, n);
+    auto out_last_vertex = download<cl_float4>(buffers.mirror_vertex, n);
     auto out_queues = download<cl_uint>(buffers.ray_queues, 2 * n);
     // Queue A is read, never written.
     CHECK(std::vector<cl_uint>(out_queues.begin(), out_queues.begin() + std::ptrdiff_t(n)) ==
@@ -308,7 +340,7 @@ TEST_CASE("shade: mirrors, emitters, next-event estimation and roulette on hand-
                                           kDiffuseToLightB, kDiffuseBackFace};
     const std::set<cl_uint> finished = {
         kEmitterSpecular, kEmitterAfterDiffuse, kEmitterBack, kRouletteKill,
-        kDepthCap,        kDepthCapKilled,      kMiss};
+        kDepthCap,        kDepthCapKilled,      kMiss,        kEmitterAfterWeighed};
     const std::set<cl_uint> shadowed = {kDiffuseToLightA, kDiffuseToLightB, kRouletteKill};
     REQUIRE(continuing.size() + finished.size() == ray_count); // every queued path, once
     REQUIRE(out_counters[WP_COUNTER_QUEUE_B] == continuing.size());
@@ -347,6 +379,22 @@ TEST_CASE("shade: mirrors, emitters, next-event estimation and roulette on hand-
         return scene.materials[scene.triangles[in[slot].primitive].material];
     };
 
+    // The power heuristic's weight of the density `own` against `other`.
+    auto power_weight = [](double own, double other) {
+        return own * own / (own * own + other * other);
+    };
+    // Both strategies' solid-angle densities at diffuse vertex x of the
+    // direction to light point y on `light` (area sampling, lights.h; the
+    // cosine-weighted Lambertian sample about the normal n).
+    auto light_pdf = [&](D3 x, D3 y, const WpTriangle& light) {
+        D3 to_light = y - x;
+        double dist = length(to_light);
+        return dist * dist / (-dot(unit_normal(light), to_light / dist) * total_area);
+    };
+    auto bsdf_pdf = [](D3 x, D3 y, D3 normal) { return dot(normal, normalize(y - x)) / M_PI; };
+    // What each strategy's weight came out as in the kernel, for kDiffuseToLightA's path.
+    double light_weight_found = -1.0, bsdf_weight_found = -1.0;
+
     for (cl_uint slot = 0; slot < n; ++slot) {
         INFO("slot " << slot << " (pixel " << in[slot].pixel << ", sample " << in[slot].sample
                      << ")");
@@ -355,10 +403,21 @@ TEST_CASE("shade: mirrors, emitters, next-event estimation and roulette on hand-
         const bool queued = slot != kNotQueued && slot != kPastRayCount;
         const bool hit = queued && p.primitive != WP_NO_HIT;
 
-        // Radiance: emission only on an emitter's front face, seen specularly.
+        // Radiance: emission only on an emitter's front face, seen specularly
+        // or after a weighed bounce with the power heuristic's weight (not
+        // after an unweighed one, kEmitterAfterDiffuse: its light sample counted it).
         D3 expected_radiance = from_float4(radiance[slot]);
         if (slot == kEmitterSpecular)
             expected_radiance = expected_radiance + p.throughput * D3(4, 3, 2);
+        if (slot == kEmitterAfterWeighed) {
+            double weight = power_weight(
+                p.last_pdf, light_pdf(p.last_vertex, p.hit_point, flat.triangles[kLightA]));
+            REQUIRE(weight > 0.01);
+            REQUIRE(weight < 0.99);
+            expected_radiance = expected_radiance + p.throughput * D3(4, 3, 2) * weight;
+            bsdf_weight_found =
+                (out_radiance[slot].s[0] - radiance[slot].s[0]) / (p.throughput.x * 4.0);
+        }
         for (int k = 0; k < 3; ++k)
             CHECK(std::fabs(out_radiance[slot].s[k] - expected_radiance[k]) <=
                   1e-6 * std::fabs(expected_radiance[k]));
@@ -403,7 +462,12 @@ TEST_CASE("shade: mirrors, emitters, next-event estimation and roulette on hand-
                 // Cosine-weighted: the cosine to the normal is sqrt(1 - u1).
                 double u1 = random(p.pixel, p.sample, p.depth, WP_DIM_BSDF_U);
                 CHECK(std::fabs(dot(next, facing) - std::sqrt(1.0 - u1)) < 1e-5);
-                CHECK(out_flags[slot] == 0u);
+                // A Lambertian vertex is weighed (WP_MIS_EVERY_VERTEX): the
+                // emission the new ray finds is weighed against the light
+                // sample made here, with the vertex and its density kept.
+                CHECK(out_flags[slot] == WP_PATH_GLOSSY);
+                CHECK(distance(from_float4(out_last_vertex[slot]), p.hit_point) < 1e-5);
+                CHECK(std::fabs(out_last_vertex[slot].s[3] - dot(next, facing) / M_PI) < 1e-5);
             }
         } else {
             // Ended (or never touched): the path state is as it was.
@@ -419,12 +483,8 @@ TEST_CASE("shade: mirrors, emitters, next-event estimation and roulette on hand-
         if (shadowed.count(slot)) {
             // Next-event estimation with the same random numbers, in double.
             double u_pick = random(p.pixel, p.sample, p.depth, WP_DIM_LIGHT_PICK);
-            double u = random(p.pixel, p.sample, p.depth, WP_DIM_LIGHT_U);
-            double v = random(p.pixel, p.sample, p.depth, WP_DIM_LIGHT_V);
             const WpTriangle& light = flat.triangles[u_pick < cdf_a ? kLightA : kLightB];
-            double su = std::sqrt(u), b0 = 1.0 - su, b1 = v * su;
-            D3 light_point =
-                b0 * vertex(light, 0) + b1 * vertex(light, 1) + (1.0 - b0 - b1) * vertex(light, 2);
+            D3 light_point = light_point_of(slot);
             D3 n_surface = surface_normal(slot);
             D3 facing = dot(d, n_surface) < 0.0 ? n_surface : -n_surface;
             D3 to_light = light_point - p.hit_point;
@@ -434,8 +494,13 @@ TEST_CASE("shade: mirrors, emitters, next-event estimation and roulette on hand-
             REQUIRE(cos_surface > 0.0);
             REQUIRE(cos_light > 0.0);
             D3 rho = rgb(material_of(slot).reflectance);
-            D3 expected = p.throughput * rho / M_PI * D3(4, 3, 2) *
-                          (cos_surface * cos_light / (dist * dist) * total_area);
+            D3 unweighted = p.throughput * rho / M_PI * D3(4, 3, 2) *
+                            (cos_surface * cos_light / (dist * dist) * total_area);
+            // Weighed by the power heuristic against the Lambertian sample.
+            D3 expected = unweighted * power_weight(light_pdf(p.hit_point, light_point, light),
+                                                    bsdf_pdf(p.hit_point, light_point, facing));
+            if (slot == kDiffuseToLightA)
+                light_weight_found = out_contribution[slot].s[0] / unweighted.x;
             for (int k = 0; k < 3; ++k) {
                 INFO("channel " << k << ": got " << out_contribution[slot].s[k] << ", expected "
                                 << expected[k]);
@@ -456,6 +521,12 @@ TEST_CASE("shade: mirrors, emitters, next-event estimation and roulette on hand-
             }
         }
     }
+    // The two strategies' weights of the one path x -> y, as the kernel
+    // computed them, sum to 1.
+    INFO("light sample's weight " << light_weight_found << ", BSDF sample's " << bsdf_weight_found);
+    CHECK(light_weight_found > 0.0);
+    CHECK(bsdf_weight_found > 0.0);
+    CHECK(std::fabs(light_weight_found + bsdf_weight_found - 1.0) < 1e-5);
     // Both lights were sampled, by the light table's cdf.
     CHECK(random(in[kDiffuseToLightA].pixel, in[kDiffuseToLightA].sample, 1, WP_DIM_LIGHT_PICK) <
           cdf_a);

@@ -87,6 +87,10 @@ std::vector<Case> cases() {
         o.pool_size = 37;
     });
     variant("hexroom-max-depth-2", [](IntegratorOptions& o) { o.max_depth = 2; });
+    // Next-event estimation alone at every vertex (--mis light): the estimator
+    // the default was before Lambertian vertices were weighed by MIS, so its
+    // hash is the hexroom's of then.
+    variant("hexroom-mis-light", [](IntegratorOptions& o) { o.mis = MisStrategy::LightOnly; });
     // Every stress scene the loader accepts (the degenerate-* ones are refused).
     std::vector<std::string> stress;
     for (const auto& entry :
