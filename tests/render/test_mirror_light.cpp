@@ -94,25 +94,6 @@ TEST_CASE("mirror light: the light seen only in a planar mirror gives R rho Le F
     }
 }
 
-namespace {
-
-// The mean of the w x w blocks of a film's channel, with its standard error.
-test::MeanWithError block_mean(const Film& film, int bx, int by, int w, int channel) {
-    Image mean = film.mean();
-    Image variance = film.variance_of_mean();
-    double sum = 0.0, var = 0.0;
-    for (int y = by * w; y < (by + 1) * w; ++y)
-        for (int x = bx * w; x < (bx + 1) * w; ++x) {
-            std::size_t p = static_cast<std::size_t>(y) * film.width() + x;
-            sum += mean.rgb[p * 3 + channel];
-            var += variance.rgb[p * 3 + channel];
-        }
-    double n = static_cast<double>(w) * w;
-    return {sum / n, std::sqrt(var) / n};
-}
-
-} // namespace
-
 TEST_CASE("mirror light: the hexroom with and without it agrees within noise, block by block",
           "[mirror-nee][statistical]") {
     // Unbiasedness and the weights: the multiple importance sampling weights
@@ -134,8 +115,8 @@ TEST_CASE("mirror light: the hexroom with and without it agrees within noise, bl
     for (int ch = 0; ch < 3; ++ch) {
         for (int by = 0; by < 32 / w; ++by)
             for (int bx = 0; bx < 32 / w; ++bx) {
-                test::MeanWithError a = block_mean(on.film, bx, by, w, ch);
-                test::MeanWithError b = block_mean(off.film, bx, by, w, ch);
+                test::MeanWithError a = test::block_mean(on.film, bx, by, w, ch);
+                test::MeanWithError b = test::block_mean(off.film, bx, by, w, ch);
                 double z = test::sigmas_apart(a, b);
                 worst = std::max(worst, z);
                 outside += z > kSigmas;

@@ -82,6 +82,22 @@ inline MeanWithError image_mean(const Film& film, int channel) {
     return {sum / n, std::sqrt(var) / n};
 }
 
+// The mean of the w x w block (bx, by) of a film's channel, with its
+// standard error.
+inline MeanWithError block_mean(const Film& film, int bx, int by, int w, int channel) {
+    Image mean = film.mean();
+    Image variance = film.variance_of_mean();
+    double sum = 0.0, var = 0.0;
+    for (int y = by * w; y < (by + 1) * w; ++y)
+        for (int x = bx * w; x < (bx + 1) * w; ++x) {
+            std::size_t p = static_cast<std::size_t>(y) * film.width() + x;
+            sum += mean.rgb[p * 3 + channel];
+            var += variance.rgb[p * 3 + channel];
+        }
+    double n = static_cast<double>(w) * w;
+    return {sum / n, std::sqrt(var) / n};
+}
+
 // How many combined standard errors two independent estimates lie apart.
 inline double sigmas_apart(const MeanWithError& a, const MeanWithError& b) {
     return std::abs(a.mean - b.mean) / std::hypot(a.standard_error, b.standard_error);
