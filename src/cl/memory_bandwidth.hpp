@@ -13,7 +13,8 @@ namespace wp {
 // much larger than the caches (float4 per work-item), best of a few timed
 // launches on a queue of its own. Measured once per device and process (the
 // first call takes a kernel build and a fraction of a second), then cached;
-// 0 where the measurement failed.
+// 0 where the measurement failed. On a device so slow that the full copy would
+// take seconds (a simulator), a 256 KiB copy's figure instead.
 double measured_copy_bandwidth(const DeviceContext& device);
 
 // The buffer size the copy uses on `device`: 64 MiB each way, or less where
