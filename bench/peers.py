@@ -28,7 +28,8 @@ reference: that long reference, by Mitsuba 3 through export-mitsuba (in
 passes of --reference-pass-spp, averaged) or by wavepath.
 suite: issue #34's set in one command: error mode (two threads; samples/s
 from the same renders) on the hexroom (wavepath's default and --mirror-nee
-off), scenes/cornell-bunny.json and scenes/materials/showcase.json against
+off), scenes/cornell-bunny.json and scenes/materials/showcase.json (wavepath's
+default and --roulette-depth 5, Mitsuba's roulette depth) against
 Mitsuba references made once into --reference-dir, then one table of all.
 
 Cycles rebuilds the hexroom (bench/peers_cycles.py) and no other scene, so
@@ -520,7 +521,7 @@ def run_reference(args, workdir):
 SUITE = [  # (name, scene, wavepath variants)
     ("hexroom", "scenes/hexroom.json", ["--mirror-nee off"]),
     ("cornell-bunny", "scenes/cornell-bunny.json", []),
-    ("showcase", "scenes/materials/showcase.json", []),
+    ("showcase", "scenes/materials/showcase.json", ["--roulette-depth 5"]),
 ]
 
 
