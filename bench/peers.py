@@ -77,7 +77,6 @@ LIGHT_TOLERANCE = 0.001  # pixels that see the light read 100 within 0.1 %
 STATISTICAL_SIGMAS = 5.0  # elsewhere: means and block means within 5 combined standard errors
 TARGET_REL_MSE = 0.05
 REFERENCE_SEED = 987654
-STAGES = ("generate", "intersect", "shade", "shadow", "accumulate")
 
 
 def fail(message):
@@ -562,6 +561,18 @@ def run_suite(args, workdir):
         print(f"peers: suite: {name} ({scene}), load {load_average()}", flush=True)
         results.append((name, run_error(scene_args, workdir)))
 
+    md = suite_markdown(args, results, first_load, load_average(), (time.monotonic() - started) / 60)
+    out.mkdir(parents=True, exist_ok=True)
+    (out / "suite.md").write_text("\n".join(md) + "\n")
+    (out / "suite.json").write_text(json.dumps({"mode": "suite", "command": " ".join(
+        shlex.quote(a) for a in sys.argv), "scenes": {name: result for name, result in results}},
+        indent=1) + "\n")
+    print("\n".join(md))
+    print(f"peers: wrote {out}/suite.md, suite.json and each scene's results in {out}/NAME/")
+
+
+def suite_markdown(args, results, first_load, last_load, minutes):
+    """The suite's table of every scene, and wavepath's stages; results: [(name, error mode's result)]."""
     md = [f"<!-- suite: {args.size}x{args.size}, spp {args.spp}, {args.rounds} rounds, two threads, "
           f"references {args.reference_spp} spp by {args.reference_renderer}; {machine_description()}; "
           f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())} -->", "",
@@ -580,28 +591,25 @@ def run_suite(args, workdir):
                       f"{row['samples_per_second'] / 1e6:.3f} M | {row['efficiency']:.4g} | "
                       f"{row['rel_efficiency']:.4g} | {speed:.2f} | {row['wavepath_ratio']:.2f} | "
                       f"{row['wavepath_rel_ratio']:.2f} | {'yes' if result['equal_work'] else 'NO'} |")
+    stages = list(dict.fromkeys(stage for _, result in results for x in result["runs"]
+                                for stage in x.get("stages", {})))
     md += ["", "wavepath's device seconds per stage (mean over its runs at the largest spp; "
-           "POCL's CPU device, --profile-json):", "",
-           "| scene | renderer | " + " | ".join(STAGES) + " | wall |",
-           "| --- | --- | " + " | ".join("---:" for _ in STAGES) + " | ---: |"]
+           "POCL's CPU device, --profile-json; a scene rendered by the fused launch plan has "
+           "one stage, wave):", "",
+           "| scene | renderer | " + " | ".join(stages) + " | wall |",
+           "| --- | --- | " + " | ".join("---:" for _ in stages) + " | ---: |"]
     for name, result in results:
         largest = max(row["spp"] for row in result["rows"])
         for label in dict.fromkeys(x["renderer"] for x in result["runs"]):
             mine = [x for x in result["runs"] if x["renderer"] == label and x["spp"] == largest and x["stages"]]
             if not mine:
                 continue
-            cells = [statistics.fmean(x["stages"].get(stage, 0.0) for x in mine) for stage in STAGES]
+            cells = [statistics.fmean(x["stages"].get(stage, 0.0) for x in mine) for stage in stages]
             md.append(f"| {name} ({largest} spp) | {label} | " + " | ".join(f"{c:.2f}" for c in cells) +
                       f" | {statistics.fmean(x['seconds'] for x in mine):.2f} |")
-    md += ["", f"Load averages (1, 5, 15 min): {first_load} at the start, {load_average()} at the end; "
-           f"the suite took {(time.monotonic() - started) / 60:.1f} min."]
-    out.mkdir(parents=True, exist_ok=True)
-    (out / "suite.md").write_text("\n".join(md) + "\n")
-    (out / "suite.json").write_text(json.dumps({"mode": "suite", "command": " ".join(
-        shlex.quote(a) for a in sys.argv), "scenes": {name: result for name, result in results}},
-        indent=1) + "\n")
-    print("\n".join(md))
-    print(f"peers: wrote {out}/suite.md, suite.json and each scene's results in {out}/NAME/")
+    md += ["", f"Load averages (1, 5, 15 min): {first_load} at the start, {last_load} at the end; "
+           f"the suite took {minutes:.1f} min."]
+    return md
 
 
 def finish(args, result, md):
