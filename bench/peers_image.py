@@ -65,3 +65,29 @@ def write_png(image, path, scale=1 / 8.0):
     mi = _mitsuba()
     view = np.clip(image * scale, 0.0, 1.0) ** (1 / 2.2)
     mi.Bitmap((view * 255.0 + 0.5).astype(np.uint8)).write(str(path))
+
+
+def mean_agreement(image, reference, blocks):
+    """Per-channel mean differences of a blocks x blocks grid, image against
+    reference: (z, relative deviation, relative sigma), each blocks x blocks
+    x 3. sigma is the combined standard error of a block's mean difference,
+    sqrt(sum of (x - r)^2) / pixels (pixels independent, so the squared
+    difference estimates the sum of both pixels' variances where the
+    expectations agree); z the difference over sigma."""
+    rows = np.array_split(np.arange(image.shape[0]), blocks)
+    columns = np.array_split(np.arange(image.shape[1]), blocks)
+    z = np.zeros((blocks, blocks, 3))
+    deviation = np.zeros((blocks, blocks, 3))
+    sigma = np.zeros((blocks, blocks, 3))
+    for i, r in enumerate(rows):
+        for j, c in enumerate(columns):
+            x = image[np.ix_(r, c)].reshape(-1, 3)
+            y = reference[np.ix_(r, c)].reshape(-1, 3)
+            difference = x.mean(axis=0) - y.mean(axis=0)
+            error = np.sqrt(((x - y) ** 2).sum(axis=0)) / x.shape[0]
+            scale = np.maximum(np.abs(y.mean(axis=0)), 1e-12)
+            z[i, j] = np.where(error > 0, difference / np.maximum(error, 1e-300), 0.0)
+            deviation[i, j] = difference / scale
+            sigma[i, j] = error / scale
+    return z, deviation, sigma
+

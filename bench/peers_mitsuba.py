@@ -32,6 +32,9 @@ def main():
     parser.add_argument("--threads", type=int, default=2)
     parser.add_argument("--variant", default="llvm_ad_rgb")
     parser.add_argument("--out", required=True)
+    parser.add_argument("--passes", type=int, default=1,
+                        help="render this many times, seeds --seed, --seed + 1, ..., and write their mean "
+                        "(a long reference without one kernel of every sample's lanes)")
     args = parser.parse_args()
     try:
         import drjit as dr
@@ -52,8 +55,11 @@ def main():
         dr.set_flag(dr.JitFlag.KernelHistory, True)
         dr.kernel_history()  # drop the loading's kernels
     start = time.monotonic()
-    image = mi.render(scene, seed=args.seed, spp=args.spp)
-    pixels = np.array(image)  # waits for the kernels
+    pixels = None
+    for index in range(max(1, args.passes)):
+        image = np.array(mi.render(scene, seed=args.seed + index, spp=args.spp))  # waits for the kernels
+        pixels = image if pixels is None else pixels + image
+    pixels = pixels / max(1, args.passes)
     wall = time.monotonic() - start
     compile_ms = 0.0
     if args.variant.startswith("llvm"):

@@ -53,14 +53,17 @@ class Wavepath:
             command += ["--profile-json", profile]
         env = dict(os.environ, POCL_MAX_PTHREAD_COUNT=str(threads))
         stdout = run(command, env, f"{self.label} render")
+        stages = {}
         if self.has_profile_json:
-            seconds = json.loads(profile.read_text())["wall_seconds"]
+            report = json.loads(profile.read_text())
+            seconds = report["wall_seconds"]
+            stages = {s["stage"]: s["device_seconds"] for s in report.get("stages", [])}
         else:  # older builds: the "rendered ..." line's samples/s
             match = re.search(r"([0-9.e+]+) samples/s", stdout)
             if not match:
                 raise RendererError(f"{self.label}: no samples/s in its output")
             seconds = size * size * spp / float(match.group(1))
-        return {"seconds": seconds, "image": out}
+        return {"seconds": seconds, "image": out, "stages": stages}
 
     def warm_up(self, size, threads):
         """Fills the program cache and PoCL's kernel cache (docs/convergence.md)."""
@@ -71,8 +74,9 @@ class Wavepath:
 class Mitsuba:
     """Mitsuba 3 on the scene as `wavepath export-mitsuba` writes it."""
 
-    def __init__(self, args, workdir):
+    def __init__(self, args, workdir, scene=None):
         self.args = args
+        self.scene_file = scene or args.scene
         self.workdir = Path(workdir)
         self.variant = args.mitsuba_variant
         self.label = f"Mitsuba {self.variant}"
@@ -89,16 +93,16 @@ class Mitsuba:
 
     def scene(self, size):
         if size not in self.scenes:
-            xml = self.workdir / f"hexroom-{size}.xml"
-            run([self.args.wavepath, "export-mitsuba", self.args.scene, xml, "--width", size,
+            xml = self.workdir / f"{Path(self.scene_file).stem}-{size}.xml"
+            run([self.args.wavepath, "export-mitsuba", self.scene_file, xml, "--width", size,
                  "--height", size, "--spp", 1], what="wavepath export-mitsuba")
             self.scenes[size] = xml
         return self.scenes[size]
 
-    def render(self, size, spp, seed, threads, core, out):
+    def render(self, size, spp, seed, threads, core, out, passes=1):
         command = pinning(core) + [sys.executable, HERE / "peers_mitsuba.py", self.scene(size),
                                    "--spp", spp, "--seed", seed, "--threads", threads,
-                                   "--variant", self.variant, "--out", out]
+                                   "--variant", self.variant, "--out", out, "--passes", passes]
         stdout = run(command, self.env, "Mitsuba render")
         result = json.loads(stdout.strip().splitlines()[-1])
         return {"seconds": result["render_seconds"], "image": out}
@@ -111,8 +115,9 @@ class Mitsuba:
 class Cycles:
     """Blender Cycles on the scene as bench/peers_cycles.py builds it."""
 
-    def __init__(self, args):
+    def __init__(self, args, scene=None):
         self.args = args
+        self.scene_file = scene or args.scene
         self.label = "Cycles"
         self.slug = "cycles"
         if shutil.which(args.blender) is None and not Path(args.blender).is_file():
@@ -122,7 +127,7 @@ class Cycles:
     def render(self, size, spp, seed, threads, core, out):
         command = pinning(core) + [self.args.blender, "-b", "--factory-startup", "-noaudio",
                                    "--python-exit-code", 1, "--python", HERE / "peers_cycles.py", "--",
-                                   "--scene", self.args.scene, "--width", size, "--height", size,
+                                   "--scene", self.scene_file, "--width", size, "--height", size,
                                    "--spp", spp, "--seed", seed, "--threads", threads, "--out", out]
         stdout = run(command, what="Cycles render")
         for line in stdout.splitlines():
