@@ -11,6 +11,7 @@
                                      [--reference-renderer mitsuba|wavepath]
     python3 bench/peers.py suite [--size 256] [--spp 16,64] [--rounds 2] [--reference-spp 1024]
                                  [--only hexroom,cornell-bunny,showcase]
+    python3 bench/peers.py agree SCENE.xml|SCENE.json [--spp 64] [--seeds 4] [--reference-spp 1024]
 
 throughput: whole-render time and samples/s of wavepath (its default and each
 --wp-variant), its peers (default Mitsuba 3 llvm_ad_rgb) and (with
@@ -31,6 +32,9 @@ from the same renders) on the hexroom (wavepath's default and --mirror-nee
 off), scenes/cornell-bunny.json and scenes/materials/showcase.json (wavepath's
 default and --roulette-depth 5, Mitsuba's roulette depth) against
 Mitsuba references made once into --reference-dir, then one table of all.
+agree: does wavepath render the scene as Mitsuba 3 does? K renders each at
+equal samples, means and blocks in combined standard errors, a difference
+image (bench/peers_agree.py, which has its own options: agree --help).
 
 Cycles rebuilds the hexroom (bench/peers_cycles.py) and no other scene, so
 --peers cycles is refused elsewhere. Both measuring modes alternate the
@@ -623,6 +627,11 @@ def finish(args, result, md):
 
 
 def main():
+    if len(sys.argv) > 1 and sys.argv[1] == "agree":
+        # Its own options and report (issue #32): bench/peers_agree.py.
+        import peers_agree
+        sys.argv = [f"{sys.argv[0]} agree"] + sys.argv[2:]
+        sys.exit(peers_agree.main())
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                      formatter_class=argparse.RawDescriptionHelpFormatter,
                                      epilog=__doc__.split("\n\n", 1)[1])
