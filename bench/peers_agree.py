@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Does wavepath render a scene as Mitsuba 3 does? (issue #32)
 
-    python3 bench/peers_agree.py SCENE.xml|SCENE.json [--spp 64] [--seeds 4]
+    python3 bench/peers_agree.py SCENE.xml|SCENE.json [--spp 64] [--seeds 8]
                                  [--reference-spp 1024] [--sigma 5] [--out-dir DIR]
     python3 bench/peers.py agree SCENE ...        (the same)
 
@@ -116,7 +116,11 @@ def main():
     parser.add_argument("scene", help="a Mitsuba 3 XML scene or a wavepath JSON scene")
     parser.add_argument("--wavepath", default=str(REPOSITORY / "build" / "wavepath"))
     parser.add_argument("--spp", type=int, default=64, help="samples per pixel of each render (default: 64)")
-    parser.add_argument("--seeds", type=int, default=4, help="independent renders per renderer (default: 4)")
+    # Each standard error comes from the spread of K renders, itself uncertain
+    # with K - 1 degrees of freedom: with 4 renders a |z| over 5 comes by chance
+    # about once in 65 regions (Student's t, 3 degrees of freedom), with 8 once
+    # in 640 (7).
+    parser.add_argument("--seeds", type=int, default=8, help="independent renders per renderer (default: 8)")
     parser.add_argument("--reference-spp", type=int, default=1024,
                         help="samples per pixel of the long Mitsuba render (default: 1024)")
     parser.add_argument("--blocks", type=int, default=4, help="blocks per side of the grid (default: 4)")
