@@ -142,6 +142,8 @@ class BinaryWriter {
     }
 
     Bounds3f bounds_of(const std::uint32_t* first, std::uint32_t count) const {
+        if (boxes_.empty())
+            throw std::logic_error("BVH leaf mixes primitive kinds, but no boxes were given");
         Bounds3f b;
         for (std::uint32_t k = 0; k < count; ++k)
             b.extend(boxes_[first[k]]);
@@ -234,7 +236,9 @@ BvhBuildOptions hierarchy_options(std::uint32_t split_levels) {
 }
 
 // The binary tree of `bvh` as four-wide nodes appended to `nodes`; throws if
-// a path through it would overflow the traversal stack.
+// a path through it would overflow the traversal stack. `boxes` are the
+// builder's, needed only where a leaf mixes kinds: empty for a hierarchy of
+// one kind.
 void write_wide(const Bvh& bvh, const std::vector<Bounds3f>& boxes,
                 const std::vector<wp_uint>& new_number, wp_uint triangle_count, wp_uint plain_count,
                 std::vector<WpBvhNode>& nodes) {
@@ -251,10 +255,19 @@ void write_wide(const Bvh& bvh, const std::vector<Bounds3f>& boxes,
 // instance's first_primitive holds its group's triangle count on entry and
 // its hits' first number on return (they follow the instances' new order).
 void build_hierarchy(DeviceScene& scene) {
-    const std::vector<Bounds3f> boxes = primitive_boxes(scene);
-    Bvh bvh = build_bvh(boxes, hierarchy_options(scene.instances.empty() ? 1 : 2));
     const auto triangle_count = static_cast<wp_uint>(scene.triangles.size());
     const auto plain_count = triangle_count + static_cast<wp_uint>(scene.spheres.size());
+    // Only leaves that mix kinds need the boxes after the build (BinaryWriter);
+    // a scene of one kind moves them into the builder, which frees them early.
+    const int kinds = static_cast<int>(!scene.triangles.empty()) +
+                      static_cast<int>(!scene.spheres.empty()) +
+                      static_cast<int>(!scene.instances.empty());
+    const bool mixed = kinds > 1;
+    std::vector<Bounds3f> boxes = primitive_boxes(scene);
+    const BvhBuildOptions options = hierarchy_options(scene.instances.empty() ? 1 : 2);
+    Bvh bvh = mixed ? build_bvh(boxes, options) : build_bvh(std::move(boxes), options);
+    if (!mixed)
+        boxes.clear();
     auto kind = [&](std::uint32_t p) { return p < triangle_count ? 0 : p < plain_count ? 1 : 2; };
     // Within each leaf, triangles, then spheres, then instances (BinaryWriter
     // splits mixed leaves there).
@@ -375,14 +388,14 @@ void flatten_instances(const Scene& scene, const FloatFrame& frame, bool uvs, De
             boxes.push_back(widened(b));
             g.box.extend(boxes.back());
         }
-        const Bvh bvh = build_bvh(boxes, hierarchy_options(1));
+        const Bvh bvh = build_bvh(std::move(boxes), hierarchy_options(1));
         std::vector<wp_uint> new_number(triangles.size());
         for (std::uint32_t p : bvh.primitives) {
             new_number[p] = static_cast<wp_uint>(out.group_triangles.size());
             out.group_triangles.push_back(triangles[p]);
         }
         g.root = static_cast<wp_uint>(out.group_bvh_nodes.size());
-        write_wide(bvh, boxes, new_number, g.count, g.count, out.group_bvh_nodes);
+        write_wide(bvh, {}, new_number, g.count, g.count, out.group_bvh_nodes); // triangles only
         groups.push_back(g);
     }
 
@@ -838,6 +851,7 @@ DeviceScene flatten_scene(const Scene& scene, bool hierarchy) {
     std::vector<double> areas;
     double total_area = 0.0;
     double triangle_power = 0.0; // sum of mean radiance x area: the triangles' power / pi
+    out.triangles.reserve(scene.triangles.size()); // exactly: no growth by doubling
     for (std::size_t i = 0; i < scene.triangles.size(); ++i) {
         const Triangle& t = scene.triangles[i];
         out.triangles.push_back(flatten_triangle(

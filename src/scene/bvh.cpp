@@ -182,14 +182,42 @@ class Builder {
         return best;
     }
 
+    // A stable partition, as std::stable_partition's, that buffers only the
+    // smaller side: std::stable_partition buffers the whole range, which at
+    // the root is a second copy of every primitive, the build's peak memory.
+    // The larger side is compacted in place, keeping its order.
     std::size_t partition(std::size_t begin, std::size_t end, const Bounds3f& centroids,
                           const Split& split) {
-        auto middle = std::stable_partition(
-            primitives_.begin() + static_cast<std::ptrdiff_t>(begin),
-            primitives_.begin() + static_cast<std::ptrdiff_t>(end), [&](const Primitive& p) {
-                return bin_of(p.centroid, centroids, split.axis) <= split.bin;
-            });
-        return static_cast<std::size_t>(middle - primitives_.begin());
+        std::vector<std::uint8_t> left(end - begin);
+        std::size_t left_count = 0;
+        for (std::size_t i = begin; i < end; ++i) {
+            left[i - begin] = bin_of(primitives_[i].centroid, centroids, split.axis) <= split.bin;
+            left_count += left[i - begin];
+        }
+        const std::size_t middle = begin + left_count;
+        const bool buffer_left = left_count <= end - middle;
+        std::vector<Primitive> buffer;
+        buffer.reserve(buffer_left ? left_count : end - middle);
+        if (buffer_left) { // the right side moves to the back, last first
+            std::size_t to = end;
+            for (std::size_t i = end; i-- > begin;)
+                if (left[i - begin])
+                    buffer.push_back(primitives_[i]);
+                else
+                    primitives_[--to] = primitives_[i];
+            std::reverse_copy(buffer.begin(), buffer.end(),
+                              primitives_.begin() + static_cast<std::ptrdiff_t>(begin));
+        } else { // the left side moves to the front, first first
+            std::size_t to = begin;
+            for (std::size_t i = begin; i < end; ++i)
+                if (left[i - begin])
+                    primitives_[to++] = primitives_[i];
+                else
+                    buffer.push_back(primitives_[i]);
+            std::copy(buffer.begin(), buffer.end(),
+                      primitives_.begin() + static_cast<std::ptrdiff_t>(middle));
+        }
+        return middle;
     }
 
     std::vector<Primitive>& primitives_;
@@ -217,21 +245,27 @@ void flatten(const BuildNode& node, std::uint32_t depth, Bvh& out) {
 
 } // namespace
 
-Bvh build_bvh(const std::vector<Bounds3f>& boxes, const BvhBuildOptions& options) {
+Bvh build_bvh(std::vector<Bounds3f> boxes, const BvhBuildOptions& options) {
     const auto start = std::chrono::steady_clock::now();
     Bvh bvh;
     if (boxes.empty())
         return bvh;
-    std::vector<Primitive> primitives(boxes.size());
-    for (std::size_t i = 0; i < boxes.size(); ++i)
+    const std::size_t count = boxes.size();
+    std::vector<Primitive> primitives(count);
+    for (std::size_t i = 0; i < count; ++i)
         primitives[i] = {boxes[i], boxes[i].centroid(), static_cast<std::uint32_t>(i)};
+    std::vector<Bounds3f>().swap(boxes);
     Builder builder(primitives, options);
-    std::unique_ptr<BuildNode> root = builder.build(0, primitives.size(), 0);
-    bvh.nodes.reserve(2 * boxes.size());
-    flatten(*root, 0, bvh);
-    bvh.primitives.resize(primitives.size());
-    for (std::size_t i = 0; i < primitives.size(); ++i)
+    std::unique_ptr<BuildNode> root = builder.build(0, count, 0);
+    // The leaf order out of the primitives, which are then freed before the
+    // tree is laid out: the build's memory peaks once, not twice.
+    bvh.primitives.resize(count);
+    for (std::size_t i = 0; i < count; ++i)
         bvh.primitives[i] = primitives[i].index;
+    std::vector<Primitive>().swap(primitives);
+    bvh.nodes.reserve(2 * count);
+    flatten(*root, 0, bvh);
+    root.reset();
     bvh.stats.nodes = static_cast<std::uint32_t>(bvh.nodes.size());
     bvh.stats.sah_cost = bvh_sah_cost(bvh, options);
     bvh.stats.build_seconds =

@@ -76,8 +76,10 @@ struct Bvh {
 };
 
 // The hierarchy over `boxes` (primitive i has box i). Empty input gives an
-// empty hierarchy (no nodes).
-Bvh build_bvh(const std::vector<Bounds3f>& boxes, const BvhBuildOptions& options = {});
+// empty hierarchy (no nodes). The boxes are taken by value and freed once the
+// builder has its own copy: a caller done with them moves them in, so that a
+// big scene's build does not hold both.
+Bvh build_bvh(std::vector<Bounds3f> boxes, const BvhBuildOptions& options = {});
 
 // SAH cost of a finished hierarchy (what BvhStats::sah_cost reports).
 double bvh_sah_cost(const Bvh& bvh, const BvhBuildOptions& options = {});

@@ -129,6 +129,10 @@ TriangleMesh finish(const std::filesystem::path& file, PolygonMesh&& poly,
             mesh.triangle_materials.push_back(poly.polygon_materials[f]);
         }
     }
+    // The polygons are dead once triangulated: freed before the normals.
+    std::vector<std::uint32_t>().swap(poly.indices);
+    std::vector<std::size_t>().swap(poly.offsets);
+    std::vector<std::uint32_t>().swap(poly.polygon_materials);
     if (mesh.triangles.empty())
         throw MeshError::in_file(file, "all " + std::to_string(mesh.dropped_degenerate) +
                                            " triangles are degenerate (zero area)");
@@ -142,22 +146,30 @@ TriangleMesh finish(const std::filesystem::path& file, PolygonMesh&& poly,
     return mesh;
 }
 
+// The file's polygons as its format's reader gives them.
+PolygonMesh read_polygons(const std::string& bytes, const std::filesystem::path& name,
+                          const MeshLoadOptions& options) {
+    check_mesh_extension(name);
+    const std::string ext = lower_extension(name);
+    return ext == ".obj"   ? read_obj(name, bytes, options.normals == NormalSource::File,
+                                      options.texture_coordinates)
+           : ext == ".ply" ? read_ply(name, bytes)
+                           : read_serialized(name, bytes, options.shape_index);
+}
+
 } // namespace
 
 TriangleMesh load_mesh(const std::filesystem::path& path, const MeshLoadOptions& options) {
     check_mesh_extension(path);
-    return parse_mesh(read_whole_file(path), path, options);
+    // The file's bytes are freed before finish() triangulates: a big binary
+    // PLY is about as large as the triangles it becomes (docs/meshes.md).
+    PolygonMesh poly = read_polygons(read_whole_file(path), path, options);
+    return finish(path, std::move(poly), options);
 }
 
 TriangleMesh parse_mesh(const std::string& bytes, const std::filesystem::path& name,
                         const MeshLoadOptions& options) {
-    check_mesh_extension(name);
-    const std::string ext = lower_extension(name);
-    PolygonMesh poly = ext == ".obj" ? read_obj(name, bytes, options.normals == NormalSource::File,
-                                                options.texture_coordinates)
-                       : ext == ".ply" ? read_ply(name, bytes)
-                                       : read_serialized(name, bytes, options.shape_index);
-    return finish(name, std::move(poly), options);
+    return finish(name, read_polygons(bytes, name, options), options);
 }
 
 std::vector<std::uint32_t> resolve_materials(const TriangleMesh& mesh,
