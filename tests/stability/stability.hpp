@@ -77,66 +77,10 @@ inline bool all_finite(const test::Rendered& r) {
     return r.stats.nonfinite_samples == 0;
 }
 
-// Mean and standard error of channel c over the pixel rectangle [x0, x1) x [y0, y1).
-inline test::MeanWithError region_mean(const Film& film, int channel, int x0, int y0, int x1,
-                                       int y1) {
-    Image mean = film.mean();
-    Image variance = film.variance_of_mean();
-    double sum = 0.0, var = 0.0;
-    int n = 0;
-    for (int y = y0; y < y1; ++y)
-        for (int x = x0; x < x1; ++x) {
-            std::size_t p = static_cast<std::size_t>(y) * film.width() + x;
-            sum += mean.rgb[p * 3 + channel];
-            var += variance.rgb[p * 3 + channel];
-            ++n;
-        }
-    return {sum / n, std::sqrt(var) / n};
-}
-
-// Two renders of the same image compared block by block and channel by
-// channel: each block mean of `a` against `b`, in units of their combined
-// standard error.
-struct BlockComparison {
-    int blocks = 0;  // block-channel comparisons
-    int outside = 0; // over kSigmas
-    double worst_sigmas = 0.0;
-    double mean_sigmas = 0.0; // of |difference| / sigma
-    double largest_relative_sigma = 0.0;
-    std::string worst_where;
-};
-
-inline BlockComparison compare_blocks(const Film& a, const Film& b, int block) {
-    REQUIRE(a.width() == b.width());
-    REQUIRE(a.height() == b.height());
-    BlockComparison out;
-    double total = 0.0;
-    for (int y0 = 0; y0 + block <= a.height(); y0 += block)
-        for (int x0 = 0; x0 + block <= a.width(); x0 += block)
-            for (int c = 0; c < 3; ++c) {
-                test::MeanWithError ma = region_mean(a, c, x0, y0, x0 + block, y0 + block);
-                test::MeanWithError mb = region_mean(b, c, x0, y0, x0 + block, y0 + block);
-                double sigma = std::hypot(ma.standard_error, mb.standard_error);
-                double d = std::abs(ma.mean - mb.mean);
-                double s = sigma > 0.0 ? d / sigma : (d == 0.0 ? 0.0 : INFINITY);
-                ++out.blocks;
-                total += s;
-                if (s > kSigmas)
-                    ++out.outside;
-                if (ma.mean > 0.0)
-                    out.largest_relative_sigma =
-                        std::max(out.largest_relative_sigma, sigma / ma.mean);
-                if (s > out.worst_sigmas) {
-                    out.worst_sigmas = s;
-                    out.worst_where = "block (" + std::to_string(x0) + ", " + std::to_string(y0) +
-                                      ") channel " + std::to_string(c) + ": " +
-                                      std::to_string(ma.mean) + " vs " + std::to_string(mb.mean) +
-                                      " +- " + std::to_string(sigma);
-                }
-            }
-    out.mean_sigmas = total / std::max(1, out.blocks);
-    return out;
-}
+// Shared with the render tests (support/render_helpers.hpp).
+using test::BlockComparison;
+using test::compare_blocks;
+using test::region_mean;
 
 // Whole-image mean per channel, difference in combined standard errors.
 inline double image_mean_sigmas(const Film& a, const Film& b, int channel) {

@@ -1,7 +1,11 @@
 // Rendering a scene in a test, and the statistics its checks need.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <string>
+
+#include <catch2/catch.hpp>
 
 #include "render/film.hpp"
 #include "render/profiler.hpp"
@@ -82,25 +86,70 @@ inline MeanWithError image_mean(const Film& film, int channel) {
     return {sum / n, std::sqrt(var) / n};
 }
 
-// The mean of the w x w block (bx, by) of a film's channel, with its
-// standard error.
-inline MeanWithError block_mean(const Film& film, int bx, int by, int w, int channel) {
-    Image mean = film.mean();
-    Image variance = film.variance_of_mean();
-    double sum = 0.0, var = 0.0;
-    for (int y = by * w; y < (by + 1) * w; ++y)
-        for (int x = bx * w; x < (bx + 1) * w; ++x) {
-            std::size_t p = static_cast<std::size_t>(y) * film.width() + x;
-            sum += mean.rgb[p * 3 + channel];
-            var += variance.rgb[p * 3 + channel];
-        }
-    double n = static_cast<double>(w) * w;
-    return {sum / n, std::sqrt(var) / n};
-}
-
 // How many combined standard errors two independent estimates lie apart.
 inline double sigmas_apart(const MeanWithError& a, const MeanWithError& b) {
     return std::abs(a.mean - b.mean) / std::hypot(a.standard_error, b.standard_error);
+}
+
+// Mean and standard error of channel c over the pixel rectangle [x0, x1) x [y0, y1).
+inline MeanWithError region_mean(const Film& film, int channel, int x0, int y0, int x1, int y1) {
+    Image mean = film.mean();
+    Image variance = film.variance_of_mean();
+    double sum = 0.0, var = 0.0;
+    int n = 0;
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) {
+            std::size_t p = static_cast<std::size_t>(y) * film.width() + x;
+            sum += mean.rgb[p * 3 + channel];
+            var += variance.rgb[p * 3 + channel];
+            ++n;
+        }
+    return {sum / n, std::sqrt(var) / n};
+}
+
+// Two renders of the same image compared block by block and channel by
+// channel: each block mean of `a` against `b`, in units of their combined
+// standard error.
+struct BlockComparison {
+    int blocks = 0;  // block-channel comparisons
+    int outside = 0; // over `sigmas`
+    double worst_sigmas = 0.0;
+    double mean_sigmas = 0.0; // of |difference| / sigma
+    double largest_relative_sigma = 0.0;
+    std::string worst_where;
+};
+
+inline BlockComparison compare_blocks(const Film& a, const Film& b, int block,
+                                      double sigmas = 5.0) {
+    REQUIRE(a.width() == b.width());
+    REQUIRE(a.height() == b.height());
+    BlockComparison out;
+    double total = 0.0;
+    for (int y0 = 0; y0 + block <= a.height(); y0 += block)
+        for (int x0 = 0; x0 + block <= a.width(); x0 += block)
+            for (int c = 0; c < 3; ++c) {
+                MeanWithError ma = region_mean(a, c, x0, y0, x0 + block, y0 + block);
+                MeanWithError mb = region_mean(b, c, x0, y0, x0 + block, y0 + block);
+                double sigma = std::hypot(ma.standard_error, mb.standard_error);
+                double d = std::abs(ma.mean - mb.mean);
+                double s = sigma > 0.0 ? d / sigma : (d == 0.0 ? 0.0 : INFINITY);
+                ++out.blocks;
+                total += s;
+                if (s > sigmas)
+                    ++out.outside;
+                if (ma.mean > 0.0)
+                    out.largest_relative_sigma =
+                        std::max(out.largest_relative_sigma, sigma / ma.mean);
+                if (s > out.worst_sigmas) {
+                    out.worst_sigmas = s;
+                    out.worst_where = "block (" + std::to_string(x0) + ", " + std::to_string(y0) +
+                                      ") channel " + std::to_string(c) + ": " +
+                                      std::to_string(ma.mean) + " vs " + std::to_string(mb.mean) +
+                                      " +- " + std::to_string(sigma);
+                }
+            }
+    out.mean_sigmas = total / std::max(1, out.blocks);
+    return out;
 }
 
 } // namespace wp::test
