@@ -11,8 +11,12 @@ it prints):
   one:  one ceiling quad emits as brightly as the whole ceiling did, the
         others are black (they absorb, as an emitter does: the same paths).
 
+With --unequal the many lights' radiances differ (rows of 2, 6, 10, 14 and
+18, a mean of 10), so that they are picked by power (area times luminance,
+WP_HAS_POWER_LIGHT_PICK, docs/lights-and-camera.md) rather than by area.
+
     python3 bench/many_lights.py [--wavepath build/wavepath] [--n 71] [--size 256]
-        [--spp 32] [--rounds 3]
+        [--spp 32] [--rounds 3] [--unequal]
 """
 import argparse
 import json
@@ -22,7 +26,10 @@ import subprocess
 import tempfile
 
 
-def scene(n, all_emit):
+LEVELS = (2, 6, 10, 14, 18)  # --unequal: the radiances of the rows, in turn
+
+
+def scene(n, all_emit, unequal=False):
     materials = {
         "white": {"type": "diffuse", "reflectance": [0.7, 0.7, 0.7]},
         "red": {"type": "diffuse", "reflectance": [0.7, 0.1, 0.1]},
@@ -30,6 +37,8 @@ def scene(n, all_emit):
                   else [10 * n * n] * 3},
         "black": {"type": "diffuse", "reflectance": [0, 0, 0]},
     }
+    for k, level in enumerate(LEVELS):
+        materials[f"light{k}"] = {"type": "emitter", "radiance": [level] * 3}
     box = [
         ([[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]], "white"),  # floor
         ([[-1, 1, 0], [1, 1, 0], [1, 1, 2], [-1, 1, 2]], "white"),  # back
@@ -39,14 +48,20 @@ def scene(n, all_emit):
     shapes = [{"type": "quad", "vertices": v, "material": m} for v, m in box]
     # The ceiling z = 2, facing down, as N x N quads.
     vertices = [[-1 + 2 * i / n, -1 + 2 * j / n, 2] for j in range(n + 1) for i in range(n + 1)]
-    lit, dark = [], []
+    lit, dark = {}, []
     for j in range(n):
         for i in range(n):
             a, b = j * (n + 1) + i, j * (n + 1) + i + 1
             c, d = a + n + 1, b + n + 1
             quad = [[a, c, d], [a, d, b]]  # front face down
-            (lit if all_emit or (i, j) == (n // 2, n // 2) else dark).extend(quad)
-    shapes.append({"type": "mesh", "vertices": vertices, "triangles": lit, "material": "light"})
+            material = f"light{j % len(LEVELS)}" if all_emit and unequal else "light"
+            if all_emit or (i, j) == (n // 2, n // 2):
+                lit.setdefault(material, []).extend(quad)
+            else:
+                dark.extend(quad)
+    for material, triangles in lit.items():
+        shapes.append({"type": "mesh", "vertices": vertices, "triangles": triangles,
+                       "material": material})
     if dark:
         shapes.append({"type": "mesh", "vertices": vertices, "triangles": dark,
                        "material": "black"})
@@ -62,6 +77,8 @@ def main():
     parser.add_argument("--size", type=int, default=256)
     parser.add_argument("--spp", type=int, default=32)
     parser.add_argument("--rounds", type=int, default=3)
+    parser.add_argument("--unequal", action="store_true",
+                        help="the many lights' radiances differ: picked by power")
     parser.add_argument("--baseline", help="another wavepath binary (say, one built before a "
                         "change) that renders both scenes too, in the same rounds")
     args = parser.parse_args()
@@ -70,7 +87,7 @@ def main():
         paths = {}
         for name, all_emit in (("many", True), ("one", False)):
             paths[name] = folder / f"{name}.json"
-            paths[name].write_text(json.dumps(scene(args.n, all_emit)))
+            paths[name].write_text(json.dumps(scene(args.n, all_emit, args.unequal)))
         binaries = {"": args.wavepath}
         if args.baseline:
             binaries["baseline "] = args.baseline
@@ -84,7 +101,8 @@ def main():
                          str(folder / "out.exr")], check=True, capture_output=True, text=True)
                     rate = float(re.search(r"([0-9.e+]+) samples/s", out.stdout).group(1))
                     rates.setdefault(label + name, []).append(rate)
-        print(f"{2 * args.n * args.n} emitting triangles against 1 (of the same "
+        print(f"{2 * args.n * args.n} emitting triangles"
+              f"{' of unequal radiances' if args.unequal else ''} against 1 (of the same "
               f"{2 * args.n * args.n + 8} triangles), {args.size}^2 x {args.spp} spp, "
               f"{args.rounds} rounds alternating: samples/s")
         for label in binaries:

@@ -1,10 +1,11 @@
 /* Next-event estimation: sampling a point on the area lights.
  *
  * Lights are the emissive triangles. One is picked with probability
- * proportional to its area, then a point on it: uniformly by area (the
- * point's density is 1 / (total light area) over all lights), or, with
- * WP_LIGHT_SAMPLING == WP_LIGHT_SOLID_ANGLE, uniformly in the solid angle the
- * triangle subtends (estimator.h). */
+ * proportional to its area, or, with WP_HAS_POWER_LIGHT_PICK, to its power
+ * (area times luminance), then a point on it: uniformly by area (the point's
+ * density is 1 / wp_light_area: by area 1 / (total light area) over all
+ * lights), or, with WP_LIGHT_SAMPLING == WP_LIGHT_SOLID_ANGLE, uniformly in
+ * the solid angle the triangle subtends (estimator.h). */
 #ifndef WP_LIGHTS_H
 #define WP_LIGHTS_H
 
@@ -84,6 +85,23 @@ static inline wp_uint wp_pick_light(__global const WpLight* lights, wp_uint coun
 #endif
 }
 
+/* 1 / the density per unit area with which the pick and a uniform point on
+ * the light triangle `light` choose a point of it: the total emissive area by
+ * area; by power, the total power over the light's own radiance's luminance,
+ * which the host stores in its material's emission.w (render/light_pick.hpp;
+ * the total area there too where the pick is by area, so the general kernels
+ * give the area pick's bits). A material made without it (w 0, as kernel
+ * tests build them) is picked by area. */
+static inline float wp_light_area(const WpSceneView* scene, const WpTriangle* light) {
+#if WP_HAS_POWER_LIGHT_PICK
+    float area = scene->materials[wp_triangle_material(light)].emission.w;
+    return area > 0.0f ? area : scene->light_area;
+#else
+    (void)light;
+    return scene->light_area;
+#endif
+}
+
 /* A light sample as seen from a surface point. */
 typedef struct {
     float3 origin;     /* where the shadow ray starts (the surface's lit side) */
@@ -157,10 +175,11 @@ static inline int wp_sample_light(const WpSceneView* scene, float3 position, flo
     WpTriangle light =
         scene->triangles[scene->lights[wp_pick_light(scene->lights, scene->light_count, u_pick)]
                              .triangle];
+    float light_area = wp_light_area(scene, &light);
     float3 light_normal = normalize(wp_triangle_normal(&light));
 #if WP_LIGHT_SAMPLING == WP_LIGHT_SOLID_ANGLE
     /* Uniform in the triangle's solid angle Omega: the direction's density is
-     * p_pick / Omega, p_pick = area / total area. Lights are one-sided, so a
+     * p_pick / Omega, p_pick = area / light_area. Lights are one-sided, so a
      * point behind the light's plane gets nothing. */
     float3 r0 = light.v0.xyz - position, r1 = light.v1.xyz - position, r2 = light.v2.xyz - position;
     float plane_distance = -dot(r0, light_normal); /* > 0 in front of the light */
@@ -185,8 +204,8 @@ static inline int wp_sample_light(const WpSceneView* scene, float3 position, flo
         float triangle_area =
             0.5f * length(cross(light.v1.xyz - light.v0.xyz, light.v2.xyz - light.v0.xyz));
         out->irradiance = scene->materials[wp_triangle_material(&light)].emission.xyz *
-                          (cos_surface * solid_angle * scene->light_area / triangle_area);
-        out->pdf = triangle_area / (scene->light_area * solid_angle);
+                          (cos_surface * solid_angle * light_area / triangle_area);
+        out->pdf = triangle_area / (light_area * solid_angle);
         return 1;
     }
     /* Too small (or too large) a solid angle for float: area sampling below. */
@@ -205,9 +224,9 @@ static inline int wp_sample_light(const WpSceneView* scene, float3 position, flo
     if (!(cos_surface > 0.0f && cos_light > 0.0f) || !wp_aim_shadow_ray(from, point, &light, out))
         return 0;
     float geometry = cos_surface * cos_light / (distance * distance);
-    out->irradiance = scene->materials[wp_triangle_material(&light)].emission.xyz *
-                      (geometry * scene->light_area);
-    out->pdf = distance * distance / (cos_light * scene->light_area);
+    out->irradiance =
+        scene->materials[wp_triangle_material(&light)].emission.xyz * (geometry * light_area);
+    out->pdf = distance * distance / (cos_light * light_area);
     return 1;
 }
 
@@ -230,10 +249,10 @@ static inline float wp_light_pdf(const WpSceneView* scene, const WpTriangle* lig
         solid_angle <= WP_MAX_SPHERICAL_AREA) {
         float triangle_area =
             0.5f * length(cross(light->v1.xyz - light->v0.xyz, light->v2.xyz - light->v0.xyz));
-        return triangle_area / (scene->light_area * solid_angle);
+        return triangle_area / (wp_light_area(scene, light) * solid_angle);
     }
 #endif
-    return distance * distance / (cos_light * scene->light_area);
+    return distance * distance / (cos_light * wp_light_area(scene, light));
 }
 
 #if WP_HAS_EMITTERS
@@ -358,7 +377,7 @@ static inline float wp_sphere_light_pick_pdf(const WpSceneView* scene, wp_uint s
 /* Next-event estimation's light sample over every light of the scene: with
  * emitters other than triangles (WP_HAS_EMITTERS), first the choice between
  * the emissive triangles (probability 1 - scene->emitter_pick, then one of
- * them by area as wp_sample_light does, its number u_pick rescaled) and each
+ * them as wp_sample_light does, its number u_pick rescaled) and each
  * emitter (its `pick`), by emitted power (src/render/device_scene.cpp); the
  * sample's irradiance is divided by the probability and its pdf multiplied,
  * so that multiple importance sampling weighs it with the density it really

@@ -6,7 +6,7 @@
  * that bounce diffuse -> mirror -> light, a few bright samples.
  *
  * Planar mirrors. The light's mirror image is exact: from a diffuse point x,
- * sample a point y on the lights (by area, as lights.h does), reflect it in
+ * sample a point y on the lights (as lights.h does), reflect it in
  * the mirror's plane (y'), and the segment x -> y' meets the plane at the
  * mirror point m, which must lie inside the mirror's outline (one of its
  * triangles). If both legs, x -> m and m -> y, are unblocked the light
@@ -33,7 +33,7 @@
  * importance sampling (the power heuristic): each weighs its sample by its
  * own solid-angle density at x against the other's,
  *     p_bsdf(x, wi)   the diffuse BSDF's density of the direction wi,
- *     p_mirror(wi) = dA_y / dw / (cos_y * light area * mirror count),
+ *     p_mirror(wi) = dA_y / dw / (cos_y * wp_light_area * mirror count),
  * and the weights of the two sum to 1 for every path, so nothing is counted
  * twice or lost. The mirrored strategy picks its mirror uniformly among the
  * scene's planar mirrors (WpMirrorGroup, src/render/planar_mirrors.hpp: the
@@ -140,20 +140,23 @@ static inline wp_uint wp_mirror_count(const WpSceneView* scene) {
 }
 
 /* The mirrored strategy's solid-angle density at x of the direction to a light
- * point seen at unfolded distance `distance` with cosine `cos_light`. */
-static inline float wp_mirror_light_pdf(const WpSceneView* scene, float distance, float cos_light) {
-    return distance * distance / (cos_light * scene->light_area * (float)wp_mirror_count(scene));
+ * point seen at unfolded distance `distance` with cosine `cos_light`, on a
+ * light of wp_light_area `light_area` (lights.h). */
+static inline float wp_mirror_light_pdf(const WpSceneView* scene, float light_area, float distance,
+                                        float cos_light) {
+    return distance * distance / (cos_light * light_area * (float)wp_mirror_count(scene));
 }
 
 /* The same through a mirror sphere of radius `radius`: x is d1 from the
  * mirror point, which the light point is d2 from, the ray meets the sphere
  * at incidence cosine `cos_mirror` (> 0) and the light at `cos_light`. */
-static inline float wp_sphere_mirror_light_pdf(const WpSceneView* scene, float d1, float d2,
-                                               float cos_mirror, float radius, float cos_light) {
+static inline float wp_sphere_mirror_light_pdf(const WpSceneView* scene, float light_area, float d1,
+                                               float d2, float cos_mirror, float radius,
+                                               float cos_light) {
     float spread = 2.0f * d1 * d2 / radius;
     float tangential = d1 + d2 + spread / cos_mirror;
     float sagittal = d1 + d2 + spread * cos_mirror;
-    return tangential * sagittal / (cos_light * scene->light_area * (float)wp_mirror_count(scene));
+    return tangential * sagittal / (cos_light * light_area * (float)wp_mirror_count(scene));
 }
 
 /* Whether the mirrored strategy tries x and y around a sphere (centre c,
@@ -306,7 +309,7 @@ static inline int wp_planar_mirror_next_event(const WpSceneView* scene, const Wp
     float3 start2 = wp_offset_ray_origin(m, side, mirror_scale);
     return wp_mirror_shadow_ray(
         material, wo, point, origin, beta, m, mirror_scale, start2, y, light, wi, cos_surface,
-        wp_mirror_light_pdf(scene, distance, cos_light),
+        wp_mirror_light_pdf(scene, wp_light_area(scene, light), distance, cos_light),
         scene->materials[wp_triangle_material(light)].emission.xyz,
         scene->materials[wp_triangle_material(&mirror)].reflectance.xyz, out);
 }
@@ -340,7 +343,8 @@ static inline int wp_sphere_mirror_next_event(const WpSceneView* scene, const Wp
     float3 start2 = wp_offset_ray_origin(m, n, mirror_scale);
     return wp_mirror_shadow_ray(material, wo, point, origin, beta, m, mirror_scale, start2, y,
                                 light, wi, cos_surface,
-                                wp_sphere_mirror_light_pdf(scene, d1, d2, cos_mirror, r, cos_light),
+                                wp_sphere_mirror_light_pdf(scene, wp_light_area(scene, light), d1,
+                                                           d2, cos_mirror, r, cos_light),
                                 scene->materials[wp_triangle_material(light)].emission.xyz,
                                 scene->materials[sphere.material].reflectance.xyz, out);
 }
@@ -400,6 +404,8 @@ static inline float wp_mirror_emission_weight(const WpSceneView* scene, wp_uint 
     float cos_light = -dot(surface->normal, direction);
     if (!(cos_light > 0.0f))
         return 1.0f;
+    WpTriangle light = scene->triangles[primitive];
+    float light_area = wp_light_area(scene, &light);
 #if WP_HAS_MIRROR_SPHERES
     if (flags & WP_PATH_SPHERE_MIRROR) {
         float4 sphere = scene->spheres[flags >> WP_PATH_SPHERE_SHIFT].center_radius;
@@ -415,13 +421,13 @@ static inline float wp_mirror_emission_weight(const WpSceneView* scene, wp_uint 
             return 1.0f;
         float d1 = length(m - x);
         float d2 = length(surface->position - m);
-        return wp_mis_power(vertex.w,
-                            wp_sphere_mirror_light_pdf(scene, d1, d2, cos_mirror, r, cos_light));
+        return wp_mis_power(vertex.w, wp_sphere_mirror_light_pdf(scene, light_area, d1, d2,
+                                                                 cos_mirror, r, cos_light));
     }
 #endif
     (void)flags;
     float distance = length(mirror_origin - vertex.xyz) + t;
-    return wp_mis_power(vertex.w, wp_mirror_light_pdf(scene, distance, cos_light));
+    return wp_mis_power(vertex.w, wp_mirror_light_pdf(scene, light_area, distance, cos_light));
 }
 
 /* 1 if a bounce off a mirror at this surface is off a planar mirror (a flat

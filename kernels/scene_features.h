@@ -92,6 +92,12 @@ enum { WP_TEXTURES(WP_TEXTURE_FEATURE_CHECK) wp_texture_features_checked };
 #ifndef WP_HAS_LIGHTS /* emissive triangles to sample by next-event estimation */
 #define WP_HAS_LIGHTS 1
 #endif
+/* The emissive triangles picked by power (area times luminance) rather than by
+ * area: on only where their luminances differ (src/render/light_pick.hpp), so
+ * that a scene whose lights all have one radiance keeps the area pick's code. */
+#ifndef WP_HAS_POWER_LIGHT_PICK
+#define WP_HAS_POWER_LIGHT_PICK 1
+#endif
 /* The emitters that are not surfaces (WpEmitter, wp_shared.h), one switch
  * per kind, on when the scene has one; WP_HAS_EMITTERS, any of them, compiles
  * the choice between them and the emissive triangles (lights.h). */

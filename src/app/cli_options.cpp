@@ -102,6 +102,10 @@ void add_integrator_options(CLI::App& command, IntegratorOptions& options) {
                {LightSampling::Area, LightSampling::SolidAngle},
                "Next-event estimation: 'area' (uniform on the light) or 'solid-angle' (uniform "
                "in the light's spherical triangles)");
+    add_choice(command, "--light-pick", options.light_pick, {LightPick::Power, LightPick::Area},
+               "Which emissive triangle next-event estimation picks: 'power' (by area times "
+               "the luminance of its radiance, where those differ) or 'area' (by area, the "
+               "images of before; docs/lights-and-camera.md)");
     command
         .add_option("--roulette-depth", options.roulette_depth,
                     "The first bounce at which Russian roulette may end a path (1: every "

@@ -682,11 +682,12 @@ SceneFeatures analyse_features(const Scene& scene, std::uint32_t max_fixed_count
     f.constant_light = has_emitter(EmitterKind::Constant);
     f.envmap_light = has_emitter(EmitterKind::Envmap);
     f.sphere_light = has_sphere_lights(scene);
+    f.power_light_pick = f.lights && triangle_radiances_differ(scene);
     // Next-event estimation through planar mirrors needs both (kernels/mirror_light.h).
-    // Its estimator picks among the emissive triangles alone, so a scene
-    // with other emitters goes without it (flatten_scene leaves its tables
-    // empty): light by way of a mirror is then found by the path itself.
-    const bool mirror_nee = f.lights && !has_lights_besides_triangles(scene);
+    // It is an estimator of its own beside the light sample, of the emissive
+    // triangles' light by way of a mirror, so it holds beside other emitters
+    // too (their light by way of a mirror is found by the path itself).
+    const bool mirror_nee = f.lights;
     const std::vector<PlanarMirror> mirrors = find_planar_mirrors(scene);
     f.planar_mirrors = mirror_nee && !mirrors.empty();
     f.mirror_spheres =
@@ -776,7 +777,7 @@ void flatten_textures(const Scene& scene, DeviceScene& out) {
     }
 }
 
-DeviceScene flatten_scene(const Scene& scene, bool hierarchy) {
+DeviceScene flatten_scene(const Scene& scene, bool hierarchy, LightPick pick) {
     std::size_t normal_sets = 0, uv_sets = 0; // with the shape groups', which share the tables
     for_each_defined_triangle(scene, [&](const Triangle& t) {
         normal_sets += t.has_normals;
@@ -868,24 +869,15 @@ DeviceScene flatten_scene(const Scene& scene, bool hierarchy) {
             triangle_power += channel_mean(scene.materials[t.material].emission) * area;
         }
     }
-    double running = 0.0;
-    for (std::size_t i = 0; i < out.lights.size(); ++i) {
-        running += areas[i];
-        out.lights[i].cdf = static_cast<float>(running / total_area);
-    }
-    if (!out.lights.empty())
-        out.lights.back().cdf = 1.0f; // never let rounding leave u in no bin
-    set_light_guides(out.lights);
+    build_light_pick(scene, areas, pick == LightPick::Power && triangle_radiances_differ(scene),
+                     out.lights, out.materials);
     out.light_area = static_cast<float>(total_area);
 
     flatten_instances(scene, frame, uvs, out);
     flatten_emitters(scene, frame, triangle_power / (frame.scale * frame.scale), out);
 
-    // Planar mirrors in the float frame: the plane from the frame's vertices
-    // (none with emitters, analyse_features says why).
-    for (const PlanarMirror& mirror : !has_lights_besides_triangles(scene)
-                                          ? find_planar_mirrors(scene)
-                                          : std::vector<PlanarMirror>{}) {
+    // Planar mirrors in the float frame: the plane from the frame's vertices.
+    for (const PlanarMirror& mirror : find_planar_mirrors(scene)) {
         WpMirrorGroup g{};
         const Triangle& first = scene.triangles[mirror.triangles.front()];
         g.plane = to_float4(mirror.normal, glm::dot(mirror.normal, frame.point(first.v[0])));
@@ -939,7 +931,7 @@ DeviceScene flatten_scene(const Scene& scene, bool hierarchy) {
     if (hierarchy)
         build_hierarchy(out);
     // After the hierarchy, which may reorder the spheres.
-    if (!out.lights.empty() && !has_lights_besides_triangles(scene))
+    if (!out.lights.empty())
         for (std::size_t i = 0; i < out.spheres.size(); ++i)
             if (scene.materials[out.spheres[i].material].kind == MaterialKind::Mirror)
                 out.mirror_spheres.push_back(static_cast<wp_uint>(i));

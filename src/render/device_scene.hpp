@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "render/light_pick.hpp"
 #include "scene/bvh.hpp"
 #include "scene/scene.hpp"
 #include "wp_shared.h"
@@ -47,10 +48,11 @@ inline constexpr std::uint32_t kMinBvhPrimitives = kMaxFixedCountPrimitives + 1;
     X(shading_normals, WP_HAS_SHADING_NORMALS) /* triangles with vertex normals */                 \
     X(anisotropy, WP_HAS_ANISOTROPY)           /* alpha_u != alpha_v: the tangent, dp/du */        \
     X(lights, WP_HAS_LIGHTS)                   /* emissive triangles for next-event estimation */  \
-    X(planar_mirrors, WP_HAS_PLANAR_MIRRORS)   /* flat mirror triangles, and lights */             \
-    X(mirror_spheres, WP_HAS_MIRROR_SPHERES)   /* spheres of a mirror material, and lights */      \
-    X(lens, WP_HAS_LENS)                       /* a thin lens: aperture radius > 0 */              \
-    X(point_light, WP_HAS_POINT_LIGHT)         /* emitters by kind (Scene::emitters) */            \
+    X(power_light_pick, WP_HAS_POWER_LIGHT_PICK) /* their radiances differ: picked by power */     \
+    X(planar_mirrors, WP_HAS_PLANAR_MIRRORS)     /* flat mirror triangles, and lights */           \
+    X(mirror_spheres, WP_HAS_MIRROR_SPHERES)     /* spheres of a mirror material, and lights */    \
+    X(lens, WP_HAS_LENS)                         /* a thin lens: aperture radius > 0 */            \
+    X(point_light, WP_HAS_POINT_LIGHT)           /* emitters by kind (Scene::emitters) */          \
     X(spot_light, WP_HAS_SPOT_LIGHT)                                                               \
     X(directional_light, WP_HAS_DIRECTIONAL_LIGHT)                                                 \
     X(constant_light, WP_HAS_CONSTANT_LIGHT)                                                       \
@@ -163,13 +165,14 @@ void check_triangle_indices(std::size_t materials, std::size_t normal_sets);
 // first light whose cdf exceeds k / count. Part of flatten_scene.
 void set_light_guides(std::vector<WpLight>& lights);
 
-// Converts to float32 and builds the light table, and with `hierarchy` the
-// bounding volume hierarchy over triangles, spheres and instances (a scene
-// with instances needs it: std::logic_error without); the camera basis is
-// scaled so that film coordinates in [-1, 1] span the field of view. Each
-// shape group gets its own hierarchy, built once however many instances
-// place it.
-DeviceScene flatten_scene(const Scene& scene, bool hierarchy = false);
+// Converts to float32 and builds the light table (by `pick`: render/light_pick.hpp),
+// and with `hierarchy` the bounding volume hierarchy over triangles, spheres and
+// instances (a scene with instances needs it: std::logic_error without); the
+// camera basis is scaled so that film coordinates in [-1, 1] span the field of
+// view. Each shape group gets its own hierarchy, built once however many
+// instances place it.
+DeviceScene flatten_scene(const Scene& scene, bool hierarchy = false,
+                          LightPick pick = LightPick::Power);
 
 // The scene's textures as WpTexture rows into out.textures, their bitmaps'
 // texels one after another in out.texels (each file once); part of

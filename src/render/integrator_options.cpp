@@ -162,6 +162,8 @@ std::string describe_estimator(const IntegratorOptions& options) {
                            : diffuse + "+no-nee";
     if (options.next_event_estimation && !options.mirror_next_event)
         text += "+no-mirror-nee";
+    if (options.next_event_estimation && options.light_pick == LightPick::Area)
+        text += "+area-pick";
     if (options.next_event_estimation && options.mis != MisStrategy::Power)
         text += "+mis-" + to_string(options.mis);
     if (options.roulette_depth != IntegratorOptions{}.roulette_depth)

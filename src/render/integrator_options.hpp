@@ -9,6 +9,7 @@
 #include <string>
 
 #include "cl/program_cache.hpp"
+#include "render/light_pick.hpp"
 #include "wp_shared.h" // WP_PATH_TYPE_*
 
 namespace wp {
@@ -90,6 +91,9 @@ struct IntegratorOptions {
     // magnitude where surfaces come close to a light.
     DiffuseSampling diffuse_sampling = DiffuseSampling::Cosine;
     LightSampling light_sampling = LightSampling::Area;
+    // Which emissive triangle next-event estimation picks: by power where their
+    // luminances differ (render/light_pick.hpp), or by area (--light-pick).
+    LightPick light_pick = LightPick::Power;
     MisStrategy mis = MisStrategy::Power;
     // The first bounce at which throughput roulette may end a path (1: every
     // bounce); before it paths always go on (kernels/estimator.h).
@@ -169,7 +173,8 @@ std::string describe_path_types(std::uint32_t types);
 
 // A short name for an estimator, e.g. "cosine+nee+solid-angle", "report+no-nee".
 // (Light sampling is left out without next-event estimation: it does not apply.)
-// A roulette depth other than the default adds "+roulette-from-N", a subset
+// The area light pick adds "+area-pick"; a roulette depth other than the
+// default "+roulette-from-N", a subset
 // of the path types "+paths=direct,caustic".
 std::string describe_estimator(const IntegratorOptions& options);
 

@@ -184,7 +184,7 @@ WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const Scene& sce
     }
     plan_ = choose_launch_plan(options_.launch_plan, device_.info,
                                compiled.fixed_counts && !compiled.bvh, options_.regeneration);
-    scene_ = flatten_scene(scene, compiled.bvh);
+    scene_ = flatten_scene(scene, compiled.bvh, options_.light_pick);
     check_scene_memory(device_.info, scene_);
     program_ = build_wavefront_program(device_.context, device_.info.device, build_options,
                                        options_.program_cache);
@@ -569,6 +569,8 @@ SceneFeatures integrator_features(const Scene& scene, const IntegratorOptions& o
     }
     if (!options.shadow_culling)
         features.shadow_culling = false;
+    if (options.light_pick == LightPick::Area)
+        features.power_light_pick = false;
     return features;
 }
 

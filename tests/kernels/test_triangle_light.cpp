@@ -4,7 +4,9 @@
 // multiple importance sampling weighs a BSDF sample's hit with) by a
 // chi-square test, and that density against a double-precision one.
 //
-// Two lights of areas 2 and 4.5 face a point below them. A sample's
+// Two lights of areas 2 and 4.5 face a point below them, of one radiance
+// (picked by area) or of luminances 1 : 10 (picked by power, area times
+// luminance: render/light_pick.hpp, WP_HAS_POWER_LIGHT_PICK). A sample's
 // direction is followed in double to the lights' plane, and the point it
 // meets is binned on its triangle in the coordinates (u, v) of the square
 // that maps onto the triangle with a constant Jacobian (its area): b0 =
@@ -64,20 +66,24 @@ __kernel void density(WpFrame frame WP_SCENE_BUFFERS(WP_SCENE_PARAMETER), float4
 
 constexpr double kPi = 3.14159265358979323846;
 
-wp::Scene two_lights() {
+// With `unequal`, the second light is 10 times as bright (in luminance) as
+// the first, so that the pick by power differs from the pick by area.
+wp::Scene two_lights(bool unequal) {
     wp::Scene scene;
     wp::Material emitter;
     emitter.kind = wp::MaterialKind::Emitter;
     emitter.emission = {4, 3, 2};
     scene.materials.push_back(emitter);
-    auto triangle = [&](glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) {
+    emitter.emission *= 10.0;
+    scene.materials.push_back(emitter);
+    auto triangle = [&](glm::dvec3 a, glm::dvec3 b, glm::dvec3 c, std::uint32_t material) {
         wp::Triangle t;
         t.v = {a, b, c};
-        t.material = 0;
+        t.material = material;
         scene.triangles.push_back(t);
     };
-    triangle({-1, 4, -1}, {1, 4, -1}, {-1, 4, 1}); // area 2, facing -y
-    triangle({1, 4, -1}, {4, 4, 2}, {1, 4, 2});    // area 4.5, facing -y
+    triangle({-1, 4, -1}, {1, 4, -1}, {-1, 4, 1}, 0);            // area 2, facing -y
+    triangle({1, 4, -1}, {4, 4, 2}, {1, 4, 2}, unequal ? 1 : 0); // area 4.5, facing -y
     scene.camera.width = 1;
     scene.camera.height = 1;
     return scene;
@@ -102,15 +108,29 @@ double solid_angle(const WpTriangle& t, D3 x) {
 }
 
 struct Setup {
-    wp::Scene scene = two_lights();
-    DeviceScene flat = flatten_scene(scene);
+    wp::Scene scene;
+    DeviceScene flat;
     WpFrame frame{};
     DeviceBuffers buffers;
     std::string options;
+    // Per light, 1 / the density per unit area of the pick and the point on
+    // it, in double: the total area by area; by power, the total of area x
+    // luminance over the light's luminance.
+    double spread[2] = {0.0, 0.0};
 
-    explicit Setup(bool solid_angle_sampling) {
+    Setup(bool solid_angle_sampling, bool unequal)
+        : scene(two_lights(unequal)), flat(flatten_scene(scene)) {
         SceneFeatures features = analyse_features(scene);
+        CHECK(features.power_light_pick == unequal);
         features.fixed_counts = false;
+        double luminance[2], total = 0.0;
+        for (int k = 0; k < 2; ++k) {
+            const glm::dvec3 e = scene.materials[scene.triangles[std::size_t(k)].material].emission;
+            luminance[k] = unequal ? 0.2126 * e.x + 0.7152 * e.y + 0.0722 * e.z : 1.0;
+            total += triangle_area(flat.triangles[std::size_t(k)]) * luminance[k];
+        }
+        for (int k = 0; k < 2; ++k)
+            spread[k] = total / luminance[k];
         options = features.build_options() +
                   (solid_angle_sampling ? " -D WP_LIGHT_SAMPLING=1" : " -D WP_LIGHT_SAMPLING=0");
         buffers = allocate_device_buffers(device().context, flat, 1, 1);
@@ -127,10 +147,10 @@ struct Setup {
 };
 
 // The double-precision solid-angle density of the direction from x to the
-// point y of light `t`: uniform by area (d^2 / (cos_light total area)) or
-// uniform in the triangle's solid angle, each triangle chosen by area.
-double reference_pdf(const Setup& s, const WpTriangle& t, D3 x, D3 y, bool by_solid_angle) {
-    const double total = double(s.flat.light_area);
+// point y of light number k, `t`: uniform by area (d^2 / (cos_light spread)) or
+// uniform in the triangle's solid angle, each triangle chosen by area or power.
+double reference_pdf(const Setup& s, int k, const WpTriangle& t, D3 x, D3 y, bool by_solid_angle) {
+    const double total = s.spread[k];
     if (by_solid_angle)
         return triangle_area(t) / total / solid_angle(t, x);
     const D3 to_light = y - x;
@@ -139,13 +159,12 @@ double reference_pdf(const Setup& s, const WpTriangle& t, D3 x, D3 y, bool by_so
     return d * d / (-dot(n, to_light / d) * total);
 }
 
-} // namespace
-
-TEST_CASE("triangle lights: samples follow wp_light_pdf by area and by solid angle (chi-square)",
-          "[kernels][lights][statistical]") {
+// The chi-square test of the light samples against wp_light_pdf, and that
+// density against the double-precision one.
+void check_samples_follow_pdf(bool unequal) {
     for (const bool by_solid_angle : {false, true}) {
         INFO((by_solid_angle ? "solid-angle sampling" : "area sampling"));
-        const Setup setup(by_solid_angle);
+        const Setup setup(by_solid_angle, unequal);
         REQUIRE(setup.flat.lights.size() == 2);
         const D3 x(0.3, 0.5, -0.2);
         const cl_float4 position = to_float4(x), normal = to_float4(D3(0, 1, 0));
@@ -200,8 +219,8 @@ TEST_CASE("triangle lights: samples follow wp_light_pdf by area and by solid ang
                 const double sq = std::max(1.0 - b0, 1e-12);
                 u = sq * sq;
                 v = b1 / sq;
-                if (!(std::fabs(pdfs[i] - reference_pdf(setup, lights[k], x, y, by_solid_angle)) <=
-                      1e-3 * pdfs[i]))
+                if (!(std::fabs(pdfs[i] - reference_pdf(setup, k, lights[k], x, y,
+                                                        by_solid_angle)) <= 1e-3 * pdfs[i]))
                     ++bad_pdf;
             }
             if (found < 0) {
@@ -254,7 +273,7 @@ TEST_CASE("triangle lights: samples follow wp_light_pdf by area and by solid ang
             const int i = int(within / std::size_t(bins * fine)),
                       j = int(within % std::size_t(bins * fine));
             const D3 y = from_float4(points[p]);
-            const double reference = reference_pdf(setup, lights[k], x, y, by_solid_angle);
+            const double reference = reference_pdf(setup, k, lights[k], x, y, by_solid_angle);
             if (!(std::fabs(density_at[p] - reference) <= 1e-4 * reference))
                 ++bad_density;
             const double probability = density_at[p] * jacobian[p] * cell;
@@ -272,4 +291,17 @@ TEST_CASE("triangle lights: samples follow wp_light_pdf by area and by solid ang
         CHECK(test.outside == 0);
         CHECK(test.p_value > 1e-3);
     }
+}
+
+} // namespace
+
+TEST_CASE("triangle lights: samples follow wp_light_pdf by area and by solid angle (chi-square)",
+          "[kernels][lights][statistical]") {
+    check_samples_follow_pdf(false);
+}
+
+TEST_CASE("triangle lights: the power pick's samples follow wp_light_pdf with unequal lights "
+          "(chi-square)",
+          "[kernels][lights][light-pick][statistical]") {
+    check_samples_follow_pdf(true);
 }

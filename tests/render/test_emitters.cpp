@@ -267,8 +267,9 @@ TEST_CASE("emitters: each kind is a feature switch, off for the hexroom", "[emit
     const SceneFeatures f = analyse_features(lit);
     CHECK(f.spot_light);
     CHECK_FALSE(f.point_light);
-    CHECK_FALSE(f.planar_mirrors); // mirror next-event estimation picks triangles only
+    CHECK(f.planar_mirrors); // mirror next-event estimation holds beside other emitters
     const DeviceScene flat = flatten_scene(lit);
+    CHECK_FALSE(flat.mirror_groups.empty()); // its tables are made
     REQUIRE(flat.emitters.size() == 1);
     // Chosen by power: the probabilities sum to 1.
     CHECK(flat.emitter_pick > 0.0f);
@@ -357,8 +358,9 @@ TEST_CASE("emitters: sphere lights are a feature switch and an emitter each",
     scene.spheres.push_back({{0.1, 0.2, 0.3}, 0.05, light});
     const SceneFeatures f = analyse_features(scene);
     CHECK(f.sphere_light);
-    CHECK_FALSE(f.planar_mirrors); // mirror next-event estimation picks triangles only
-    CHECK_FALSE(f.shadow_culling);
+    CHECK(f.planar_mirrors); // mirror next-event estimation holds beside other emitters
+    CHECK(f.mirror_spheres);
+    CHECK_FALSE(f.shadow_culling); // a light outside the culled faces' shadow test
     const DeviceScene flat = flatten_scene(scene, true); // with a hierarchy, which renumbers
     REQUIRE(flat.emitters.size() == 1);
     const WpEmitter& e = flat.emitters[0];

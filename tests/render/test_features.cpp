@@ -134,7 +134,8 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_PLASTIC=0 -D WP_HAS_ROUGHDIELECTRIC=0 -D "
           "WP_HAS_ROUGHPLASTIC=0 -D "
           "WP_HAS_SHADING_NORMALS=0 -D WP_HAS_ANISOTROPY=0 "
-          "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D "
+          "-D WP_HAS_LIGHTS=1 -D WP_HAS_POWER_LIGHT_PICK=0 -D WP_HAS_PLANAR_MIRRORS=1 -D "
+          "WP_HAS_MIRROR_SPHERES=1 -D "
           "WP_HAS_LENS=0 -D WP_HAS_POINT_LIGHT=0 -D WP_HAS_SPOT_LIGHT=0 -D "
           "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D WP_HAS_ENVMAP_LIGHT=0 -D "
           "WP_HAS_SPHERE_LIGHT=0 -D WP_HAS_INSTANCES=0 -D "
@@ -150,7 +151,8 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_PLASTIC=0 -D WP_HAS_ROUGHDIELECTRIC=0 -D "
           "WP_HAS_ROUGHPLASTIC=0 -D "
           "WP_HAS_SHADING_NORMALS=0 -D WP_HAS_ANISOTROPY=0 "
-          "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=0 -D "
+          "-D WP_HAS_LIGHTS=1 -D WP_HAS_POWER_LIGHT_PICK=0 -D WP_HAS_PLANAR_MIRRORS=1 -D "
+          "WP_HAS_MIRROR_SPHERES=0 -D "
           "WP_HAS_LENS=0 -D WP_HAS_POINT_LIGHT=0 -D WP_HAS_SPOT_LIGHT=0 -D "
           "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D WP_HAS_ENVMAP_LIGHT=0 -D "
           "WP_HAS_SPHERE_LIGHT=0 -D WP_HAS_INSTANCES=0 -D "
@@ -166,7 +168,8 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_PLASTIC=0 -D WP_HAS_ROUGHDIELECTRIC=0 -D "
           "WP_HAS_ROUGHPLASTIC=0 -D "
           "WP_HAS_SHADING_NORMALS=0 -D WP_HAS_ANISOTROPY=0 "
-          "-D WP_HAS_LIGHTS=0 -D WP_HAS_PLANAR_MIRRORS=0 -D WP_HAS_MIRROR_SPHERES=0 -D "
+          "-D WP_HAS_LIGHTS=0 -D WP_HAS_POWER_LIGHT_PICK=0 -D WP_HAS_PLANAR_MIRRORS=0 -D "
+          "WP_HAS_MIRROR_SPHERES=0 -D "
           "WP_HAS_LENS=0 -D WP_HAS_POINT_LIGHT=0 -D WP_HAS_SPOT_LIGHT=0 -D "
           "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D WP_HAS_ENVMAP_LIGHT=0 -D "
           "WP_HAS_SPHERE_LIGHT=1 -D WP_HAS_INSTANCES=0 -D "
@@ -181,7 +184,8 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_PLASTIC=0 -D WP_HAS_ROUGHDIELECTRIC=0 -D "
           "WP_HAS_ROUGHPLASTIC=0 -D "
           "WP_HAS_SHADING_NORMALS=0 -D WP_HAS_ANISOTROPY=0 "
-          "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=0 -D WP_HAS_MIRROR_SPHERES=0 -D "
+          "-D WP_HAS_LIGHTS=1 -D WP_HAS_POWER_LIGHT_PICK=0 -D WP_HAS_PLANAR_MIRRORS=0 -D "
+          "WP_HAS_MIRROR_SPHERES=0 -D "
           "WP_HAS_LENS=0 -D WP_HAS_POINT_LIGHT=0 -D WP_HAS_SPOT_LIGHT=0 -D "
           "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D WP_HAS_ENVMAP_LIGHT=0 -D "
           "WP_HAS_SPHERE_LIGHT=0 -D WP_HAS_INSTANCES=0 -D "
@@ -197,7 +201,8 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_PLASTIC=0 -D WP_HAS_ROUGHDIELECTRIC=0 -D "
           "WP_HAS_ROUGHPLASTIC=0 -D "
           "WP_HAS_SHADING_NORMALS=0 -D WP_HAS_ANISOTROPY=0 "
-          "-D WP_HAS_LIGHTS=0 -D WP_HAS_PLANAR_MIRRORS=0 -D WP_HAS_MIRROR_SPHERES=0 -D "
+          "-D WP_HAS_LIGHTS=0 -D WP_HAS_POWER_LIGHT_PICK=0 -D WP_HAS_PLANAR_MIRRORS=0 -D "
+          "WP_HAS_MIRROR_SPHERES=0 -D "
           "WP_HAS_LENS=0 -D WP_HAS_POINT_LIGHT=0 -D WP_HAS_SPOT_LIGHT=0 -D "
           "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D WP_HAS_ENVMAP_LIGHT=0 -D "
           "WP_HAS_SPHERE_LIGHT=1 -D WP_HAS_INSTANCES=0 -D "
@@ -213,7 +218,8 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_THINDIELECTRIC=0 -D WP_HAS_PLASTIC=0 -D WP_HAS_ROUGHDIELECTRIC=0 -D "
           "WP_HAS_ROUGHPLASTIC=0 -D "
           "WP_HAS_SHADING_NORMALS=0 -D WP_HAS_ANISOTROPY=0 "
-          "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D "
+          "-D WP_HAS_LIGHTS=1 -D WP_HAS_POWER_LIGHT_PICK=0 -D WP_HAS_PLANAR_MIRRORS=1 -D "
+          "WP_HAS_MIRROR_SPHERES=1 -D "
           "WP_HAS_LENS=0 -D WP_HAS_POINT_LIGHT=0 -D WP_HAS_SPOT_LIGHT=0 -D "
           "WP_HAS_DIRECTIONAL_LIGHT=0 -D WP_HAS_CONSTANT_LIGHT=0 -D WP_HAS_ENVMAP_LIGHT=0 -D "
           "WP_HAS_SPHERE_LIGHT=0 -D WP_HAS_INSTANCES=0 -D "
@@ -226,7 +232,8 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_THINDIELECTRIC=1 -D WP_HAS_PLASTIC=1 -D WP_HAS_ROUGHDIELECTRIC=1 -D "
           "WP_HAS_ROUGHPLASTIC=1 -D "
           "WP_HAS_SHADING_NORMALS=1 -D WP_HAS_ANISOTROPY=1 "
-          "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D "
+          "-D WP_HAS_LIGHTS=1 -D WP_HAS_POWER_LIGHT_PICK=0 -D WP_HAS_PLANAR_MIRRORS=1 -D "
+          "WP_HAS_MIRROR_SPHERES=1 -D "
           "WP_HAS_LENS=1 -D WP_HAS_POINT_LIGHT=1 -D WP_HAS_SPOT_LIGHT=1 -D "
           "WP_HAS_DIRECTIONAL_LIGHT=1 -D WP_HAS_CONSTANT_LIGHT=1 -D WP_HAS_ENVMAP_LIGHT=1 -D "
           "WP_HAS_SPHERE_LIGHT=1 -D WP_HAS_INSTANCES=1 -D "
@@ -240,7 +247,8 @@ TEST_CASE("features: each scene's build options are exactly the expected ones") 
           "WP_HAS_THINDIELECTRIC=1 -D WP_HAS_PLASTIC=1 -D WP_HAS_ROUGHDIELECTRIC=1 -D "
           "WP_HAS_ROUGHPLASTIC=1 -D "
           "WP_HAS_SHADING_NORMALS=1 -D WP_HAS_ANISOTROPY=1 "
-          "-D WP_HAS_LIGHTS=1 -D WP_HAS_PLANAR_MIRRORS=1 -D WP_HAS_MIRROR_SPHERES=1 -D "
+          "-D WP_HAS_LIGHTS=1 -D WP_HAS_POWER_LIGHT_PICK=0 -D WP_HAS_PLANAR_MIRRORS=1 -D "
+          "WP_HAS_MIRROR_SPHERES=1 -D "
           "WP_HAS_LENS=1 -D WP_HAS_POINT_LIGHT=1 -D WP_HAS_SPOT_LIGHT=1 -D "
           "WP_HAS_DIRECTIONAL_LIGHT=1 -D WP_HAS_CONSTANT_LIGHT=1 -D WP_HAS_ENVMAP_LIGHT=1 -D "
           "WP_HAS_SPHERE_LIGHT=1 -D WP_HAS_INSTANCES=1 -D "
@@ -273,7 +281,8 @@ TEST_CASE("features: describe() names the features and the compiled-in counts") 
     CHECK(SceneFeatures::all().describe() ==
           "triangles spheres diffuse mirror conductor roughconductor dielectric thindielectric "
           "plastic roughdielectric roughplastic shading_normals anisotropy lights "
-          "planar_mirrors mirror_spheres lens point_light spot_light directional_light "
+          "power_light_pick planar_mirrors mirror_spheres lens point_light spot_light "
+          "directional_light "
           "constant_light envmap_light sphere_light instances tent_filter gaussian_filter "
           "bitmap_texture "
           "checkerboard_texture");
@@ -370,6 +379,20 @@ TEST_CASE("features: specialised and general kernels render bit-identical images
                 m.alpha_v = 0.3;
             }
         REQUIRE(analyse_features(scene).anisotropy);
+        check_specialised_equals_general(scene);
+    }
+    // The power light pick (its emission.w read in both), and next-event
+    // estimation through the mirror wall and sphere beside a sphere light.
+    SECTION("unequal area lights picked by power, mirrors beside a sphere light") {
+        Scene scene = hexroom();
+        auto bright = test::add_material(scene, MaterialKind::Emitter, glm::dvec3(0.0),
+                                         glm::dvec3(400, 300, 200));
+        scene.triangles.back().material = bright; // the light's second triangle
+        scene.spheres.push_back({{0.5, 0.3, -0.4}, 0.1, bright});
+        const SceneFeatures f = analyse_features(scene);
+        REQUIRE(f.power_light_pick);
+        REQUIRE(f.sphere_light);
+        REQUIRE(f.planar_mirrors);
         check_specialised_equals_general(scene);
     }
     SECTION("a point light and a constant sky, no area light") {

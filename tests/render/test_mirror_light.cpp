@@ -122,6 +122,52 @@ TEST_CASE("mirror light: the hexroom with and without it agrees within noise, bl
     CHECK(blocks.outside == 0);
 }
 
+TEST_CASE("mirror light: beside a sphere light and a point light, on and off agree within noise",
+          "[mirror-nee][emitters][statistical]") {
+    // The mirrored light sample is an estimator of its own, of the emissive
+    // triangles' light by way of a mirror, so it holds beside lights of other
+    // kinds: the hexroom with a sphere light and a point light (whose light by
+    // way of the mirrors the paths find themselves) renders the same with it
+    // as without. One of the ceiling light's triangles is brighter, so the
+    // triangles are picked by power and the mirrored sample's density is the
+    // power pick's.
+    Scene scene = test::hexroom(24, 24);
+    auto bright = test::add_material(scene, MaterialKind::Emitter, glm::dvec3(0.0),
+                                     glm::dvec3(300, 250, 200));
+    scene.triangles.back().material = bright;
+    scene.spheres.push_back({{4.0, -2.0, 2.0}, 0.3, bright});
+    Emitter point;
+    point.kind = EmitterKind::Point;
+    point.position = {8.0, 3.0, 0.0};
+    point.value = glm::dvec3(40.0, 60.0, 80.0);
+    scene.emitters.push_back(point);
+    const SceneFeatures features = analyse_features(scene);
+    REQUIRE(features.planar_mirrors);
+    REQUIRE(features.mirror_spheres);
+    REQUIRE(features.sphere_light);
+    REQUIRE(features.point_light);
+    REQUIRE(features.power_light_pick);
+    IntegratorOptions options;
+    options.sampler = Sampler::Independent;
+    options.mirror_next_event = true;
+    test::Rendered on = test::render(scene, 512, 3, 0, options);
+    options.mirror_next_event = false;
+    test::Rendered off = test::render(scene, 1024, 4, 0, options);
+    CHECK(on.stats.nonfinite_samples == 0);
+    const test::BlockComparison blocks = test::compare_blocks(on.film, off.film, 8, kSigmas);
+    for (int ch = 0; ch < 3; ++ch) {
+        test::MeanWithError a = test::image_mean(on.film, ch), b = test::image_mean(off.film, ch);
+        INFO("channel " << ch << ": on " << a.mean << " +- " << a.standard_error << ", off "
+                        << b.mean << " +- " << b.standard_error << ": " << test::sigmas_apart(a, b)
+                        << " sigma");
+        CHECK(test::sigmas_apart(a, b) < kSigmas);
+        CHECK(a.standard_error < 0.01 * a.mean); // the test has power
+    }
+    INFO("largest block deviation " << blocks.worst_sigmas << " combined sigma, "
+                                    << blocks.worst_where);
+    CHECK(blocks.outside == 0);
+}
+
 TEST_CASE("mirror light: the kernels' mirror point matches a double-precision reference",
           "[mirror-nee]") {
     const char* const source = R"CL(

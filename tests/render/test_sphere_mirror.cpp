@@ -113,7 +113,7 @@ __kernel void sphere_points(float4 sphere, __global const float4* xs, __global c
         /* With light area 1, one mirror and cos_light 1 the density is dA / dw. */
         float d1 = length(m - x), d2 = length(y - m);
         float cos_mirror = -dot(normalize(m - c), (m - x) / d1);
-        spread = wp_sphere_mirror_light_pdf(&scene, d1, d2, cos_mirror, r, 1.0f);
+        spread = wp_sphere_mirror_light_pdf(&scene, 1.0f, d1, d2, cos_mirror, r, 1.0f);
     }
     out[i] = (float4)(m, found ? spread : (tried ? -1.0f : -2.0f));
 }
