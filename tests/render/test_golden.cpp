@@ -101,6 +101,11 @@ std::vector<Case> cases() {
     std::sort(stress.begin(), stress.end());
     for (const std::string& name : stress)
         out.push_back({"stress-" + name, "scenes/stress/" + name + ".json", {}});
+    // Its lights differ in radiance, so they are picked by power; by area
+    // they render the image of before the power pick.
+    Case area_pick{"stress-emitter-faces-area-pick", "scenes/stress/emitter-faces.json", {}};
+    area_pick.options.light_pick = LightPick::Area;
+    out.push_back(area_pick);
     return out;
 }
 
