@@ -85,7 +85,7 @@ TEST_CASE("light pick: by power only where the triangles' luminances differ", "[
               area.light_area);
 }
 
-TEST_CASE("light pick: power and area agree within noise; power has less noise at the bright "
+TEST_CASE("light pick: power and area agree within noise, power with less noise at the bright "
           "lamp's pixels",
           "[light-pick][statistical]") {
     const Scene scene = unequal_lamps(32);
