@@ -127,9 +127,13 @@ static inline float3 wp_shade_environment(__global const WpEmitter* e,
 #endif
 #if WP_HAS_ENVMAP_LIGHT
     if (e->kind == WP_EMITTER_ENVMAP) {
-        found = wp_envmap_radiance(texels, e, direction);
+        /* One patch lookup (its atan2 and acos) serves the radiance and the density. */
+        int i, j;
+        float ax, ay;
+        wp_envmap_patch(e, direction, &i, &j, &ax, &ay);
+        found = wp_envmap_patch_radiance(texels, e, i, j, ax, ay);
         if (weighed)
-            light_pdf = e->pick * wp_envmap_pdf(environment_cdf, e, direction);
+            light_pdf = e->pick * wp_envmap_patch_pdf(environment_cdf, e, i, j);
     }
 #else
     (void)environment_cdf, (void)texels, (void)direction;
