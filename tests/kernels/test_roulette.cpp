@@ -255,10 +255,10 @@ Seen check_shade(const std::vector<PathIn>& paths, const std::string& options, b
         CHECK(std::fabs(out_throughput[i].s[3] - e.eta_squared) <= 1e-6 * e.eta_squared);
         CHECK(out_depth[i] == p.depth + 1);
         if (p.primitive == kGlassBall) {
-            // The direction says which way the kernel chose: into the far side
-            // if transmitted.
+            // The direction says which way the kernel chose: on through the
+            // surface (the incoming direction's side of the normal) if transmitted.
             const D3 n_out = normalize(p.origin + p.t * p.direction);
-            const bool far_side = (dot(from_float4(out_direction[i]), n_out) > 0.0) !=
+            const bool far_side = (dot(from_float4(out_direction[i]), n_out) > 0.0) ==
                                   (dot(p.direction, n_out) > 0.0);
             CHECK(far_side == e.transmitted);
             (e.transmitted ? seen.transmitted : seen.reflected) += 1;
