@@ -66,6 +66,22 @@
 #define WP_ROULETTE_DEPTH 1
 #endif
 
+/* WP_ROULETTE_RULE: the survival probability of WP_DIFFUSE_COSINE's
+ * throughput roulette (IntegratorOptions::roulette_rule, --roulette).
+ *   WP_ROULETTE_THROUGHPUT (0): min(1, max(throughput)).
+ *   WP_ROULETTE_MITSUBA (1): Mitsuba 3's `path` integrator's,
+ *     min(0.95, max(throughput) eta^2), eta^2 the product of the squared
+ *     relative indices of refraction the path crossed (throughput.w, 1 when
+ *     generated). A refraction into glass divides the radiance a path carries
+ *     by eta^2 (bsdf/dielectric.h); this rule does not count that against
+ *     the path's chance to go on, and the cap ends even bright paths now and
+ *     then. Only this rule compiles the eta^2 bookkeeping (shade.cl). */
+#define WP_ROULETTE_THROUGHPUT 0
+#define WP_ROULETTE_MITSUBA 1
+#ifndef WP_ROULETTE_RULE
+#define WP_ROULETTE_RULE WP_ROULETTE_THROUGHPUT
+#endif
+
 /* WP_MIS_STRATEGY: how a light sample and a BSDF sample that can find the
  * same light are weighed (lights.h, wp_mis_light_sample and wp_mis_bsdf_hit;
  * IntegratorOptions::mis, --mis).

@@ -52,7 +52,8 @@ static inline int wp_generate_path(WP_STAGE_PARAMETERS, wp_uint slot) {
 
     ray_origin[slot] = (float4)(origin, 0.0f);
     ray_direction[slot] = (float4)(normalize(direction), 0.0f);
-    throughput[slot] = (float4)(1.0f, 1.0f, 1.0f, 0.0f);
+    /* w: the eta^2 the path has crossed (estimator.h, WP_ROULETTE_RULE), none yet */
+    throughput[slot] = (float4)(1.0f, 1.0f, 1.0f, 1.0f);
     radiance[slot] = (float4)(0.0f);
     path_pixel[slot] = pixel;
     path_sample[slot] = sample;

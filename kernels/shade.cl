@@ -27,6 +27,9 @@
  *  4. Russian roulette: survive with probability min(1, max(throughput)) and
  *     divide survivors' throughput by it, which keeps the estimate unbiased;
  *     from bounce WP_ROULETTE_DEPTH on (estimator.h), before it always survive.
+ *     With WP_ROULETTE_RULE == WP_ROULETTE_MITSUBA the probability is
+ *     Mitsuba 3's, min(0.95, max(throughput) eta^2), eta^2 carried in
+ *     throughput.w.
  *     Past frame.max_depth bounces a path is cut and counted; the cap is a
  *     guard against endless mirror corridors, not part of the estimator.
  *     With WP_DIFFUSE_SAMPLING == WP_DIFFUSE_REPORT it is the report's albedo
@@ -127,9 +130,13 @@ static inline float3 wp_shade_environment(__global const WpEmitter* e,
 #endif
 #if WP_HAS_ENVMAP_LIGHT
     if (e->kind == WP_EMITTER_ENVMAP) {
-        found = wp_envmap_radiance(texels, e, direction);
+        /* One patch lookup (its atan2 and acos) serves the radiance and the density. */
+        int i, j;
+        float ax, ay;
+        wp_envmap_patch(e, direction, &i, &j, &ax, &ay);
+        found = wp_envmap_patch_radiance(texels, e, i, j, ax, ay);
         if (weighed)
-            light_pdf = e->pick * wp_envmap_pdf(environment_cdf, e, direction);
+            light_pdf = e->pick * wp_envmap_patch_pdf(environment_cdf, e, i, j);
     }
 #else
     (void)environment_cdf, (void)texels, (void)direction;
@@ -142,11 +149,12 @@ static inline float3 wp_shade_environment(__global const WpEmitter* e,
 
 /* Step 4: whether the path goes on, and the probability it did so with
  * (survivors' throughput is divided by it). Takes the scattering weight into
- * *beta. `u_bsdf` is the first number the BSDF sample used: the report's
- * roulette decides by it (bsdf/diffuse.h). */
+ * *beta, and with Mitsuba's rule the sample's relative index of refraction
+ * into *eta_squared. `u_bsdf` is the first number the BSDF sample used: the
+ * report's roulette decides by it (bsdf/diffuse.h). */
 static inline int wp_shade_roulette(const WpMaterial* material, const WpBsdfSample* scattered,
                                     const WpPathRandom* random, float u_bsdf, float3* beta,
-                                    float* survival) {
+                                    float* eta_squared, float* survival) {
 #if WP_DIFFUSE_SAMPLING == WP_DIFFUSE_REPORT
     /* The report's roulette: survive with the surface's albedo sigma, whatever
      * the path carries; eq. 2.10 divides survivors by it. Only the diffuse
@@ -156,16 +164,26 @@ static inline int wp_shade_roulette(const WpMaterial* material, const WpBsdfSamp
         material->kind == WP_MATERIAL_DIFFUSE ? u_bsdf : wp_path_random(random, WP_DIM_ROULETTE);
     *survival = fmin(1.0f, wp_max_component(material->reflectance.xyz));
     *beta *= scattered->weight;
+    (void)eta_squared;
     return u_survive < *survival;
 #else
     (void)material;
     (void)u_bsdf;
     *beta *= scattered->weight;
+#if WP_ROULETTE_RULE == WP_ROULETTE_MITSUBA
+    *eta_squared *= scattered->eta * scattered->eta;
+#else
+    (void)eta_squared;
+#endif
     if (random->depth + 1u < WP_ROULETTE_DEPTH) { /* every path survives its first bounces */
         *survival = 1.0f;
         return 1;
     }
+#if WP_ROULETTE_RULE == WP_ROULETTE_MITSUBA
+    *survival = fmin(0.95f, wp_max_component(*beta) * *eta_squared);
+#else
     *survival = fmin(1.0f, wp_max_component(*beta));
+#endif
     return wp_path_random(random, WP_DIM_ROULETTE) < *survival;
 #endif
 }
@@ -254,6 +272,7 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
 #endif
 
     float3 beta = throughput[slot].xyz;
+    float eta_squared = throughput[slot].w; /* the roulette's (WP_ROULETTE_RULE) */
     wp_uint depth = path_depth[slot];
     wp_uint flags = path_flags[slot];
     WpPathRandom random = {frame.seed, path_pixel[slot], path_sample[slot], depth};
@@ -361,11 +380,11 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
 #endif
 
     float survival;
-    if (!wp_shade_roulette(&material, &scattered, &random, u1, &beta, &survival))
+    if (!wp_shade_roulette(&material, &scattered, &random, u1, &beta, &eta_squared, &survival))
         return WP_SHADED_ENDS;
     if (depth + 1u > frame.max_depth)
         return WP_SHADED_CAPPED;
-    throughput[slot] = (float4)(beta / survival, 0.0f);
+    throughput[slot] = (float4)(beta / survival, eta_squared);
     ray_origin[slot] = (float4)(origin, 0.0f);
     ray_direction[slot] = (float4)(scattered.direction, 0.0f);
     path_depth[slot] = depth + 1u;

@@ -67,18 +67,25 @@ static inline float3 wp_envmap_texel(__global const wp_uint* texels, __global co
     return (float3)(as_float(p[0]), as_float(p[1]), as_float(p[2]));
 }
 
-/* The radiance arriving along -d, that is seen looking in direction d (unit). */
-static inline float3 wp_envmap_radiance(__global const wp_uint* texels, __global const WpEmitter* e,
-                                        float3 d) {
-    int i, j;
-    float ax, ay;
-    wp_envmap_patch(e, d, &i, &j, &ax, &ay);
+/* The radiance in patch (i, j) at the weights (ax, ay) (wp_envmap_patch). */
+static inline float3 wp_envmap_patch_radiance(__global const wp_uint* texels,
+                                              __global const WpEmitter* e, int i, int j, float ax,
+                                              float ay) {
     int i1 = i + 1 == (int)e->width ? 0 : i + 1;
     float3 top =
         (1.0f - ax) * wp_envmap_texel(texels, e, i, j) + ax * wp_envmap_texel(texels, e, i1, j);
     float3 bottom = (1.0f - ax) * wp_envmap_texel(texels, e, i, j + 1) +
                     ax * wp_envmap_texel(texels, e, i1, j + 1);
     return ((1.0f - ay) * top + ay * bottom) * e->radiance.xyz;
+}
+
+/* The radiance arriving along -d, that is seen looking in direction d (unit). */
+static inline float3 wp_envmap_radiance(__global const wp_uint* texels, __global const WpEmitter* e,
+                                        float3 d) {
+    int i, j;
+    float ax, ay;
+    wp_envmap_patch(e, d, &i, &j, &ax, &ay);
+    return wp_envmap_patch_radiance(texels, e, i, j, ax, ay);
 }
 
 /* cos(theta_j) - cos(theta_{j+1}) for the row boundaries theta_j = pi j / rows,
@@ -99,15 +106,21 @@ static inline float wp_envmap_patch_probability(__global const float* environmen
     return p_row * p_column;
 }
 
+/* The solid-angle density of any direction in patch (i, j) (uniform within it). */
+static inline float wp_envmap_patch_pdf(__global const float* environment_cdf,
+                                        __global const WpEmitter* e, int i, int j) {
+    int rows = (int)e->height - 1;
+    float solid_angle = (2.0f * WP_PI / (float)e->width) * wp_envmap_cos_span(j, rows);
+    return wp_envmap_patch_probability(environment_cdf, e, i, j) / solid_angle;
+}
+
 /* The solid-angle density with which wp_envmap_sample picks direction d. */
 static inline float wp_envmap_pdf(__global const float* environment_cdf,
                                   __global const WpEmitter* e, float3 d) {
     int i, j;
     float ax, ay;
     wp_envmap_patch(e, d, &i, &j, &ax, &ay);
-    int rows = (int)e->height - 1;
-    float solid_angle = (2.0f * WP_PI / (float)e->width) * wp_envmap_cos_span(j, rows);
-    return wp_envmap_patch_probability(environment_cdf, e, i, j) / solid_angle;
+    return wp_envmap_patch_pdf(environment_cdf, e, i, j);
 }
 
 /* The first of n cumulative entries that exceeds u (n - 1 if none does:

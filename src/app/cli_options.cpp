@@ -112,6 +112,12 @@ void add_integrator_options(CLI::App& command, IntegratorOptions& options) {
                     "bounce); before it every path goes on")
         ->capture_default_str()
         ->check(CLI::Range(1u, cli_limits::max_depth));
+    add_choice(command, "--roulette", options.roulette_rule,
+               {RouletteRule::Throughput, RouletteRule::Mitsuba},
+               "Russian roulette's survival probability: 'throughput' (min(1, max(throughput))) "
+               "or 'mitsuba' (Mitsuba 3's min(0.95, max(throughput) eta^2), eta^2 the squared "
+               "indices of refraction the path crossed; docs/performance.md, \"Shading and "
+               "roulette\")");
     command
         .add_option_function<std::string>(
             "--path-types",

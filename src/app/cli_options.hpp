@@ -31,7 +31,7 @@ extern const CLI::Validator finite_number;
 extern const CLI::Validator positive_finite_number;
 
 // Every field of IntegratorOptions: --seed, --max-depth, --no-nee, --diffuse,
-// --light-sampling, --roulette-depth, --path-types, --general, --regeneration,
+// --light-sampling, --roulette-depth, --roulette, --path-types, --general, --regeneration,
 // --pool and --no-cache (which turns options.program_cache off). The defaults shown are options'
 // values.
 void add_integrator_options(CLI::App& command, IntegratorOptions& options);

@@ -26,6 +26,16 @@ std::string to_string(MisStrategy strategy) {
     return "?";
 }
 
+std::string to_string(RouletteRule rule) {
+    switch (rule) {
+    case RouletteRule::Throughput:
+        return "throughput";
+    case RouletteRule::Mitsuba:
+        return "mitsuba";
+    }
+    return "?";
+}
+
 std::string to_string(LightSampling sampling) {
     switch (sampling) {
     case LightSampling::Area:
@@ -168,6 +178,8 @@ std::string describe_estimator(const IntegratorOptions& options) {
         text += "+mis-" + to_string(options.mis);
     if (options.roulette_depth != IntegratorOptions{}.roulette_depth)
         text += "+roulette-from-" + std::to_string(options.roulette_depth);
+    if (options.roulette_rule != RouletteRule::Throughput)
+        text += "+roulette-" + to_string(options.roulette_rule);
     if (options.path_types != kAllPathTypes)
         text += "+paths=" + describe_path_types(options.path_types);
     return text;

@@ -26,6 +26,14 @@ enum class LightSampling {
     SolidAngle, // uniform in the subtended solid angle (spherical triangles)
 };
 
+// The survival probability of the throughput roulette (kernels/estimator.h,
+// WP_ROULETTE_RULE; measured in docs/performance.md, "Shading and roulette"):
+enum class RouletteRule {
+    Throughput, // min(1, max(throughput))
+    Mitsuba,    // Mitsuba 3's: min(0.95, max(throughput) eta^2), eta^2 the squared
+                // relative indices of refraction the path crossed
+};
+
 // How a light sample and a BSDF sample that could find the same light are
 // weighed at a glossy vertex (and at every vertex for the environment):
 enum class MisStrategy {
@@ -98,6 +106,9 @@ struct IntegratorOptions {
     // The first bounce at which throughput roulette may end a path (1: every
     // bounce); before it paths always go on (kernels/estimator.h).
     std::uint32_t roulette_depth = 1;
+    // How the roulette weighs a path (--roulette). Mitsuba's rule compiles
+    // the kernels with WP_ROULETTE_RULE=1; the default adds no option.
+    RouletteRule roulette_rule = RouletteRule::Throughput;
     // The path types whose light the render adds, a set of 1 << WP_PATH_TYPE_*
     // (kernels/path_type.h). Anything but all of them compiles the kernels
     // with WP_PATH_TYPES, one program for every such set (the set itself is
@@ -158,6 +169,7 @@ std::string describe_aovs(std::uint32_t aovs);
 std::string to_string(DiffuseSampling sampling);
 std::string to_string(LightSampling sampling);
 std::string to_string(MisStrategy strategy);
+std::string to_string(RouletteRule rule);   // "throughput", "mitsuba"
 std::string to_string(Traversal traversal); // "auto", "bvh", "loop"
 std::string to_string(Sampler sampler);     // "independent", "sobol"
 std::string to_string(LaunchPlan plan);     // "auto", "stages", "bounce", "wave"
@@ -174,7 +186,7 @@ std::string describe_path_types(std::uint32_t types);
 // A short name for an estimator, e.g. "cosine+nee+solid-angle", "report+no-nee".
 // (Light sampling is left out without next-event estimation: it does not apply.)
 // The area light pick adds "+area-pick"; a roulette depth other than the
-// default "+roulette-from-N", a subset
+// default "+roulette-from-N", Mitsuba's roulette rule "+roulette-mitsuba", a subset
 // of the path types "+paths=direct,caustic".
 std::string describe_estimator(const IntegratorOptions& options);
 

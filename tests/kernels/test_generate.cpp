@@ -181,6 +181,7 @@ void check_fresh_path(const GenerateResult& r, std::size_t slot, const Pinhole& 
         CHECK(r.throughput[slot].s[k] == 1.0f);
         CHECK(r.radiance[slot].s[k] == 0.0f);
     }
+    CHECK(r.throughput[slot].s[3] == 1.0f); // the eta^2 crossed so far (estimator.h)
     CHECK(r.radiance[slot].s[3] == 0.0f);
     CHECK(r.pixel[slot] == task.pixel);
     CHECK(r.sample[slot] == task.sample);

@@ -109,6 +109,10 @@ std::vector<Variant> variants() {
     o = {};
     o.max_depth = 2;
     out.push_back({"max depth 2 (capped paths)", o});
+    o = {};
+    o.roulette_rule = RouletteRule::Mitsuba;
+    o.roulette_depth = 2;
+    out.push_back({"Mitsuba's roulette rule from bounce 2", o});
     return out;
 }
 
