@@ -12,9 +12,9 @@
  * only fail as the bound shrinks (wp_triangle_in_range), so the lanes that
  * pass are the candidates: walking them in order and testing each one's range
  * again against the running bound accepts exactly the triangles the scalar
- * loop accepts, with the same t (the same T / det) and the same tie rule (the
- * earlier triangle wins an exact tie, since a later one must be strictly
- * closer).
+ * loop accepts, with the same t (the same T / det) and the same outcome of
+ * exact ties (where t rounds so that a later triangle at the same t still
+ * passes, the later one, as in the loop).
  */
 #ifndef WP_TRIANGLE4_H
 #define WP_TRIANGLE4_H
