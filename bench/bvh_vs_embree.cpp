@@ -478,7 +478,7 @@ __kernel void check(WpFrame frame WP_SCENE_BUFFERS(WP_SCENE_PARAMETER), wp_uint 
     wp_uint i = get_global_id(0);
     if (i >= count)
         return;
-    WpSceneView scene = WP_SCENE_VIEW();
+    WP_SCENE_VIEW(scene);
     float3 o = origins[i].xyz, d = directions[i].xyz;
     if (shadow) {
         t_out[i] = wp_shadow_occluded(&scene, o, d, directions[i].w) ? 1.0f : 0.0f;

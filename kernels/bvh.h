@@ -2,13 +2,18 @@
  * or any hit, among the primitives on a ray segment.
  *
  * Depth first with a private stack over four-wide nodes: at a node all four
- * children's boxes are tested (independent scalar code, the bounds stored as
- * arrays of each coordinate), the children hit are pushed farthest first with
- * their entry distances, and the nearest is visited next; popped children
- * that start beyond the closest hit found since are skipped. Leaves test their primitives with the
- * same tests, limits and update rule as the loop over all primitives (traverse.h), so a ray finds
- * the same hit at the same t; only between primitives hit at exactly the same t (rays through a
- * shared edge) may the order decide which one is reported.
+ * children's boxes are tested at once (float4 code, one child a lane, from
+ * the bounds stored as arrays of each coordinate), the children hit are
+ * pushed farthest first with their entry distances, and the nearest is
+ * visited next; popped children that start beyond the closest hit found since
+ * are skipped. An any-hit query pushes them in node order, unsorted: it stops
+ * at any hit, and most shadow segments are not blocked at all (whether sorting
+ * would find blockers sooner was not measured, docs/performance.md).
+ * Leaves of triangles are tested four at a time (triangle4.h), other leaves
+ * one primitive at a time; both give the hits of the loop over all primitives
+ * (traverse.h): the same tests, limits and update rule, so a ray finds the
+ * same hit at the same t; only between primitives hit at exactly the same t
+ * (rays through a shared edge) may the order decide which one is reported.
  *
  * The box test is conservative: a slab test whose exit distance is enlarged
  * by 1 + 2 gamma(3) for its own rounding (pbrt-v4, after Ize 2013), with a
@@ -25,6 +30,7 @@
 #include "sphere.h"
 #include "stage.h"
 #include "triangle.h"
+#include "triangle4.h"
 
 /* 1 + 2 gamma(3), gamma(n) = n eps / (1 - n eps), eps = 2^-24. */
 #define WP_BOX_EXIT_SCALE 1.0000007152557373f
@@ -41,36 +47,36 @@ static inline WpBoxRay wp_box_ray(float3 origin, float3 direction) {
     return r;
 }
 
-/* Narrows [*t_enter, *t_exit] to the slab lower < x < upper of one axis.
- * The comparisons are written so that a NaN (origin on the slab's plane, the
- * direction parallel to it) changes nothing. */
-static inline void wp_clip_slab(float lower, float upper, float origin, float inverse,
-                                float* t_enter, float* t_exit) {
-    float near = (lower - origin) * inverse;
-    float far = (upper - origin) * inverse;
-    if (near > far) {
-        float swap = near;
-        near = far;
-        far = swap;
-    }
-    far *= WP_BOX_EXIT_SCALE;
-    *t_enter = near > *t_enter ? near : *t_enter;
-    *t_exit = far < *t_exit ? far : *t_exit;
+/* Narrows each lane's [*t_enter, *t_exit] to the slab lower < x < upper of
+ * one axis, for the four children of a node at once. The comparisons are
+ * written so that a NaN (origin on the slab's plane, the direction parallel
+ * to it) changes nothing. */
+static inline void wp_clip_slab4(float4 lower, float4 upper, float origin, float inverse,
+                                 float4* t_enter, float4* t_exit) {
+    float4 near = (lower - origin) * inverse;
+    float4 far = (upper - origin) * inverse;
+    int4 swap = near > far;
+    float4 entry = select(near, far, swap);
+    float4 leave = select(far, near, swap) * WP_BOX_EXIT_SCALE;
+    *t_enter = select(*t_enter, entry, entry > *t_enter);
+    *t_exit = select(*t_exit, leave, leave < *t_exit);
 }
 
-/* 1 if the ray meets child i's box at some 0 <= t <= t_max; *t_enter is
- * where it enters. */
-static inline int wp_hit_child_box(__global const WpBvhNode* node, int i, const WpBoxRay* ray,
-                                   float t_max, float* t_enter) {
-    float enter = 0.0f, exit = t_max;
-    wp_clip_slab(node->lower_x[i], node->upper_x[i], ray->origin.x, ray->inverse_direction.x,
-                 &enter, &exit);
-    wp_clip_slab(node->lower_y[i], node->upper_y[i], ray->origin.y, ray->inverse_direction.y,
-                 &enter, &exit);
-    wp_clip_slab(node->lower_z[i], node->upper_z[i], ray->origin.z, ray->inverse_direction.z,
-                 &enter, &exit);
+/* The four children of node n whose boxes the ray meets at some
+ * 0 <= t <= t_max (-1 in their lane, else 0; never an empty child), and where
+ * it enters each. Straight-line code on float4s, one child a lane, with no
+ * branch per child: four box tests for the instructions of one. */
+static inline int4 wp_hit_child_boxes(__global const WpBvhNode* n, const WpBoxRay* ray, float t_max,
+                                      float4* t_enter) {
+    float4 enter = (float4)(0.0f), exit = (float4)(t_max);
+    wp_clip_slab4(vload4(0, n->lower_x), vload4(0, n->upper_x), ray->origin.x,
+                  ray->inverse_direction.x, &enter, &exit);
+    wp_clip_slab4(vload4(0, n->lower_y), vload4(0, n->upper_y), ray->origin.y,
+                  ray->inverse_direction.y, &enter, &exit);
+    wp_clip_slab4(vload4(0, n->lower_z), vload4(0, n->upper_z), ray->origin.z,
+                  ray->inverse_direction.z, &enter, &exit);
     *t_enter = enter;
-    return enter <= exit;
+    return (enter <= exit) & (vload4(0, n->count) != (uint4)(WP_BVH_EMPTY));
 }
 
 /* A child waiting on the stack: a node (count 0) or a leaf, and where the ray
@@ -81,25 +87,33 @@ typedef struct {
     float enter;
 } WpBvhEntry;
 
-/* Pushes the children of node n that the ray meets before `closest`,
- * farthest first, so that the nearest is on top. */
+/* Pushes the children of node n that the ray meets before `closest`; with
+ * `ordered`, farthest first, so that the nearest is on top (an any-hit query
+ * takes them in node order: it stops at its first hit wherever that is). */
 static inline void wp_bvh_push_children(__global const WpBvhNode* n, const WpBoxRay* box_ray,
-                                        float closest, WpBvhEntry* stack, int* top) {
+                                        float closest, int ordered, WpBvhEntry* stack, int* top) {
+    float4 enter4;
+    int4 hit4 = wp_hit_child_boxes(n, box_ray, closest, &enter4);
+    if (!any(hit4))
+        return;
+    float enters[4];
+    int hits[4];
+    vstore4(enter4, 0, enters);
+    vstore4(hit4, 0, hits);
     int base = *top;
     for (int i = 0; i < 4; ++i) {
-        float enter;
-        wp_uint count = n->count[i];
-        if (count != WP_BVH_EMPTY && wp_hit_child_box(n, i, box_ray, closest, &enter)) {
-            /* Insert, keeping this node's entries nearest on top. */
-            int j = (*top)++;
-            while (j > base && stack[j - 1].enter < enter) {
-                stack[j] = stack[j - 1];
-                --j;
-            }
-            stack[j].child = n->child[i];
-            stack[j].count = count;
-            stack[j].enter = enter;
+        if (!hits[i])
+            continue;
+        float enter = enters[i];
+        /* Insert, keeping this node's entries nearest on top. */
+        int j = (*top)++;
+        while (ordered && j > base && stack[j - 1].enter < enter) {
+            stack[j] = stack[j - 1];
+            --j;
         }
+        stack[j].child = n->child[i];
+        stack[j].count = n->count[i];
+        stack[j].enter = enter;
     }
 }
 
@@ -136,7 +150,19 @@ static inline wp_uint wp_bvh_trace(const WpSceneView* scene, float3 origin, floa
     current.enter = 0.0f;
     for (;;) {
         if (current.count == 0u) {
-            wp_bvh_push_children(&scene->bvh_nodes[current.child], &box_ray, closest, stack, &top);
+            wp_bvh_push_children(&scene->bvh_nodes[current.child], &box_ray, closest, !any_hit,
+                                 stack, &top);
+        } else if (current.child + current.count <= scene->triangle_count) {
+            /* A leaf of triangles: four at a time (triangle4.h). */
+            wp_uint found = wp_leaf_triangles(scene->triangles, current.child, current.count,
+                                              &sheared, any_hit, &closest);
+            if (found != WP_NO_HIT) {
+                hit = found;
+                if (any_hit) {
+                    *t_hit = closest;
+                    return hit;
+                }
+            }
         } else {
             for (wp_uint k = 0; k < current.count; ++k) {
                 wp_uint primitive = current.child + k;

@@ -26,23 +26,16 @@ static inline wp_uint wp_instance_trace(const WpSceneView* scene, wp_uint instan
     current.enter = 0.0f;
     for (;;) {
         if (current.count == 0u) {
-            wp_bvh_push_children(&scene->group_bvh_nodes[current.child], &box_ray, closest, stack,
-                                 &top);
+            wp_bvh_push_children(&scene->group_bvh_nodes[current.child], &box_ray, closest,
+                                 !any_hit, stack, &top);
         } else {
-            for (wp_uint k = 0; k < current.count; ++k) {
-                wp_uint triangle = current.child + k;
-                __global const WpTriangle* tri = &scene->group_triangles[triangle];
-                float t;
-                if (wp_intersect_triangle(&sheared, tri->v0.xyz, tri->v1.xyz, tri->v2.xyz, closest,
-                                          &t)) {
-                    closest = t;
-                    hit = triangle;
-                    if (any_hit)
-                        break;
-                }
+            wp_uint found = wp_leaf_triangles(scene->group_triangles, current.child, current.count,
+                                              &sheared, any_hit, &closest);
+            if (found != WP_NO_HIT) {
+                hit = found;
+                if (any_hit)
+                    break;
             }
-            if (any_hit && hit != WP_NO_HIT)
-                break;
         }
         if (!wp_bvh_pop(stack, &top, closest, &current))
             break;

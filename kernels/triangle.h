@@ -96,6 +96,17 @@ static inline WpShearedRay wp_shear_ray(float3 origin, float3 direction) {
     return wp_shear_ray_xyz(origin.x, origin.y, origin.z, direction.x, direction.y, direction.z);
 }
 
+/* 1 if the scaled distance T over det (the sum of the edge values, 0 when
+ * the ray lies in the triangle's plane) is a t with 0 < t < t_max, tested
+ * without dividing. For a fixed T and det it can only turn from 1 to 0 as
+ * t_max shrinks (t_max * det rounds monotonically), which is what lets the
+ * four-lane leaf test (triangle4.h) test against the bound it entered the
+ * leaf with first and against the shrinking one after. */
+static inline int wp_triangle_in_range(float T, float det, float t_max) {
+    return det > 0.0f ? !(T <= 0.0f || T >= t_max * det)
+                      : (det != 0.0f && !(T >= 0.0f || T <= t_max * det));
+}
+
 /* Returns 1 if the ray hits the triangle (p0, p1, p2) at 0 < t < t_max, and
  * sets *t to that t either way (meaningless on a miss), so that a loop can
  * select rather than branch. Both faces are hit; points on an edge or vertex
@@ -160,10 +171,8 @@ static inline int wp_triangle_test(const WpShearedRay* ray, float p0x, float p0y
 
     /* Scaled distance: t = T / det, tested without dividing. */
     float T = u * (ray->sz * az) + v * (ray->sz * bz) + w * (ray->sz * cz);
-    int in_range = det > 0.0f ? !(T <= 0.0f || T >= t_max * det)
-                              : (det != 0.0f && !(T >= 0.0f || T <= t_max * det));
     *t = T / det;
-    return inside && in_box && in_range;
+    return inside && in_box && wp_triangle_in_range(T, det, t_max);
 }
 
 /* Returns 1 and sets *t if the ray hits the triangle at 0 < t < t_max. */
