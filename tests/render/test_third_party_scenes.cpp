@@ -44,7 +44,9 @@ Image render_small(Scene scene, int width, int height, std::uint32_t spp) {
 }
 
 // The Cornell box, however it is put together: lit, red on the left, green
-// on the right (Mitsuba's camera sees +x on the image's left).
+// on the right (Mitsuba's camera sees +x on the image's left). The light is
+// warm (cbox-rgb.xml's is 18.4, 11.0, 2.75), so the green wall is greener
+// than red by less than the red wall is redder than green.
 void check_cornell_box(const std::string& file) {
     INFO(file);
     SceneReadOptions options;
@@ -58,7 +60,7 @@ void check_cornell_box(const std::string& file) {
     INFO("left " << left.x << " " << left.y << " " << left.z << ", right " << right.x << " "
                  << right.y << " " << right.z);
     CHECK(left.x > 2.0 * left.y);
-    CHECK(right.y > 2.0 * right.x);
+    CHECK(right.y > 1.2 * right.x);
     CHECK(all.y > 0.1);
     CHECK(all.y < 2.0);
 }
