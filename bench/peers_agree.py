@@ -3,6 +3,7 @@
 
     python3 bench/peers_agree.py SCENE.xml|SCENE.json [--spp 64] [--seeds 8]
                                  [--reference-spp 1024] [--sigma 5] [--out-dir DIR]
+                                 [-D NAME=VALUE ...]
     python3 bench/peers.py agree SCENE ...        (the same)
 
 Renders the scene K times (seeds 1..K) in Mitsuba 3 (`llvm_ad_rgb`, as
@@ -85,6 +86,7 @@ def mitsuba_scene(args, workdir):
 def render_mitsuba(args, env, xml, spp, seed, out):
     command = [sys.executable, HERE / "peers_mitsuba.py", xml, "--spp", spp, "--seed", seed,
                "--threads", args.threads, "--variant", args.variant, "--out", out]
+    command += [f"--define={d}" for d in args.define]
     result = json.loads(peers_renderers.run(command, env, "Mitsuba render").strip().splitlines()[-1])
     return result["render_seconds"]
 
@@ -93,6 +95,7 @@ def render_wavepath(args, spp, seed, out):
     profile = Path(out).with_suffix(".profile.json")
     command = [args.wavepath, "render", args.scene, "--spp", spp, "--seed", seed, "-q", "--out", out,
                "--profile-json", profile] + shlex.split(args.wp_options)
+    command += [f"--define={d}" for d in args.define]
     env = dict(os.environ, POCL_MAX_PTHREAD_COUNT=str(args.threads))
     peers_renderers.run(command, env, "wavepath render")
     return json.loads(profile.read_text())["wall_seconds"]
@@ -129,12 +132,17 @@ def main():
     parser.add_argument("--wp-options", default="",
                         help="further options of every wavepath render, written with '=': "
                         "--wp-options='--roulette-depth 5'")
+    parser.add_argument("-D", "--define", action="append", default=[], metavar="NAME=VALUE",
+                        help="set the XML scene's $NAME in both renderers, as Mitsuba's -D "
+                        "(repeatable): -D res=128 -D max_depth=-1")
     parser.add_argument("--threads", type=int, default=2)
     parser.add_argument("--variant", default="llvm_ad_rgb")
     parser.add_argument("--llvm", default=None, help="libLLVM for Mitsuba's llvm variant")
     parser.add_argument("--out-dir", default=str(REPOSITORY / "build" / "peers-out"),
                         help="where results go (default: build/peers-out, which git ignores)")
     args = parser.parse_args()
+    if any("=" not in d or d.startswith("=") for d in args.define):
+        fail("-D takes NAME=VALUE")
     if args.seeds < 2:
         fail("--seeds must be at least 2: the standard errors come from the spread of the renders")
     if args.spp < 1 or args.reference_spp < 1 or args.blocks < 1 or args.sigma <= 0:
@@ -221,7 +229,8 @@ def main():
     md = [f"<!-- {header} -->", "",
           f"`python3 bench/peers_agree.py {args.scene} --spp {args.spp} --seeds {args.seeds} "
           f"--reference-spp {args.reference_spp}"
-          + (f" --wp-options='{args.wp_options}'" if args.wp_options else "") + "`", "",
+          + (f" --wp-options='{args.wp_options}'" if args.wp_options else "")
+          + "".join(f" -D {d}" for d in args.define) + "`", "",
           "| region | wavepath (mean ± standard error, R G B) | Mitsuba 3 | z (R G B) |",
           "| --- | --- | --- | --- |"]
     for r in [regions[0], worst]:

@@ -35,7 +35,10 @@ def main():
     parser.add_argument("--passes", type=int, default=1,
                         help="render this many times, seeds --seed, --seed + 1, ..., and write their mean "
                         "(a long reference without one kernel of every sample's lanes)")
+    parser.add_argument("-D", "--define", action="append", default=[], metavar="NAME=VALUE",
+                        help="set the scene's $NAME, as Mitsuba's own -D (repeatable)")
     args = parser.parse_args()
+    defines = dict(d.partition("=")[::2] for d in args.define)
     try:
         import drjit as dr
         import mitsuba as mi
@@ -47,7 +50,7 @@ def main():
               f"({text[0] if text else error}); pip install mitsuba numpy, and for llvm "
               "variants set DRJIT_LIBLLVM_PATH to a libLLVM >= 16", file=sys.stderr)
         return 2
-    scene = mi.load_file(args.scene)
+    scene = mi.load_file(args.scene, **defines)
     if args.variant.startswith("llvm"):
         # After loading: with 1 thread set before it, Mitsuba 3.9.1's parallel
         # scene loading waits forever (measured here).

@@ -5,7 +5,7 @@ a grid of blocks, each with its standard error, for comparing against
 wavepath (tests/app/test_cli_export.cpp, docs/mitsuba-export.md).
 
     python3 tools/mitsuba_render.py SCENE.xml [--seeds K] [--spp N] [--blocks B] [--out IMG.exr]
-                                    [--error-out ERR.exr]
+                                    [--error-out ERR.exr] [-D NAME=VALUE ...]
     python3 tools/mitsuba_render.py --images A.exr B.exr ... [--blocks B]
 
 The second form prints the same statistics over images already rendered
@@ -84,7 +84,15 @@ def main():
     parser.add_argument("--blocks", type=int, default=2, help="blocks per side of the grid")
     parser.add_argument("--out", help="also write the mean image (.exr)")
     parser.add_argument("--error-out", help="also write each pixel's standard error (.exr)")
+    parser.add_argument("-D", "--define", action="append", default=[], metavar="NAME=VALUE",
+                        help="set the scene's $NAME, as Mitsuba's own -D (repeatable)")
     args = parser.parse_args()
+    defines = {}
+    for define in args.define:
+        name, equals, value = define.partition("=")
+        if not equals or not name:
+            parser.error(f"-D takes NAME=VALUE, got '{define}'")
+        defines[name] = value
     if (args.scene is None) == (args.images is None):
         parser.error("give either a scene or --images")
     if args.images is not None and len(args.images) < 2:
@@ -112,7 +120,7 @@ def main():
         return 0
 
     try:
-        scene = mi.load_file(args.scene)
+        scene = mi.load_file(args.scene, **defines)
     except Exception as error:  # Mitsuba's messages span several lines
         lines = str(error).strip().splitlines()
         print(f"mitsuba_render: error: cannot load {args.scene}: "

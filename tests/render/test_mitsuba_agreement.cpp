@@ -215,3 +215,17 @@ TEST_CASE("Mitsuba 3 agreement through XML: the five emitters", "[render][mitsub
     for (const char* name : {"point", "spot", "sun", "sky", "envmap"})
         check_agreement_through_xml(name, 256);
 }
+
+TEST_CASE("Mitsuba 3 agreement: mitsuba-data's Cornell box, unchanged (spectra, OBJ meshes)",
+          "[render][mitsuba][third-party][statistical]") {
+    // The file as mitsuba-data has it, at 64x64 and without its max_depth
+    // of 6 (wavepath ends paths by roulette alone): both renderers read it
+    // with -D res=64 -D max_depth=-1 (cbox-mitsuba-data.exr, README.md).
+    SceneReadOptions options;
+    options.defines = {{"res", "64"}, {"max_depth", "-1"}};
+    check_agreement("cbox-mitsuba-data",
+                    load_scene(std::string(WAVEPATH_SOURCE_DIR) +
+                                   "/tests/data/third-party/mitsuba-data/scenes/cbox/cbox.xml",
+                               options),
+                    1024);
+}

@@ -180,6 +180,27 @@ TEST_CASE("mitsuba import: <default>, $name, <include> and <ref>", "[scene][mits
     CHECK(s.files.size() == 1); // the include, which outputs must not overwrite
 }
 
+TEST_CASE("mitsuba import: a <ref> before its element, <path>, a top-level area emitter",
+          "[scene][mitsuba][import]") {
+    // As mitsuba-data's scenes have them: cbox-rgb.xml's luminaire refers to
+    // an area emitter declared later, at the top level; hello.xml finds its
+    // mesh through <path value="../common"/>.
+    wp::test::TempDir dir;
+    fs::create_directories(dir / "common" / "meshes");
+    fs::create_directories(dir / "scenes");
+    write(dir / "common" / "meshes" / "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    const wp::Scene s = load(dir, R"(<path value="../common"/>
+    <shape type="obj"><string name="filename" value="meshes/tri.obj"/>
+        <ref id="paint"/><ref id="glow"/></shape>
+    <bsdf type="diffuse" id="paint"><rgb name="reflectance" value="0.25"/></bsdf>
+    <emitter type="area" id="glow"><rgb name="radiance" value="2, 3, 4"/></emitter>)",
+                             "scenes/s.xml");
+    const wp::Triangle& t = s.triangles.back();
+    CHECK(t.v[1] == glm::dvec3(1.0, 0.0, 0.0));
+    CHECK(s.materials[t.material].reflectance == glm::dvec3(0.25));
+    CHECK(s.materials[t.material].emission == glm::dvec3(2.0, 3.0, 4.0));
+}
+
 TEST_CASE("mitsuba import: point, spot, directional and constant emitters at the top level",
           "[scene][mitsuba][import]") {
     wp::test::TempDir dir;
@@ -320,7 +341,7 @@ TEST_CASE("mitsuba import: bad input is one line with the file, line and column"
                 "</shape></scene>",
          "2:22", "undefined parameter $r"},
         {"unknown ref", head + "<shape type=\"cube\"><ref id=\"nope\"/></shape></scene>", "2:20",
-         "refers to id 'nope', which no earlier element declares"},
+         "refers to id 'nope', which no element declares"},
         {"missing mesh",
          head + "<shape type=\"obj\">\n<string name=\"filename\" value=\"no.obj\"/>"
                 "</shape></scene>",
@@ -343,11 +364,27 @@ TEST_CASE("mitsuba import: bad input is one line with the file, line and column"
          head + "<sensor type=\"perspective\"><transform name=\"to_world\">"
                 "<scale x=\"-1\"/></transform></sensor></scene>",
          "2:28", "mirrors the image"},
-        {"spectrum pairs",
+        {"spectrum pairs: wavelengths going down",
          head +
              "<shape type=\"cube\"><bsdf type=\"diffuse\">\n"
-             "<spectrum name=\"reflectance\" value=\"400:0.1, 700:0.5\"/></bsdf></shape></scene>",
-         "3:1", "wavelength:value pairs are not supported yet"},
+             "<spectrum name=\"reflectance\" value=\"500:0.1, 400:0.5\"/></bsdf></shape></scene>",
+         "3:1", "the wavelengths must increase, but 400 follows 500"},
+        {"spectrum pairs: one pair",
+         head + "<shape type=\"cube\"><bsdf type=\"diffuse\">\n"
+                "<spectrum name=\"reflectance\" value=\"500:0.1\"/></bsdf></shape></scene>",
+         "3:1", "expected wavelength:value pairs (at least two"},
+        {"spectrum pairs: a value missing",
+         head + "<shape type=\"cube\"><bsdf type=\"diffuse\">\n"
+                "<spectrum name=\"reflectance\" value=\"400:0.1, 500:\"/></bsdf></shape></scene>",
+         "3:1", "expected wavelength:value pairs"},
+        {"a forward ref to itself",
+         head + "<bsdf type=\"twosided\" id=\"loop\">\n<ref id=\"loop\"/></bsdf></scene>", "3:1",
+         "an object cannot contain itself"},
+        {"a <path> that is not there", head + "<path value=\"no-such-folder\"/></scene>", "2:1",
+         "no-such-folder' does not exist"},
+        {"the direct integrator",
+         head + "<integrator type=\"direct\"/>\n<sensor type=\"perspective\"/></scene>", "2:1",
+         "unsupported integrator 'direct' (wavepath renders with Mitsuba's path integrator"},
         {"reflectance range",
          head + "<shape type=\"cube\"><bsdf type=\"diffuse\">\n"
                 "<rgb name=\"reflectance\" value=\"2\"/></bsdf></shape></scene>",

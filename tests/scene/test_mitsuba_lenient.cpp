@@ -151,8 +151,8 @@ TEST_CASE("mitsuba lenient: shapes, emitters and integrators of other plugins ar
 )");
     CHECK(strict_error(path) ==
           path.string() +
-              ":6:5: <integrator type=\"volpath\">: unsupported integrator (wavepath's is "
-              "Mitsuba's path)");
+              ":6:5: <integrator type=\"volpath\">: unsupported integrator 'volpath' (wavepath "
+              "renders with Mitsuba's path integrator; --lenient renders the scene with it)");
     const wp::Scene scene = lenient(path);
     CHECK(scene.triangles.size() == 2);
     REQUIRE(scene.emitters.size() == 1);

@@ -79,7 +79,8 @@ double ior(Parameters& p, const std::string& name, double fallback) {
 // perfect mirror, "none"), and specular_reflectance on top.
 void read_conductor(Parameters& p, BsdfContext& c, Material& m) {
     const std::optional<std::string> metal = p.string("material");
-    const std::optional<glm::dvec3> eta = p.color("eta"), k = p.color("k");
+    const std::optional<glm::dvec3> eta = p.color("eta", SpectrumUse::Unbounded),
+                                    k = p.color("k", SpectrumUse::Unbounded);
     m.metal = metal.value_or("none");
     if (metal && (eta || k))
         p.fail("material", "give either a named material or eta and k, not both");

@@ -32,7 +32,7 @@ glm::dvec3 read_emitter(const Object& emitter) {
     Parameters p(emitter);
     if (emitter.type != "area")
         p.fail("unsupported emitter inside a shape (wavepath has area emitters)");
-    const std::optional<glm::dvec3> radiance = p.color("radiance");
+    const std::optional<glm::dvec3> radiance = p.color("radiance", SpectrumUse::Emission);
     if (!radiance)
         p.fail("an area emitter needs its radiance");
     check_range(p, "radiance", *radiance, 0.0, scene_limits::max_radiance);
@@ -67,7 +67,7 @@ void read_envmap(Parameters& p, const Object& emitter, const std::optional<wp::T
     }
     p.ignore("mis_compensation");
     e.filename = *filename;
-    const std::filesystem::path path = emitter.folder() / *filename;
+    const std::filesystem::path path = emitter.resolve(*filename);
     e.path = path.string();
     try {
         e.image = std::make_shared<const TextureImage>(read_texture_image(path, false));
@@ -84,7 +84,8 @@ Emitter read_scene_emitter(const Object& emitter) {
     Parameters p(emitter);
     Emitter e;
     auto value = [&](const char* name) {
-        const glm::dvec3 v = p.color(name).value_or(glm::dvec3(1.0)); // Mitsuba's default
+        const glm::dvec3 v =
+            p.color(name, SpectrumUse::Emission).value_or(glm::dvec3(1.0)); // Mitsuba's default
         check_range(p, name, v, 0.0, scene_limits::max_radiance);
         return v;
     };
@@ -165,7 +166,9 @@ void read_integrator(const Object& integrator, Scene& scene) {
     std::vector<std::string>& warnings = scene.warnings;
     Parameters p(integrator);
     if (integrator.type != "path")
-        p.fail("unsupported integrator (wavepath's is Mitsuba's path)");
+        p.fail("unsupported integrator '" + json::shorten(integrator.type, 40) +
+               "' (wavepath renders with Mitsuba's path integrator; --lenient renders the scene "
+               "with it)");
     const long long max_depth = p.integer("max_depth").value_or(-1);
     if (max_depth != -1)
         warnings.push_back(integrator.where.text() + ": " + integrator.element() + ": max_depth " +
@@ -219,8 +222,12 @@ class SceneAssembler {
                     continue;
                 }
                 read_integrator(object, scene_);
-            } else if ((object.tag == "bsdf" || object.tag == "texture") && !object.id.empty()) {
-                // Declared for <ref>s; read where a shape uses it.
+            } else if ((object.tag == "bsdf" || object.tag == "texture" ||
+                        (object.tag == "emitter" && object.type == "area")) &&
+                       !object.id.empty()) {
+                // Declared for <ref>s; read where a shape uses it (an area
+                // emitter too: mitsuba-data's cbox-rgb.xml declares its
+                // light's at the top level, and the luminaire refers to it).
             } else if (object.tag == "emitter") {
                 if (lenient_ && !is_supported_scene_emitter(object.type)) {
                     left_out(object, "left out: wavepath has no '" +

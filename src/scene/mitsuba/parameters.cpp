@@ -59,12 +59,14 @@ std::optional<glm::dvec3> Parameters::point(const std::string& name) {
     return p ? std::optional<glm::dvec3>(p->vector) : std::nullopt;
 }
 
-std::optional<glm::dvec3> Parameters::color(const std::string& name) {
+std::optional<glm::dvec3> Parameters::color(const std::string& name, SpectrumUse use) {
     // A texture under this name (<texture name="reflectance">) is refused
     // by the reader that finds it among the object's children.
     const Parameter* p = take(name, {ValueKind::Rgb, ValueKind::Spectrum, ValueKind::Float});
     if (!p)
         return std::nullopt;
+    if (!p->wavelengths.empty())
+        return spectrum_to_rgb(p->wavelengths, p->values, use);
     return p->kind == ValueKind::Float ? glm::dvec3(p->number) : p->vector;
 }
 

@@ -11,6 +11,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "scene/mitsuba/spectrum.hpp"
 #include "scene/mitsuba/xml_reader.hpp"
 
 namespace wp::mitsuba {
@@ -21,13 +22,16 @@ class Parameters {
 
     // Each returns nothing when the parameter is absent, and refuses one of
     // another kind. number() takes <float> and <integer>; color() takes
-    // <rgb>, a single-valued <spectrum> and <float> (a grey).
+    // <rgb>, <float> (a grey) and <spectrum>: a single value is a grey,
+    // wavelength:value pairs become RGB as Mitsuba's RGB mode makes them
+    // for that use (spectrum.hpp).
     std::optional<double> number(const std::string& name);
     std::optional<long long> integer(const std::string& name);
     std::optional<bool> boolean(const std::string& name);
     std::optional<std::string> string(const std::string& name);
     std::optional<glm::dvec3> point(const std::string& name); // <point> or <vector>
-    std::optional<glm::dvec3> color(const std::string& name);
+    std::optional<glm::dvec3> color(const std::string& name,
+                                    SpectrumUse use = SpectrumUse::Reflectance);
     std::optional<wp::Transform> transform(const std::string& name);
     // A parameter that changes nothing wavepath renders (a clipping plane
     // that keeps the scene, a sampler's seed): read and dropped.

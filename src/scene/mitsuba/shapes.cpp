@@ -161,7 +161,7 @@ void add_mesh_file(Parameters& p, const Object& shape, std::uint32_t material, S
         options.shape_index = static_cast<std::uint32_t>(index);
     }
 
-    const std::filesystem::path path = shape.folder() / *filename;
+    const std::filesystem::path path = shape.resolve(*filename);
     scene.files.push_back(path.string());
     TriangleMesh mesh;
     try {

@@ -43,7 +43,7 @@ std::uint32_t TextureTable::add(const Object& object) {
         // an acceleration for them: no change to the values.
         p.ignore("format");
         p.ignore("accel");
-        const std::filesystem::path path = object.folder() / t.filename;
+        const std::filesystem::path path = object.resolve(t.filename);
         t.path = path.string();
         const auto key = std::make_pair(path.lexically_normal().string(), t.raw);
         if (const auto it = images_.find(key); it != images_.end()) {

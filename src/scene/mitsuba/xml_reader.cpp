@@ -13,6 +13,7 @@
 
 #include <pugixml.hpp>
 
+#include "scene/json_reader.hpp"
 #include "scene/parse_number.hpp"
 #include "util/file.hpp"
 #include "util/one_line.hpp"
@@ -78,6 +79,26 @@ std::string Object::element() const {
 
 std::filesystem::path Object::folder() const {
     return std::filesystem::path(where.file).parent_path();
+}
+
+namespace {
+
+std::filesystem::path resolve_in(const std::filesystem::path& folder, const std::string& name,
+                                 const std::vector<std::filesystem::path>* search) {
+    const std::filesystem::path own = folder / name;
+    std::error_code ec;
+    if (!search || std::filesystem::path(name).is_absolute() || std::filesystem::exists(own, ec))
+        return own;
+    for (const std::filesystem::path& other : *search)
+        if (std::filesystem::exists(other / name, ec))
+            return other / name;
+    return own;
+}
+
+} // namespace
+
+std::filesystem::path Object::resolve(const std::string& file_name) const {
+    return resolve_in(folder(), file_name, search_folders.get());
 }
 
 void fail_at(const Location& where, const std::string& element, const std::string& problem) {
@@ -159,12 +180,61 @@ class Reader {
         auto scene = std::make_shared<Object>();
         scene->tag = "scene";
         scene->where = file.at(root);
+        scene->search_folders = search_folders_;
         read_contents(file, root, *scene);
+        search_folders_->push_back(path.parent_path()); // last, after every <path>
         include_stack_.pop_back();
+        resolve_forward_refs();
         return {scene, files_read_};
     }
 
   private:
+    // A <ref> read before the element it names: Mitsuba 3 reads the whole
+    // file before it builds anything, so a <ref> may come first (mitsuba-
+    // data's cbox-rgb.xml includes shapes that refer to the area emitter it
+    // declares after them).
+    struct ForwardRef {
+        Object* parent;
+        std::size_t child; // its place in parent->children
+        std::string id;
+        Location where;
+        std::string element;
+    };
+
+    void resolve_forward_refs() {
+        for (const ForwardRef& ref : forward_refs_) {
+            const auto it = ids_.find(ref.id);
+            if (it == ids_.end())
+                fail_at(ref.where, ref.element,
+                        "refers to id '" + clip(ref.id) + "', which no element declares");
+            ref.parent->children[ref.child] = it->second;
+        }
+        // Only a forward <ref> can close a loop (an object inside itself).
+        for (const ForwardRef& ref : forward_refs_)
+            if (contains(*ref.parent->children[ref.child], ref.parent))
+                fail_at(ref.where, ref.element,
+                        "refers to id '" + clip(ref.id) +
+                            "', which holds this <ref> itself: an object cannot contain itself");
+    }
+
+    // Whether `target` is `from` or among its descendants (depth first, each
+    // object visited once).
+    static bool contains(const Object& from, const Object* target) {
+        std::vector<const Object*> stack{&from};
+        std::set<const Object*> seen;
+        while (!stack.empty()) {
+            const Object* o = stack.back();
+            stack.pop_back();
+            if (o == target)
+                return true;
+            if (!seen.insert(o).second)
+                continue;
+            for (const auto& child : o->children)
+                stack.push_back(child.get());
+        }
+        return false;
+    }
+
     // Reads and parses the file; `from` and `element` name the <include>
     // that asked for it, if any.
     const SourceFile& open(const std::filesystem::path& path, const Location* from,
@@ -282,13 +352,15 @@ class Reader {
                 parameters_.try_emplace(name, value); // an outside define wins
             } else if (tag == "include") {
                 include(file, child, object);
+            } else if (tag == "path") {
+                add_search_folder(file, child);
             } else if (tag == "ref") {
                 const std::string id = attribute(file, child, "id", true);
                 const auto it = ids_.find(id);
-                if (it == ids_.end())
-                    fail(file, child,
-                         "refers to id '" + clip(id) + "', which no earlier element declares");
-                object.children.push_back(it->second);
+                if (it == ids_.end()) // declared further on, perhaps: resolve_forward_refs
+                    forward_refs_.push_back(
+                        {&object, object.children.size(), id, file.at(child), describe(child)});
+                object.children.push_back(it == ids_.end() ? nullptr : it->second);
                 // A <ref> may name the parameter it fills: <ref id="grid" name="reflectance"/>.
                 object.child_names.push_back(attribute(file, child, "name", false));
             } else if (kObjectTags.contains(tag) ||
@@ -306,7 +378,7 @@ class Reader {
                          "> (wavepath reads plugin objects (shape, bsdf, emitter, "
                          "sensor, film, sampler, rfilter, integrator), values "
                          "(boolean, integer, float, string, point, vector, rgb, "
-                         "spectrum, transform), ref, default and include)");
+                         "spectrum, transform), ref, default, include and path)");
             }
         }
     }
@@ -318,9 +390,23 @@ class Reader {
         return std::nullopt;
     }
 
+    // <path value="../common"/>: a folder, relative to this file's, where
+    // files that are not beside the file naming them are looked for (before
+    // the main file's folder and the <path>s read earlier, as Mitsuba's
+    // file resolver prepends it).
+    void add_search_folder(const SourceFile& file, const pugi::xml_node& node) {
+        const std::string value = attribute(file, node, "value", true);
+        const std::filesystem::path folder = std::filesystem::path(file.name).parent_path() / value;
+        std::error_code ec;
+        if (!std::filesystem::is_directory(folder, ec))
+            fail(file, node, "the folder '" + folder.string() + "' does not exist");
+        search_folders_->insert(search_folders_->begin(), folder);
+    }
+
     void include(const SourceFile& file, const pugi::xml_node& node, Object& object) {
         const std::string name = attribute(file, node, "filename", true);
-        const std::filesystem::path path = std::filesystem::path(file.name).parent_path() / name;
+        const std::filesystem::path path =
+            resolve_in(std::filesystem::path(file.name).parent_path(), name, search_folders_.get());
         const Location where = file.at(node);
         const SourceFile& included = open(path, &where, describe(node));
         const pugi::xml_node root = included.document.document_element();
@@ -351,6 +437,7 @@ class Reader {
         object->type = attribute(file, node, "type", true);
         object->id = attribute(file, node, "id", false);
         object->name = attribute(file, node, "name", false);
+        object->search_folders = search_folders_;
         read_contents(file, node, *object);
         if (!object->id.empty() && !ids_.emplace(object->id, object).second)
             fail(file, node, "id '" + clip(object->id) + "' is already declared");
@@ -437,13 +524,14 @@ class Reader {
                      "spectra from files are not supported (give a single value, "
                      "or use <rgb>)");
             const std::string v = attribute(file, node, "value", true);
+            if (v.find(':') != std::string::npos) {
+                read_spectrum_pairs(file, node, v, p);
+                break;
+            }
             std::vector<double> values;
-            if (v.find(':') != std::string::npos)
-                fail(file, node,
-                     "wavelength:value pairs are not supported yet (give a single "
-                     "value, or use <rgb>)");
             if (!split_numbers(v, values) || values.size() != 1)
-                fail(file, node, "expected a single value, got '" + clip(v) + "'");
+                fail(file, node,
+                     "expected a single value or wavelength:value pairs, got '" + clip(v) + "'");
             p.number = values[0];
             p.vector = glm::dvec3(values[0]);
             break;
@@ -453,6 +541,29 @@ class Reader {
             break;
         }
         return p;
+    }
+
+    // "400:0.5, 500:0.7, ...": at least two pairs, wavelengths increasing,
+    // every number finite (as Mitsuba's Properties::Spectrum demands).
+    void read_spectrum_pairs(const SourceFile& file, const pugi::xml_node& node,
+                             const std::string& text, Parameter& p) const {
+        std::vector<double> numbers;
+        std::string flat = text;
+        std::replace(flat.begin(), flat.end(), ':', ' ');
+        std::size_t colons = static_cast<std::size_t>(std::count(text.begin(), text.end(), ':'));
+        if (!split_numbers(flat, numbers) || numbers.size() != 2 * colons || colons < 2)
+            fail(file, node,
+                 "expected wavelength:value pairs (at least two, such as \"400:0.5, "
+                 "700:0.8\"), got '" +
+                     clip(text) + "'");
+        for (std::size_t i = 0; i < colons; ++i) {
+            p.wavelengths.push_back(numbers[2 * i]);
+            p.values.push_back(numbers[2 * i + 1]);
+            if (i > 0 && !(p.wavelengths[i] > p.wavelengths[i - 1]))
+                fail(file, node,
+                     "the wavelengths must increase, but " + json::number_text(p.wavelengths[i]) +
+                         " follows " + json::number_text(p.wavelengths[i - 1]));
+        }
     }
 
     // The steps of a <transform>, applied in the order they are written:
@@ -515,6 +626,9 @@ class Reader {
     std::map<std::string, std::string> parameters_;
     std::map<std::string, std::shared_ptr<const Object>, std::less<>> ids_;
     std::vector<std::filesystem::path> include_stack_;
+    std::vector<ForwardRef> forward_refs_;
+    std::shared_ptr<std::vector<std::filesystem::path>> search_folders_ =
+        std::make_shared<std::vector<std::filesystem::path>>();
     int nesting_ = 0;              // read_object's depth
     std::deque<SourceFile> files_; // stable addresses: Locations are made as files are read
     std::vector<std::string> files_read_;

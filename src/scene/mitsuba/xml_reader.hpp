@@ -49,7 +49,10 @@ struct Parameter {
     std::string element; // the element as messages quote it: <float name="fov">
     bool boolean = false;
     long long integer = 0;
-    double number = 0.0;     // Float, and a Spectrum of a single value
+    double number = 0.0; // Float, and a Spectrum of a single value
+    // A Spectrum of wavelength:value pairs (wavelengths in nm, increasing);
+    // empty for a single value. Parameters::color turns it into RGB.
+    std::vector<double> wavelengths, values;
     std::string text;        // String
     glm::dvec3 vector{0.0};  // Point, Vector, Rgb
     wp::Transform transform; // Transform
@@ -72,8 +75,17 @@ struct Object {
 
     // How messages quote it: <bsdf type="diffuse" id="white">
     std::string element() const;
-    // The folder relative paths in this object resolve against: its file's.
+    // The folder relative paths in this object resolve against first: its file's.
     std::filesystem::path folder() const;
+    // Where a file this object names is, as Mitsuba's file resolver finds
+    // it: relative to folder(), else to each folder the scene's <path>
+    // elements add (the last first), else to the main scene file's folder;
+    // the first that exists. When none does, folder() / name, for the
+    // message of whoever opens it.
+    std::filesystem::path resolve(const std::string& file_name) const;
+    // The <path> folders and the main file's, in search order (shared by
+    // every object of a document).
+    std::shared_ptr<const std::vector<std::filesystem::path>> search_folders;
 };
 
 struct Document {
