@@ -207,14 +207,16 @@ class Reader {
             if (it == ids_.end())
                 fail_at(ref.where, ref.element,
                         "refers to id '" + clip(ref.id) + "', which no element declares");
-            ref.parent->children[ref.child] = it->second;
-        }
-        // Only a forward <ref> can close a loop (an object inside itself).
-        for (const ForwardRef& ref : forward_refs_)
-            if (contains(*ref.parent->children[ref.child], ref.parent))
+            // Only a forward <ref> can close a loop (an object inside itself).
+            // Checked before the link is made, link by link, so that the loop
+            // that would close is never made: a loop of shared pointers would
+            // never be freed.
+            if (contains(*it->second, ref.parent))
                 fail_at(ref.where, ref.element,
                         "refers to id '" + clip(ref.id) +
                             "', which holds this <ref> itself: an object cannot contain itself");
+            ref.parent->children[ref.child] = it->second;
+        }
     }
 
     // Whether `target` is `from` or among its descendants (depth first, each
