@@ -1,4 +1,5 @@
 #include "render/environment_tables.hpp"
+#include "scene/luminance.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,11 +9,6 @@ namespace wp {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-
-// Rec. 709 luminance, the weights Mitsuba's `luminance` uses.
-double luminance(const glm::dvec3& c) {
-    return 0.212671 * c.x + 0.715160 * c.y + 0.072169 * c.z;
-}
 
 // cos(theta_j) - cos(theta_{j+1}), theta_j = pi j / rows (the kernels' form).
 double cos_span(std::uint32_t j, std::uint32_t rows) {

@@ -1,6 +1,7 @@
 #include "render/light_pick.hpp"
 
 #include "render/device_scene.hpp"
+#include "scene/luminance.hpp"
 #include "scene/scene.hpp"
 
 namespace wp {
@@ -13,10 +14,6 @@ std::string to_string(LightPick pick) {
         return "area";
     }
     return "?";
-}
-
-double luminance(const glm::dvec3& radiance) {
-    return 0.2126 * radiance.x + 0.7152 * radiance.y + 0.0722 * radiance.z;
 }
 
 bool triangle_radiances_differ(const Scene& scene) {

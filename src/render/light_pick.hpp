@@ -25,10 +25,6 @@ enum class LightPick {
 };
 std::string to_string(LightPick pick); // "power", "area"
 
-// The luminance of a linear sRGB (Rec. 709) radiance: what the power pick
-// weighs a triangle's area by.
-double luminance(const glm::dvec3& radiance);
-
 // Whether the scene's emissive triangles differ in luminance, so that picking
 // them by power differs from picking them by area.
 bool triangle_radiances_differ(const Scene& scene);

@@ -1,4 +1,5 @@
 #include "scene/texture.hpp"
+#include "scene/luminance.hpp"
 
 #include <array>
 #include <bit>
@@ -128,7 +129,7 @@ double Texture::eval_float(double u, double v) const {
     } else {
         c = eval(u, v);
     }
-    return 0.212671 * c.x + 0.715160 * c.y + 0.072169 * c.z;
+    return luminance(c);
 }
 
 glm::dvec3 Texture::mean() const {

@@ -13,6 +13,7 @@
 #include "render/device_scene.hpp"
 #include "render/light_pick.hpp"
 #include "scene/load.hpp"
+#include "scene/luminance.hpp"
 #include "support/render_helpers.hpp"
 
 using namespace wp;
