@@ -59,12 +59,9 @@ wp::Scene shade_scene() {
     return scene;
 }
 
-D3 vertex(const WpTriangle& t, int i) {
-    return from_float4(i == 0 ? t.v0 : (i == 1 ? t.v1 : t.v2));
-}
-
 D3 unit_normal(const WpTriangle& t) {
-    return normalize(cross(vertex(t, 1) - vertex(t, 0), vertex(t, 2) - vertex(t, 0)));
+    return normalize(cross(triangle_vertex(t, 1) - triangle_vertex(t, 0),
+                           triangle_vertex(t, 2) - triangle_vertex(t, 0)));
 }
 
 D3 rgb(const glm::dvec3& v) {
@@ -199,7 +196,8 @@ TEST_CASE("shade: mirrors, emitters, next-event estimation and roulette on hand-
         double v = random(p.pixel, p.sample, p.depth, WP_DIM_LIGHT_V);
         const WpTriangle& light = flat.triangles[u_pick < cdf_a ? kLightA : kLightB];
         double su = std::sqrt(u), b0 = 1.0 - su, b1 = v * su;
-        return b0 * vertex(light, 0) + b1 * vertex(light, 1) + (1.0 - b0 - b1) * vertex(light, 2);
+        return b0 * triangle_vertex(light, 0) + b1 * triangle_vertex(light, 1) +
+               (1.0 - b0 - b1) * triangle_vertex(light, 2);
     };
     // The same path found by BSDF sampling at that diffuse vertex: the light
     // point hit after a weighed bounce (WP_PATH_GLOSSY), the vertex and the

@@ -89,17 +89,15 @@ wp::Scene two_lights(bool unequal) {
     return scene;
 }
 
-D3 corner(const WpTriangle& t, int i) {
-    return from_float4(i == 0 ? t.v0 : (i == 1 ? t.v1 : t.v2));
-}
-
 double triangle_area(const WpTriangle& t) {
-    return 0.5 * length(cross(corner(t, 1) - corner(t, 0), corner(t, 2) - corner(t, 0)));
+    return 0.5 * length(cross(triangle_vertex(t, 1) - triangle_vertex(t, 0),
+                              triangle_vertex(t, 2) - triangle_vertex(t, 0)));
 }
 
 // The solid angle triangle t subtends from x (Van Oosterom and Strackee), in double.
 double solid_angle(const WpTriangle& t, D3 x) {
-    const D3 a = corner(t, 0) - x, b = corner(t, 1) - x, c = corner(t, 2) - x;
+    const D3 a = triangle_vertex(t, 0) - x, b = triangle_vertex(t, 1) - x,
+             c = triangle_vertex(t, 2) - x;
     const double la = length(a), lb = length(b), lc = length(c);
     const double numerator = std::fabs(dot(a, cross(b, c)));
     const double denominator = la * lb * lc + dot(a, b) * lc + dot(a, c) * lb + dot(b, c) * la;
@@ -155,7 +153,8 @@ double reference_pdf(const Setup& s, int k, const WpTriangle& t, D3 x, D3 y, boo
         return triangle_area(t) / total / solid_angle(t, x);
     const D3 to_light = y - x;
     const double d = length(to_light);
-    const D3 n = normalize(cross(corner(t, 1) - corner(t, 0), corner(t, 2) - corner(t, 0)));
+    const D3 n = normalize(cross(triangle_vertex(t, 1) - triangle_vertex(t, 0),
+                                 triangle_vertex(t, 2) - triangle_vertex(t, 0)));
     return d * d / (-dot(n, to_light / d) * total);
 }
 
@@ -206,8 +205,8 @@ void check_samples_follow_pdf(bool unequal) {
             int found = -1;
             double u = 0.0, v = 0.0;
             for (int k = 0; k < 2 && found < 0; ++k) {
-                const D3 a = corner(lights[k], 0), b = corner(lights[k], 1),
-                         c = corner(lights[k], 2);
+                const D3 a = triangle_vertex(lights[k], 0), b = triangle_vertex(lights[k], 1),
+                         c = triangle_vertex(lights[k], 2);
                 const double twice = length(cross(b - a, c - a));
                 const double b1 = dot(cross(c - y, a - y), normalize(cross(b - a, c - a))) / twice;
                 const double b2 = dot(cross(a - y, b - y), normalize(cross(b - a, c - a))) / twice;
@@ -239,7 +238,8 @@ void check_samples_follow_pdf(bool unequal) {
         std::vector<cl_float4> points;
         std::vector<double> jacobian; // cos_light / d^2 * area, in double
         for (int k = 0; k < 2; ++k) {
-            const D3 a = corner(lights[k], 0), b = corner(lights[k], 1), c = corner(lights[k], 2);
+            const D3 a = triangle_vertex(lights[k], 0), b = triangle_vertex(lights[k], 1),
+                     c = triangle_vertex(lights[k], 2);
             const D3 n = normalize(cross(b - a, c - a));
             for (int i = 0; i < bins * fine; ++i)
                 for (int j = 0; j < bins * fine; ++j) {

@@ -22,6 +22,11 @@ inline D3 from_float4(const cl_float4& v) {
     return {v.s[0], v.s[1], v.s[2]};
 }
 
+// Corner i (0, 1 or 2) of a device triangle, in double.
+inline D3 triangle_vertex(const WpTriangle& t, int i) {
+    return from_float4(i == 0 ? t.v0 : (i == 1 ? t.v1 : t.v2));
+}
+
 // The renderer's own conversion (render/device_scene.hpp).
 using wp::to_float4;
 
