@@ -17,11 +17,13 @@ contender in a fresh process:
              built. `load s` is load_file alone; `wall s` the whole child
              process, Python's start and `import mitsuba` included.
 
-Each child's peak resident memory comes from os.wait4 (ru_maxrss, kB). The
-load average (`uptime`) is printed before and after: the machine is shared.
+Each child's peak resident memory and CPU time (user + system, all its
+threads: less sensitive than the wall time to a shared machine's load) come
+from os.wait4. The load average (`uptime`) is printed before and after.
+--baseline times a second wavepath binary alongside (e.g. main's build).
 
 Usage:
-    python3 bench/ply_load.py [--ply FILE] [--rounds 3] [--wavepath build/wavepath]
+    python3 bench/ply_load.py [--ply FILE] [--rounds 3] [--wavepath build/wavepath] [--baseline B]
                               [--variants scalar_rgb llvm_ad_rgb] [--work DIR]
 
 Without --ply it writes the 1,002,252-triangle displaced sphere of
@@ -73,7 +75,7 @@ print(time.perf_counter() - start)
 
 
 def timed(command, env=None):
-    """(wall seconds, peak RSS kB, stdout) of `command`, run once."""
+    """(wall seconds, CPU seconds, peak RSS kB, stdout) of `command`, run once."""
     start = time.perf_counter()
     read, write = os.pipe()
     pid = os.fork()
@@ -95,7 +97,7 @@ def timed(command, env=None):
     wall = time.perf_counter() - start
     if os.waitstatus_to_exitcode(status) != 0:
         sys.exit(f"ply_load: {' '.join(command)} failed (status {status}); run it by hand to see why")
-    return wall, usage.ru_maxrss, b"".join(chunks).decode()
+    return wall, usage.ru_utime + usage.ru_stime, usage.ru_maxrss, b"".join(chunks).decode()
 
 
 def uptime():
@@ -107,6 +109,7 @@ def main():
     parser.add_argument("--ply", help="the mesh (default: write the 10^6-triangle sphere)")
     parser.add_argument("--rounds", type=int, default=3)
     parser.add_argument("--wavepath", default=os.path.join(ROOT, "build", "wavepath"))
+    parser.add_argument("--baseline", help="another wavepath binary, timed alongside (e.g. main's)")
     parser.add_argument("--variants", nargs="*", default=["scalar_rgb", "llvm_ad_rgb"],
                         help="Mitsuba variants (none: wavepath alone)")
     parser.add_argument("--work", help="folder for the scene and outputs (default: a temporary one)")
@@ -133,6 +136,8 @@ def main():
     out = os.path.join(work, "wavepath.exr")
     contenders = {"wavepath": [args.wavepath, "render", scene, "--spp", "1", "--quiet",
                                "--out", out]}
+    if args.baseline:
+        contenders["wavepath baseline"] = [args.baseline] + contenders["wavepath"][1:]
     for variant in args.variants:
         contenders["mitsuba " + variant] = [sys.executable, mitsuba_script, variant, scene]
 
@@ -147,22 +152,24 @@ def main():
     for r in range(args.rounds):
         order = names[r % len(names):] + names[:r % len(names)]  # alternating starts
         for name in order:
-            wall, rss, text = timed(contenders[name], env)
+            wall, cpu, rss, text = timed(contenders[name], env)
             load = float(text.strip().splitlines()[-1]) if name.startswith("mitsuba") else None
-            results[name].append((wall, rss, load))
-            print(f"  round {r + 1}: {name:22s} wall {wall:7.2f} s"
+            results[name].append((wall, cpu, rss, load))
+            print(f"  round {r + 1}: {name:22s} wall {wall:7.2f} s, CPU {cpu:7.2f} s"
                   + (f", load {load:6.2f} s" if load is not None else "")
                   + f", peak RSS {rss:,} kB", flush=True)
     print(f"after: {uptime()}")
     print()
-    print(f"| contender | rounds | wall s, median (min-max) | load s, median | peak RSS kB, median |")
-    print("| --- | ---: | --- | ---: | ---: |")
+    print("| contender | rounds | wall s, median (min-max) | CPU s (user + sys), median "
+          "| load s, median | peak RSS kB, median |")
+    print("| --- | ---: | --- | ---: | ---: | ---: |")
     for name, runs in results.items():
-        walls = [w for w, _, _ in runs]
-        loads = [l for _, _, l in runs if l is not None]
-        rss = statistics.median(r for _, r, _ in runs)
+        walls = [w for w, _, _, _ in runs]
+        cpus = [c for _, c, _, _ in runs]
+        loads = [l for _, _, _, l in runs if l is not None]
+        rss = statistics.median(r for _, _, r, _ in runs)
         print(f"| {name} | {len(runs)} | {statistics.median(walls):.2f} "
-              f"({min(walls):.2f}-{max(walls):.2f}) | "
+              f"({min(walls):.2f}-{max(walls):.2f}) | {statistics.median(cpus):.2f} | "
               + (f"{statistics.median(loads):.2f}" if loads else "-")
               + f" | {rss:,.0f} |")
 
