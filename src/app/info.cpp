@@ -351,9 +351,10 @@ int run_info(const InfoCommand& command) {
 
     // The scene prepared as a render prepares it (a tiny image: the options
     // do not depend on the resolution): its features, its arrays and its
-    // hierarchy, made once and read here and by the integrator.
+    // hierarchy, made once and read here and by the integrator. The scene's
+    // triangles, printed above, are freed once flattened.
     scene.camera.width = scene.camera.height = 8;
-    const PreparedScene prepared = prepare_scene(scene, command.integrator);
+    const PreparedScene prepared = prepare_scene_releasing_triangles(scene, command.integrator);
     const SceneFeatures& features = prepared.features;
     std::printf("features: %s\n", features.describe().c_str());
     const DeviceScene& arrays = *prepared.device_scene;
