@@ -795,8 +795,9 @@ int main(int argc, char** argv) {
         if (!as_is)
             options.traversal = Traversal::Hierarchy;
         options.pool_size = 0;
-        WavefrontIntegrator integrator(device, scene, options);
-        const DeviceScene& ds = integrator.device_scene();
+        const PreparedScene prepared = prepare_scene(scene, options);
+        WavefrontIntegrator integrator(device, prepared);
+        const DeviceScene& ds = *prepared.device_scene;
         const std::size_t wp_bytes =
             ds.triangles.size() * sizeof(WpTriangle) + ds.spheres.size() * sizeof(WpSphere) +
             ds.materials.size() * sizeof(WpMaterial) + ds.lights.size() * sizeof(WpLight) +
@@ -838,8 +839,9 @@ int main(int argc, char** argv) {
         // light rays once more for comparison, are traced without it.
         IntegratorOptions all_faces_options = options;
         all_faces_options.shadow_culling = false;
-        WavefrontIntegrator all_faces(device, scene, all_faces_options);
-        Checker all_faces_checker(device, all_faces.features(), all_faces.device_scene());
+        const PreparedScene all_faces_prepared = prepare_scene(scene, all_faces_options);
+        WavefrontIntegrator all_faces(device, all_faces_prepared);
+        Checker all_faces_checker(device, all_faces.features(), *all_faces_prepared.device_scene);
         const bool culling = integrator.features().shadow_culling;
         r["shadow_culling"] = culling ? integrator.features().describe() : "off";
 

@@ -21,6 +21,7 @@
 #include "cl/stages.hpp"
 #include "image/image_io.hpp"
 #include "render/device_scene.hpp"
+#include "render/prepared_scene.hpp"
 #include "render/wavefront.hpp"
 #include "scene/instancing.hpp"
 #include "scene/load.hpp"
@@ -348,15 +349,21 @@ int run_info(const InfoCommand& command) {
         device.context, device.info.device, "__kernel void wp_info_warm_up(void) {}", "warm_up.cl",
         "-D WP_INFO_WARM_UP=" + std::to_string(entropy()), CachePolicy::off());
 
-    SceneFeatures features = analyse_features(scene);
+    // The scene prepared as a render prepares it (a tiny image: the options
+    // do not depend on the resolution): its features, its arrays and its
+    // hierarchy, made once and read here and by the integrator. The scene's
+    // triangles, printed above, are freed once flattened.
+    scene.camera.width = scene.camera.height = 8;
+    const PreparedScene prepared = prepare_scene_releasing_triangles(scene, command.integrator);
+    const SceneFeatures& features = prepared.features;
     std::printf("features: %s\n", features.describe().c_str());
-    if (!features.fixed_counts)
+    const DeviceScene& arrays = *prepared.device_scene;
+    if (arrays.triangles.size() + arrays.spheres.size() + arrays.instances.size() >
+        kMaxFixedCountPrimitives)
         std::printf("  (runtime counts: more than %u primitives)\n", kMaxFixedCountPrimitives);
 
-    // The program exactly as a render builds it (a tiny image: the options do
-    // not depend on the resolution), through the cache unless it is off.
-    scene.camera.width = scene.camera.height = 8;
-    WavefrontIntegrator integrator(device, scene, command.integrator);
+    // The program exactly as a render builds it, through the cache unless it is off.
+    WavefrontIntegrator integrator(device, prepared);
     const BuiltProgram& built = integrator.program();
     std::printf("kernels: %s\n",
                 command.integrator.general_kernels ? "general (--general)" : "specialised");
@@ -376,7 +383,7 @@ int run_info(const InfoCommand& command) {
                 command.integrator.pool_size == 0
                     ? "one per pixel"
                     : ("at most " + std::to_string(command.integrator.pool_size)).c_str());
-    print_geometry_memory(integrator.device_scene());
+    print_geometry_memory(arrays);
 
     const CachePolicy& cache = command.integrator.program_cache;
     std::printf("program build (the stage and fused kernels are one program):\n");

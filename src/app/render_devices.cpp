@@ -4,6 +4,7 @@
 
 #include "app/cli_options.hpp"
 #include "cl/device.hpp"
+#include "render/prepared_scene.hpp"
 #include "report/device_profile.hpp"
 #ifdef WAVEPATH_HAVE_MPI
 #include "mpi/mpi_render.hpp"
@@ -33,15 +34,18 @@ std::optional<int> run_render_as_mpi_worker(const RenderCommand& command) {
     return std::nullopt;
 }
 
-std::unique_ptr<MultiDeviceRenderer> open_renderer(const RenderCommand& command, const Scene& scene,
+std::unique_ptr<MultiDeviceRenderer> open_renderer(const RenderCommand& command, Scene& scene,
                                                    bool profiling) {
 #ifdef WAVEPATH_HAVE_MPI
     MpiJob& job = MpiJob::get();
     if (job.size() > 1)
         return open_mpi_renderer(job, scene, command.device, command.integrator, profiling);
 #endif
-    return std::make_unique<MultiDeviceRenderer>(select_devices(command.device), scene,
-                                                 command.integrator, profiling);
+    const std::vector<DeviceInfo> devices = select_devices(command.device);
+    // Held until every device has uploaded it, and freed with it the
+    // scene's triangles, which nothing after this needs.
+    const PreparedScene prepared = prepare_scene_releasing_triangles(scene, command.integrator);
+    return std::make_unique<MultiDeviceRenderer>(devices, prepared, profiling);
 }
 
 std::vector<std::string> device_names(const MultiDeviceRenderer& renderer) {

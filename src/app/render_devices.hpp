@@ -21,8 +21,10 @@ std::optional<int> run_render_as_mpi_worker(const RenderCommand& command);
 
 // The renderer for --device (select_devices), with the other ranks attached
 // on rank 0 of an MPI job; throws the first error of any rank that could not
-// open its devices or the scene.
-std::unique_ptr<MultiDeviceRenderer> open_renderer(const RenderCommand& command, const Scene& scene,
+// open its devices or the scene. Outside an MPI job the scene is prepared
+// once for every device and its triangles are freed once flattened
+// (prepare_scene_releasing_triangles): the caller must not need them after.
+std::unique_ptr<MultiDeviceRenderer> open_renderer(const RenderCommand& command, Scene& scene,
                                                    bool profiling);
 
 // Every device's name, in the order of shares() (for the image's metadata).

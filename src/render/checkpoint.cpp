@@ -263,7 +263,13 @@ std::string renderer_version() {
 
 CheckpointIdentity checkpoint_identity(const Scene& scene, const IntegratorOptions& options,
                                        const std::string& build_options) {
-    return {scene_content_hash(scene), scene.camera.width, scene.camera.height,
+    return checkpoint_identity(scene_content_hash(scene), scene, options, build_options);
+}
+
+CheckpointIdentity checkpoint_identity(std::uint64_t scene_hash, const Scene& scene,
+                                       const IntegratorOptions& options,
+                                       const std::string& build_options) {
+    return {scene_hash, scene.camera.width, scene.camera.height,
             checkpoint_options(options, build_options), renderer_version()};
 }
 

@@ -80,6 +80,11 @@ std::string renderer_version();
 // The identity of a render of `scene` (at its camera's resolution).
 CheckpointIdentity checkpoint_identity(const Scene& scene, const IntegratorOptions& options,
                                        const std::string& build_options);
+// The same with the scene's hash given (scene_content_hash, taken before its
+// triangles were freed); the rest of `scene` as it is.
+CheckpointIdentity checkpoint_identity(std::uint64_t scene_hash, const Scene& scene,
+                                       const IntegratorOptions& options,
+                                       const std::string& build_options);
 
 // The file's bytes, and back. decode_checkpoint throws CheckpointError
 // (naming `path`) for a file that is not a checkpoint, of another format,

@@ -8,6 +8,7 @@
 // needs the DeviceScene member of the same name that holds its contents).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 
 #include "cl/cl.hpp"
@@ -49,11 +50,16 @@ DeviceBuffers allocate_device_buffers(const cl::Context& context, const DeviceSc
 
 // A read-only buffer holding `data`; OpenCL has no empty buffers, so an empty
 // vector gets a one-element dummy.
+// The data is copied once, by OpenCL, straight from `data` (a padded copy
+// of a big scene's arrays would add its size to the peak host memory).
 template <typename T>
 cl::Buffer upload_buffer(const cl::Context& context, const std::vector<T>& data) {
-    std::vector<T> padded = data.empty() ? std::vector<T>(1) : data;
-    return cl::Buffer(context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(T) * padded.size(),
-                      padded.data());
+    T dummy{};
+    // CL_MEM_COPY_HOST_PTR only reads the pointer; the C API wants it non-const.
+    void* from = data.empty() ? static_cast<void*>(&dummy)
+                              : const_cast<void*>(static_cast<const void*>(data.data()));
+    return cl::Buffer(context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                      sizeof(T) * std::max<std::size_t>(data.size(), 1), from);
 }
 
 // Argument indices of every stage kernel.

@@ -1,6 +1,7 @@
 #include "render/device_scene.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <limits>
@@ -588,6 +589,18 @@ void flatten_emitters(const Scene& scene, const FloatFrame& frame, double triang
     out.emitters = std::move(emitters);
 }
 
+// With lights: the spheres of a mirror material (DeviceScene::mirror_spheres),
+// by their place in out.spheres.
+void list_mirror_spheres(DeviceScene& out, const std::vector<Material>& materials) {
+    if (!out.lights.empty())
+        for (std::size_t i = 0; i < out.spheres.size(); ++i)
+            if (materials[out.spheres[i].material].kind == MaterialKind::Mirror)
+                out.mirror_spheres.push_back(static_cast<wp_uint>(i));
+}
+
+// Hierarchies built by add_hierarchy in this process (scene_hierarchies_built).
+std::atomic<std::uint64_t> hierarchies_built{0};
+
 } // namespace
 
 void set_light_guides(std::vector<WpLight>& lights) {
@@ -649,19 +662,22 @@ SceneFeatures analyse_features(const Scene& scene, std::uint32_t max_fixed_count
     f.triangles = !scene.triangles.empty();
     f.spheres = !scene.spheres.empty();
     f.instances = !scene.instances.empty();
-    auto uses = [&](MaterialKind kind) {
-        bool used = false;
-        for_each_defined_triangle(scene, [&](const Triangle& t) {
-            used = used || scene.materials[t.material].kind == kind;
-        });
-        for (const Sphere& s : scene.spheres)
-            if (scene.materials[s.material].kind == kind)
-                return true;
-        return used;
-    };
+    // One pass over the triangles (a big mesh's take most of the analysis):
+    // which materials are used, and whether any triangle has vertex normals.
+    std::vector<bool> material_used(scene.materials.size(), false);
     f.shading_normals = false;
-    for_each_defined_triangle(scene,
-                              [&](const Triangle& t) { f.shading_normals |= t.has_normals; });
+    for_each_defined_triangle(scene, [&](const Triangle& t) {
+        material_used[t.material] = true;
+        f.shading_normals |= t.has_normals;
+    });
+    for (const Sphere& s : scene.spheres)
+        material_used[s.material] = true;
+    auto uses = [&](MaterialKind kind) {
+        for (std::size_t m = 0; m < scene.materials.size(); ++m)
+            if (material_used[m] && scene.materials[m].kind == kind)
+                return true;
+        return false;
+    };
     // One feature per material kind with a BSDF: on when the scene uses it.
 #define WP_MATERIAL_FEATURE_USED(features, KIND, Name, name, value, bsdf, glossy)                  \
     WP_IF(bsdf)(features.name = uses(MaterialKind::Name);)
@@ -778,6 +794,13 @@ void flatten_textures(const Scene& scene, DeviceScene& out) {
 }
 
 DeviceScene flatten_scene(const Scene& scene, bool hierarchy, LightPick pick) {
+    DeviceScene out = flatten_without_hierarchy(scene, hierarchy, pick);
+    if (hierarchy)
+        add_hierarchy(out, scene.materials);
+    return out;
+}
+
+DeviceScene flatten_without_hierarchy(const Scene& scene, bool hierarchy, LightPick pick) {
     std::size_t normal_sets = 0, uv_sets = 0; // with the shape groups', which share the tables
     for_each_defined_triangle(scene, [&](const Triangle& t) {
         normal_sets += t.has_normals;
@@ -928,14 +951,19 @@ DeviceScene flatten_scene(const Scene& scene, bool hierarchy, LightPick pick) {
     }
     }
 
-    if (hierarchy)
-        build_hierarchy(out);
-    // After the hierarchy, which may reorder the spheres.
-    if (!out.lights.empty())
-        for (std::size_t i = 0; i < out.spheres.size(); ++i)
-            if (scene.materials[out.spheres[i].material].kind == MaterialKind::Mirror)
-                out.mirror_spheres.push_back(static_cast<wp_uint>(i));
+    if (!hierarchy)
+        list_mirror_spheres(out, scene.materials);
     return out;
+}
+
+void add_hierarchy(DeviceScene& scene, const std::vector<Material>& materials) {
+    build_hierarchy(scene);
+    hierarchies_built.fetch_add(1, std::memory_order_relaxed);
+    list_mirror_spheres(scene, materials); // after the hierarchy, which may reorder the spheres
+}
+
+std::uint64_t scene_hierarchies_built() {
+    return hierarchies_built.load(std::memory_order_relaxed);
 }
 
 std::vector<Bounds3f> primitive_boxes(const DeviceScene& scene) {

@@ -174,6 +174,18 @@ void set_light_guides(std::vector<WpLight>& lights);
 DeviceScene flatten_scene(const Scene& scene, bool hierarchy = false,
                           LightPick pick = LightPick::Power);
 
+// flatten_scene in two steps, so that a caller may free the scene's
+// triangles between them (render/prepared_scene.hpp): everything but the
+// hierarchy (with `hierarchy` false, the whole of flatten_scene), then, with
+// `hierarchy`, add_hierarchy, which needs only the flattened arrays and the
+// scene's materials.
+DeviceScene flatten_without_hierarchy(const Scene& scene, bool hierarchy, LightPick pick);
+void add_hierarchy(DeviceScene& scene, const std::vector<Material>& materials);
+
+// How many hierarchies add_hierarchy has built in this process: a render on
+// several devices builds one (tests/render/test_multi_device.cpp).
+std::uint64_t scene_hierarchies_built();
+
 // The scene's textures as WpTexture rows into out.textures, their bitmaps'
 // texels one after another in out.texels (each file once); part of
 // flatten_scene.

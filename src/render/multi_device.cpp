@@ -85,8 +85,11 @@ struct MultiDeviceRenderer::Wakeup {
 
 MultiDeviceRenderer::MultiDeviceRenderer(const std::vector<DeviceInfo>& devices, const Scene& scene,
                                          IntegratorOptions options, bool profiling)
-    : width_(scene.camera.width), height_(scene.camera.height),
-      wakeup_(std::make_unique<Wakeup>()) {
+    : MultiDeviceRenderer(devices, prepare_scene(scene, options), profiling) {}
+
+MultiDeviceRenderer::MultiDeviceRenderer(const std::vector<DeviceInfo>& devices,
+                                         const PreparedScene& scene, bool profiling)
+    : width_(scene.width), height_(scene.height), wakeup_(std::make_unique<Wakeup>()) {
     if (devices.empty())
         throw std::invalid_argument("MultiDeviceRenderer: no device");
     report_ = [](const std::string& line) { std::cerr << "wavepath: warning: " << line << "\n"; };
@@ -103,7 +106,7 @@ MultiDeviceRenderer::MultiDeviceRenderer(const std::vector<DeviceInfo>& devices,
         builders.emplace_back([&, d = device.get()] {
             try {
                 d->context = std::make_unique<DeviceContext>(d->info, profiling);
-                d->integrator = std::make_unique<WavefrontIntegrator>(*d->context, scene, options);
+                d->integrator = std::make_unique<WavefrontIntegrator>(*d->context, scene);
                 if (profiling)
                     d->integrator->set_profiler(&d->profiler);
             } catch (...) {

@@ -1,8 +1,9 @@
 // One render on several OpenCL devices at once (and, through RenderPeers, on
 // other processes' devices: src/mpi/).
 //
-// Each device has everything a one-device render has: its own context and
-// queue, its programs (built, and cached, for that device), scene buffers,
+// Each device has everything a one-device render has but the prepared scene
+// (render/prepared_scene.hpp, made once and uploaded by every device): its
+// own context and queue, its programs (built, and cached, for that device), scene buffers,
 // path state and film, and a host thread that drives its WavefrontIntegrator.
 // The threads take chunks of samples from a ChunkSource (chunk_source.hpp)
 // until none are left; at the end of every render() call the devices' films
@@ -86,6 +87,11 @@ class MultiDeviceRenderer {
     // one-device render would throw).
     MultiDeviceRenderer(const std::vector<DeviceInfo>& devices, const Scene& scene,
                         IntegratorOptions options, bool profiling = false);
+    // The same for a scene already prepared: every device uploads its arrays
+    // (the scene is analysed, flattened and its hierarchy built once, however
+    // many devices there are; the first constructor prepares it so too).
+    MultiDeviceRenderer(const std::vector<DeviceInfo>& devices, const PreparedScene& scene,
+                        bool profiling = false);
     ~MultiDeviceRenderer();
     MultiDeviceRenderer(const MultiDeviceRenderer&) = delete;
     MultiDeviceRenderer& operator=(const MultiDeviceRenderer&) = delete;

@@ -28,14 +28,14 @@ constexpr double kCloseRelative = 1e-3;
 constexpr double kMostApart = 0.1;
 
 // A render of the tile with one variant, self-check off (no recursion).
-Film render_tile(DeviceContext& device, const Scene& tile, IntegratorOptions options,
-                 bool general) {
-    options.general_kernels = general;
-    options.self_check = false;
-    options.pool_size = 0;
-    options.launch_plan = LaunchPlan::Stages; // the same for both: the kernels are the question
-    WavefrontIntegrator integrator(device, tile, options);
-    Film film(tile.camera.width, tile.camera.height);
+Film render_tile(DeviceContext& device, PreparedScene tile, bool general) {
+    tile.options.general_kernels = general;
+    tile.options.self_check = false;
+    tile.options.pool_size = 0;
+    tile.options.launch_plan =
+        LaunchPlan::Stages; // the same for both: the kernels are the question
+    WavefrontIntegrator integrator(device, tile);
+    Film film(tile.width, tile.height);
     integrator.render(0, kTileSamples, film);
     return film;
 }
@@ -125,7 +125,12 @@ std::string with_injected_fault(std::string options) {
 
 SelfCheckVerdict check_kernels(DeviceContext& device, const Scene& scene,
                                const IntegratorOptions& options) {
-    const SceneFeatures features = integrator_features(scene, options);
+    return check_kernels(device, prepare_scene(scene, options));
+}
+
+SelfCheckVerdict check_kernels(DeviceContext& device, const PreparedScene& scene) {
+    const IntegratorOptions& options = scene.options;
+    const SceneFeatures& features = scene.features;
     const std::string specialised = with_injected_fault(kernel_build_options(features, options));
     const std::string general = kernel_build_options(SceneFeatures::general_for(features), options);
     SelfCheckVerdict verdict;
@@ -140,10 +145,11 @@ SelfCheckVerdict check_kernels(DeviceContext& device, const Scene& scene,
             return verdict;
         }
     }
-    Scene tile = scene;
-    tile.camera.width = tile.camera.height = kTileSize;
-    const Film a = render_tile(device, tile, options, false);
-    const Film b = render_tile(device, tile, options, true);
+    // The whole view at the tile's size: the scene's arrays, not a copy.
+    PreparedScene tile = scene;
+    tile.width = tile.height = kTileSize;
+    const Film a = render_tile(device, tile, false);
+    const Film b = render_tile(device, tile, true);
     verdict.passed = agree(a, b, verdict.detail);
     if (store) {
         const std::string text = (verdict.passed ? "pass: " : "fail: ") + verdict.detail;

@@ -19,6 +19,7 @@
 
 #include "cl/context.hpp"
 #include "render/integrator_options.hpp"
+#include "render/prepared_scene.hpp"
 #include "scene/scene.hpp"
 
 namespace wp {
@@ -44,6 +45,8 @@ std::string with_injected_fault(std::string options);
 // and stored in the program cache of `options` (off: checked every time).
 SelfCheckVerdict check_kernels(DeviceContext& device, const Scene& scene,
                                const IntegratorOptions& options);
+// The same for a prepared scene (its options), whose arrays the tile shares.
+SelfCheckVerdict check_kernels(DeviceContext& device, const PreparedScene& scene);
 
 // The check of a built-in scene that has every feature (a small room with a
 // light, a planar mirror, a mirror sphere and a diffuse one), for

@@ -137,25 +137,15 @@ ChosenLaunchPlan choose_launch_plan(LaunchPlan requested, const DeviceInfo& devi
     return chosen;
 }
 
-namespace {
-
-// A scene with hide_emitters (Mitsuba's) leaves out the light a camera ray
-// sees directly: the camera path type, which the kernels then track
-// (kernels/path_type.h); --path-types may have left out others already.
-IntegratorOptions with_scene_settings(IntegratorOptions options, const Scene& scene) {
-    if (scene.hide_emitters)
-        options.path_types &= ~(1u << WP_PATH_TYPE_CAMERA);
-    return options;
-}
-
-} // namespace
-
 WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const Scene& scene,
                                          IntegratorOptions options)
-    : device_(device), features_(integrator_features(scene, with_scene_settings(options, scene))),
-      options_(with_scene_settings(options, scene)),
+    : WavefrontIntegrator(device, prepare_scene(scene, options)) {}
+
+WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const PreparedScene& prepared)
+    : device_(device), features_(prepared.features), options_(prepared.options),
       group_size_(wp::work_group_size_for(device.info)) {
-    const int width = scene.camera.width, height = scene.camera.height;
+    const DeviceScene& scene = *prepared.device_scene;
+    const int width = prepared.width, height = prepared.height;
     pixel_count_ = static_cast<std::uint32_t>(width) * static_cast<std::uint32_t>(height);
     pool_size_ =
         options_.pool_size == 0 ? pixel_count_ : std::min(options_.pool_size, pixel_count_);
@@ -168,7 +158,7 @@ WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const Scene& sce
         const SceneFeatures general = SceneFeatures::general_for(features_);
         const std::string general_options = kernel_build_options(general, options_);
         if (self_check_enabled(options_) && build_options != general_options) {
-            self_check_ = check_kernels(device_, scene, options_);
+            self_check_ = check_kernels(device_, prepared);
             if (!self_check_->passed) {
                 std::cerr << "wavepath: warning: on " << device_.info.name << " (driver "
                           << device_.info.driver_version
@@ -184,8 +174,7 @@ WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const Scene& sce
     }
     plan_ = choose_launch_plan(options_.launch_plan, device_.info,
                                compiled.fixed_counts && !compiled.bvh, options_.regeneration);
-    scene_ = flatten_scene(scene, compiled.bvh, options_.light_pick);
-    check_scene_memory(device_.info, scene_);
+    check_scene_memory(device_.info, scene);
     program_ = build_wavefront_program(device_.context, device_.info.device, build_options,
                                        options_.program_cache);
     mirror_shadows_ = build_options.find("WP_MIRROR_NEE=1") != std::string::npos;
@@ -194,24 +183,24 @@ WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const Scene& sce
     for (std::size_t i = 0; i < kStageKernelNames.size(); ++i)
         kernels_[i] = cl::Kernel(program_.program, std::string(kStageKernelNames[i]).c_str());
 
-    frame_.camera = scene_.camera;
-    frame_.width = static_cast<wp_uint>(scene_.width);
-    frame_.height = static_cast<wp_uint>(scene_.height);
+    frame_.camera = scene.camera;
+    frame_.width = static_cast<wp_uint>(width);
+    frame_.height = static_cast<wp_uint>(height);
     frame_.seed = options_.seed;
     frame_.pool_size = pool_size_;
-    frame_.triangle_count = static_cast<wp_uint>(scene_.triangles.size());
-    frame_.sphere_count = static_cast<wp_uint>(scene_.spheres.size());
-    frame_.light_count = static_cast<wp_uint>(scene_.lights.size());
-    frame_.light_area = scene_.light_area;
-    frame_.mirror_group_count = static_cast<wp_uint>(scene_.mirror_groups.size());
-    frame_.mirror_sphere_count = static_cast<wp_uint>(scene_.mirror_spheres.size());
-    frame_.emitter_count = static_cast<wp_uint>(scene_.emitters.size());
-    frame_.emitter_pick = scene_.emitter_pick;
-    frame_.instance_count = static_cast<wp_uint>(scene_.instances.size());
+    frame_.triangle_count = static_cast<wp_uint>(scene.triangles.size());
+    frame_.sphere_count = static_cast<wp_uint>(scene.spheres.size());
+    frame_.light_count = static_cast<wp_uint>(scene.lights.size());
+    frame_.light_area = scene.light_area;
+    frame_.mirror_group_count = static_cast<wp_uint>(scene.mirror_groups.size());
+    frame_.mirror_sphere_count = static_cast<wp_uint>(scene.mirror_spheres.size());
+    frame_.emitter_count = static_cast<wp_uint>(scene.emitters.size());
+    frame_.emitter_pick = scene.emitter_pick;
+    frame_.instance_count = static_cast<wp_uint>(scene.instances.size());
     frame_.max_depth = options_.max_depth;
     frame_.path_types = options_.path_types;
 
-    buffers_ = allocate_device_buffers(device_.context, scene_, pool_size_, pixel_count_,
+    buffers_ = allocate_device_buffers(device_.context, scene, pool_size_, pixel_count_,
                                        options_.aovs != 0);
     clear_film();
     for (cl::Kernel& kernel : kernels_)

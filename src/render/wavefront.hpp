@@ -23,6 +23,7 @@
 #include "render/device_scene.hpp"
 #include "render/film.hpp"
 #include "render/integrator_options.hpp"
+#include "render/prepared_scene.hpp"
 #include "render/profiler.hpp"
 #include "render/self_check.hpp"
 #include "scene/scene.hpp"
@@ -79,6 +80,10 @@ std::string kernel_build_options(const SceneFeatures& features, const Integrator
 
 class WavefrontIntegrator {
   public:
+    // Builds the kernels for `scene` on `device` and uploads its arrays; keeps
+    // nothing of `scene` (render/prepared_scene.hpp).
+    WavefrontIntegrator(DeviceContext& device, const PreparedScene& scene);
+    // The same for a scene prepared for this device alone.
     WavefrontIntegrator(DeviceContext& device, const Scene& scene, IntegratorOptions options);
 
     // Renders samples [first_sample, first_sample + count) of every pixel into
@@ -97,7 +102,6 @@ class WavefrontIntegrator {
     const RenderStats& stats() const { return stats_; }
     const BuiltProgram& program() const { return program_; }
     const SceneFeatures& features() const { return features_; }
-    const DeviceScene& device_scene() const { return scene_; }
     const IntegratorOptions& options() const { return options_; }
     // The plan the render runs (never Auto) and why it was chosen.
     const ChosenLaunchPlan& launch_plan() const { return plan_; }
@@ -110,8 +114,8 @@ class WavefrontIntegrator {
     const std::optional<SelfCheckVerdict>& self_check() const { return self_check_; }
     std::uint32_t pool_size() const { return pool_size_; }
     DeviceContext& device() const { return device_; }
-    int width() const { return scene_.width; }
-    int height() const { return scene_.height; }
+    int width() const { return static_cast<int>(frame_.width); }
+    int height() const { return static_cast<int>(frame_.height); }
 
     // For stage benchmarks: traces `rays` (origin xyz, direction xyz, packed
     // as float4 pairs) through intersect alone, `repetitions` times; returns
@@ -149,7 +153,6 @@ class WavefrontIntegrator {
     void clear_film();
 
     DeviceContext& device_;
-    DeviceScene scene_;
     SceneFeatures features_;
     IntegratorOptions options_;
     ChosenLaunchPlan plan_;

@@ -158,6 +158,28 @@ TEST_CASE("multi-device: two devices render the image one device renders, sample
     }
 }
 
+TEST_CASE("multi-device: the scene is prepared once, its hierarchy built once, for two devices") {
+    // The hexroom traced through a hierarchy, which it would not need: the
+    // counter tells one build from two.
+    const Scene scene = test::hexroom(24, 20);
+    const std::uint32_t spp = 8, seed = 3;
+    IntegratorOptions options;
+    options.seed = seed;
+    options.traversal = Traversal::Hierarchy;
+    test::Rendered single = test::render(scene, spp, seed, 0, options);
+
+    const std::uint64_t before = scene_hierarchies_built();
+    MultiDeviceRenderer renderer(two_devices(), scene, options);
+    REQUIRE(renderer.device_count() == 2);
+    CHECK(scene_hierarchies_built() == before + 1);
+    CHECK(renderer.integrator().features().bvh);
+    Film film(scene.camera.width, scene.camera.height);
+    renderer.render(0, spp, film);
+    check_same_image(film, single.film, spp);
+    CHECK(renderer.shares()[0].samples > 0); // both took part
+    CHECK(renderer.shares()[1].samples > 0);
+}
+
 TEST_CASE("multi-device: a device that fails mid-render leaves a complete, correct image") {
     const Scene scene = test::hexroom(24, 20);
     const std::uint32_t spp = 32, seed = 11;
