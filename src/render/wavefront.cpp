@@ -143,8 +143,15 @@ ChosenLaunchPlan choose_launch_plan(LaunchPlan requested, const DeviceInfo& devi
         chosen.sorted_shading = sorted;
         chosen.shade_order_why = "asked for (--shade-order " + to_string(shade_order) + ")";
     } else {
+        // PoCL runs shade scalar, so a sorted queue buys no SIMD coherence and
+        // costs the sort; on a GPU, where warps would gain, it is unmeasured.
         chosen.sorted_shading = false;
-        chosen.shade_order_why = "auto: arrival (SHADE_ORDER_MEASUREMENT)";
+        chosen.shade_order_why =
+            cpu ? "auto: arrival on a CPU device (sorted measured slower on PoCL, which runs "
+                  "shade scalar: no gain in shade on the showcase, a loss on the hexroom, plus "
+                  "the sort; docs/performance.md, \"Shading sorted by material\")"
+                : "auto: arrival (sorted is not yet measured on a GPU; docs/performance.md, "
+                  "\"Shading sorted by material\")";
     }
     // The film: on a CPU device a fold costs about what the iterations
     // between folds do; a GPU runs 32 iterations in a fraction of the fold's

@@ -77,7 +77,7 @@ TEST_CASE("Shade order: sorted by material, the hexroom's image is arrival order
 }
 
 TEST_CASE("Shade order: sorted by material, the showcase's image (eight material kinds, "
-          "textures, an environment map, a hierarchy) is arrival order's bit for bit",
+          "textures, an environment map) is arrival order's bit for bit",
           "[render][shade-order]") {
     Scene scene = load_scene(std::string(WAVEPATH_SOURCE_DIR) + "/scenes/materials/showcase.json");
     scene.camera.width = 24;
