@@ -206,7 +206,8 @@ static inline wp_uint wp_primitive_material(const WpSceneView* scene, wp_uint pr
     if (wp_primitive_kind(scene, primitive) == WP_PRIMITIVE_INSTANCE) {
         wp_uint number, group_triangle;
         wp_instance_hit(scene, primitive, &number, &group_triangle);
-        return (wp_uint)scene->group_triangles[group_triangle].v0.w;
+        WpTriangle object = scene->group_triangles[group_triangle];
+        return wp_triangle_material(&object);
     }
 #endif
     WpTriangle triangle = scene->triangles[primitive];

@@ -39,11 +39,12 @@ constexpr std::array<BufferAccess, 3> kShadeSort{
 
 // kernels/shade.cl: ray_queues is read (its own queue) and written (the
 // survivors' queue); shade_order is read instead of its own queue when
-// sorted (listed, so counted: 4 bytes too many in arrival order); a path ends in finished_queue or
-// goes on, never both, so the table overcounts one 4-byte push. The mirror_* buffers only with
-// next-event estimation through planar mirrors (kernels/mirror_light.h). The
-// aov_* buffers only with --aov (WP_AOV), at a path's first hit: listed, but
-// not counted in stage_bytes_per_item.
+// sorted (listed, so counted: 4 bytes too many in arrival order); a path
+// ends in finished_queue or goes on, never both, so the table overcounts one
+// 4-byte push. The mirror_* buffers only with next-event estimation through
+// planar mirrors (kernels/mirror_light.h). The aov_* buffers only with --aov
+// (WP_AOV), at a path's first hit: listed, but not counted in
+// stage_bytes_per_item.
 constexpr std::array<BufferAccess, 26> kShade{{{"ray_queues", RW},
                                                {"shade_order", R},
                                                {"hit_primitive", R},
