@@ -88,6 +88,19 @@ TEST_CASE("Shade order: sorted by material, the showcase's image (eight material
     check_same_render(arrival, sorted);
 }
 
+TEST_CASE("Shade order: sorted by material, the instances' image (materials of the shape groups' "
+          "triangles) is arrival order's bit for bit",
+          "[render][shade-order]") {
+    Scene scene =
+        load_scene(std::string(WAVEPATH_SOURCE_DIR) + "/tests/data/mitsuba/instances.xml");
+    scene.camera.width = 16;
+    scene.camera.height = 12;
+    const OrderRender arrival = render_in_order(scene, ShadeOrder::Arrival, {}, 2);
+    const OrderRender sorted = render_in_order(scene, ShadeOrder::Sorted, {}, 2);
+    REQUIRE(arrival.stats.bounce_rays > 0);
+    check_same_render(arrival, sorted);
+}
+
 TEST_CASE("Shade order: auto is arrival on a CPU, sorted makes auto pick the stages plan, a fused "
           "plan shades in arrival order and refuses sorted",
           "[launch-plan][shade-order]") {
