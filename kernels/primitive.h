@@ -195,6 +195,25 @@ static inline void wp_shade_with_vertex_normals(const WpTriangle* t,
 }
 #endif
 
+/* The material of `primitive`, without the rest of its surface record
+ * (what shade's sort by material reads, kernels/shade_sort.cl). */
+static inline wp_uint wp_primitive_material(const WpSceneView* scene, wp_uint primitive) {
+#if WP_HAS_SPHERES
+    if (wp_primitive_kind(scene, primitive) == WP_PRIMITIVE_SPHERE)
+        return scene->spheres[primitive - scene->triangle_count].material;
+#endif
+#if WP_TRACE_INSTANCES
+    if (wp_primitive_kind(scene, primitive) == WP_PRIMITIVE_INSTANCE) {
+        wp_uint number, group_triangle;
+        wp_instance_hit(scene, primitive, &number, &group_triangle);
+        WpTriangle object = scene->group_triangles[group_triangle];
+        return wp_triangle_material(&object);
+    }
+#endif
+    WpTriangle triangle = scene->triangles[primitive];
+    return wp_triangle_material(&triangle);
+}
+
 /* The surface of `primitive` where the ray origin + t direction hit it. The
  * hit point is reprojected onto the surface, so that its error scales with
  * the surface's coordinates, not with t. */

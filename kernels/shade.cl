@@ -439,7 +439,9 @@ __kernel void shade(WP_STAGE_PARAMETERS) {
     wp_uint item = get_local_id(0);
     wp_uint slot = 0u, push = 0u;
     if (index < counters[launch.ray_queue]) {
-        slot = wp_ray_queue(ray_queues, frame, launch.ray_queue)[index];
+        /* The ray queue as intersect left it, or sorted by material (shade_sort.cl). */
+        slot = launch.sorted ? shade_order[index]
+                             : wp_ray_queue(ray_queues, frame, launch.ray_queue)[index];
         wp_uint primitive = hit_primitive[slot];
         WpShadowRay shadow;
         int outcome = wp_shade_path(WP_STAGE_ARGUMENTS, slot, primitive,

@@ -145,6 +145,12 @@ enum { WP_MATERIALS(WP_MATERIAL_ENUMERATOR) WP_MATERIAL_KIND_COUNT };
     6u /* the mirror queue: two-leg shadow rays (mirror_light.h) */
 #define WP_COUNTER_COUNT 8u
 
+/* The keys shade's queue is sorted by (kernels/shade_sort.cl, with
+ * --shade-order sorted): the material kind a ray hit, or
+ * WP_SHADE_KEY_MISS for a ray that left the scene. */
+#define WP_SHADE_KEY_MISS ((wp_uint)WP_MATERIAL_KIND_COUNT)
+#define WP_SHADE_KEY_COUNT (WP_MATERIAL_KIND_COUNT + 1)
+
 /* The largest work-group the host launches (src/render/wavefront.cpp): shade
  * compacts its queue pushes through local arrays of this many entries. */
 #define WP_MAX_WORK_GROUP_SIZE 256u
@@ -508,6 +514,8 @@ typedef struct {
  *   intersect,  read ray queue `ray_queue` (its length is in
  *   shade       counters[ray_queue], as generate appended to it after the host
  *               last looked); shade pushes survivors onto the other queue.
+ *               With `sorted`, shade takes its slots from shade_order, the
+ *               same queue sorted by material kind (shade_sort.cl).
  *   shadow      count shadow rays (mirror_shadow: count two-leg rays of the
  *               mirror queue, shadow_queue + pool_size).
  *   accumulate  count finished paths. */
@@ -515,7 +523,7 @@ typedef struct {
     wp_uint count;
     wp_uint ray_queue; /* 0 or 1: WP_COUNTER_QUEUE_A or WP_COUNTER_QUEUE_B */
     wp_uint from_finished;
-    wp_uint pad0;
+    wp_uint sorted; /* shade: take the slots from shade_order, not the ray queue */
 } WpLaunch;
 
 /* Every device buffer, declared once. The stage kernels' parameter lists
@@ -577,6 +585,9 @@ typedef struct {
     X(shadow_queue, wp_uint, 2, 0, 0) /* shadow rays, then (at pool_size) mirror ones */           \
     X(finished_queue, wp_uint, 1, 0, 0)                                                            \
     X(counters, wp_uint, 0, 0, WP_COUNTER_COUNT)                                                   \
+    /* the ray queue sorted by what was hit, and its counts per key (kernels/shade_sort.cl) */     \
+    X(shade_order, wp_uint, 1, 0, 0)                                                               \
+    X(shade_key_counts, wp_uint, 0, 0, 2u * WP_SHADE_KEY_COUNT)                                    \
     /* the film of the current batch of iterations, per pixel (kernels/accumulate.cl) */           \
     X(film_sum, wp_float4, 0, 1, 0)                                                                \
     X(film_sum_squares, wp_float4, 0, 1, 0)                                                        \

@@ -148,6 +148,12 @@ void add_integrator_options(CLI::App& command, IntegratorOptions& options) {
                "shade and shadow fused per bounce), 'wave' (one megakernel per wave, no host "
                "round trip per bounce) or 'auto' (per device, as measured; `wavepath info` "
                "says which). The images agree (docs/architecture.md)");
+    add_choice(command, "--shade-order", options.shade_order,
+               {ShadeOrder::Auto, ShadeOrder::Arrival, ShadeOrder::Sorted},
+               "The order shade takes the rays in: 'arrival' (as intersect left them), 'sorted' "
+               "(by the kind of material hit; needs the stages launch plan) or 'auto' (per "
+               "device, as measured; `wavepath info` says which). The images are the same "
+               "(docs/performance.md, \"Shading sorted by material\")");
     command.add_option("--pool", options.pool_size,
                        "Path slots on the device (default: one per pixel); fewer use less memory");
     options.self_check = true;

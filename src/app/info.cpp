@@ -379,6 +379,8 @@ int run_info(const InfoCommand& command) {
                 "pixel a render call\n",
                 plan.regeneration ? "on" : "off", plan.regeneration_why.c_str(),
                 plan.iterations_per_flush, plan.samples_per_call);
+    std::printf("shade order: %s (%s)\n", plan.sorted_shading ? "sorted" : "arrival",
+                plan.shade_order_why.c_str());
     std::printf("work-groups of %zu work-items; path slots: %s\n", integrator.work_group_size(),
                 command.integrator.pool_size == 0
                     ? "one per pixel"

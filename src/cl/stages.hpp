@@ -11,6 +11,7 @@
 #define WP_STAGE_KERNELS(X)                                                                        \
     X(Generate, generate)                                                                          \
     X(Intersect, intersect)                                                                        \
+    X(ShadeSort, shade_sort) /* with --shade-order sorted; shade_sort_count goes with it */        \
     X(Shade, shade)                                                                                \
     X(Shadow, shadow)                                                                              \
     X(Accumulate, accumulate)                                                                      \
@@ -21,7 +22,7 @@
 namespace wp {
 
 #define WP_STAGE_NAME(enum_name, name) #name,
-inline constexpr std::array<std::string_view, 7> kStageKernelNames = {
+inline constexpr std::array<std::string_view, 8> kStageKernelNames = {
     WP_STAGE_KERNELS(WP_STAGE_NAME)};
 #undef WP_STAGE_NAME
 

@@ -85,11 +85,13 @@ void bind_buffers(cl::Kernel& kernel, const DeviceBuffers& buffers) {
 
 #undef WP_BIND
 
-WpLaunch make_launch(std::uint32_t count, std::uint32_t ray_queue, bool from_finished) {
+WpLaunch make_launch(std::uint32_t count, std::uint32_t ray_queue, bool from_finished,
+                     bool sorted) {
     WpLaunch launch{};
     launch.count = count;
     launch.ray_queue = ray_queue;
     launch.from_finished = from_finished ? 1u : 0u;
+    launch.sorted = sorted ? 1u : 0u;
     return launch;
 }
 

@@ -76,6 +76,7 @@ void bind_buffers(cl::Kernel& kernel, const DeviceBuffers& buffers);
 cl_uint bind_scene_buffers(cl::Kernel& kernel, cl_uint first, const DeviceBuffers& buffers);
 
 // A launch of one stage: what goes in WpLaunch.
-WpLaunch make_launch(std::uint32_t count, std::uint32_t ray_queue, bool from_finished = false);
+WpLaunch make_launch(std::uint32_t count, std::uint32_t ray_queue, bool from_finished = false,
+                     bool sorted = false);
 
 } // namespace wp

@@ -123,6 +123,18 @@ std::string to_string(LaunchPlan plan) {
     return "?";
 }
 
+std::string to_string(ShadeOrder order) {
+    switch (order) {
+    case ShadeOrder::Auto:
+        return "auto";
+    case ShadeOrder::Arrival:
+        return "arrival";
+    case ShadeOrder::Sorted:
+        return "sorted";
+    }
+    return "?";
+}
+
 std::string aov_name(std::uint32_t number) {
     static const char* const names[kAovCount] = {"albedo", "normal", "depth"};
     return number < kAovCount ? names[number] : "?";

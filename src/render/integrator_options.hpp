@@ -68,6 +68,14 @@ enum class LaunchPlan {
     Wave,   // one megakernel per wave: each work-item runs its slot's whole paths
 };
 
+// The order in which the stages plan's shade kernel takes the rays
+// (kernels/shade_sort.cl). Every order gives the same image, bit for bit.
+enum class ShadeOrder {
+    Auto,    // chosen per device by measurement (choose_launch_plan, wavefront.hpp)
+    Arrival, // as intersect left the queue
+    Sorted,  // sorted by the kind of material each ray hit (a counting sort before shade)
+};
+
 // Every path type (kernels/path_type.h): the full estimate.
 inline constexpr std::uint32_t kAllPathTypes = (1u << WP_PATH_TYPE_COUNT) - 1u;
 
@@ -132,6 +140,9 @@ struct IntegratorOptions {
     // render/device_buffers.hpp) at some cost in parallelism.
     std::uint32_t pool_size = 0;
     LaunchPlan launch_plan = LaunchPlan::Auto;
+    // Sorted needs the stages plan (a fused kernel shades each ray in the
+    // work-item that traced it): it makes `auto` pick that plan.
+    ShadeOrder shade_order = ShadeOrder::Auto;
     // Check the specialised kernels against the general ones the first time
     // a device, driver and build options meet, and build the general ones if
     // they disagree (render/self_check.hpp). Off here, so that tests and
@@ -173,6 +184,7 @@ std::string to_string(RouletteRule rule);   // "throughput", "mitsuba"
 std::string to_string(Traversal traversal); // "auto", "bvh", "loop"
 std::string to_string(Sampler sampler);     // "independent", "sobol"
 std::string to_string(LaunchPlan plan);     // "auto", "stages", "bounce", "wave"
+std::string to_string(ShadeOrder order);    // "auto", "arrival", "sorted"
 
 // The path types' names, in WP_PATH_TYPE_* order: "camera", "direct",
 // "indirect", "mirror", "caustic".

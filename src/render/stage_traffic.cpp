@@ -29,13 +29,24 @@ constexpr std::array<BufferAccess, 5> kIntersect{{{"ray_queues", R},
                                                   {"hit_primitive", W},
                                                   {"hit_t", W}}};
 
+// kernels/shade_sort.cl, both launches together: each reads the queue and
+// what its rays hit (the material behind it, a scene buffer, is not
+// counted); the second writes the sorted queue (shade_order); the counts per
+// key (shade_key_counts) are a few atomics per work-group, not counted, like
+// the counters.
+constexpr std::array<BufferAccess, 3> kShadeSort{
+    {{"ray_queues", R}, {"hit_primitive", R}, {"shade_order", W}}};
+
 // kernels/shade.cl: ray_queues is read (its own queue) and written (the
-// survivors' queue); a path ends in finished_queue or goes on, never both,
-// so the table overcounts one 4-byte push. The mirror_* buffers only with
-// next-event estimation through planar mirrors (kernels/mirror_light.h). The
-// aov_* buffers only with --aov (WP_AOV), at a path's first hit: listed, but
-// not counted in stage_bytes_per_item.
-constexpr std::array<BufferAccess, 25> kShade{{{"ray_queues", RW},
+// survivors' queue); shade_order is read instead of its own queue when
+// sorted (listed, so counted: 4 bytes too many in arrival order); a path
+// ends in finished_queue or goes on, never both, so the table overcounts one
+// 4-byte push. The mirror_* buffers only with next-event estimation through
+// planar mirrors (kernels/mirror_light.h). The aov_* buffers only with --aov
+// (WP_AOV), at a path's first hit: listed, but not counted in
+// stage_bytes_per_item.
+constexpr std::array<BufferAccess, 26> kShade{{{"ray_queues", RW},
+                                               {"shade_order", R},
                                                {"hit_primitive", R},
                                                {"hit_t", R},
                                                {"ray_origin", RW},
@@ -126,6 +137,8 @@ std::span<const BufferAccess> stage_buffer_accesses(Stage stage) {
         return kGenerate;
     case Stage::Intersect:
         return kIntersect;
+    case Stage::ShadeSort:
+        return kShadeSort;
     case Stage::Shade:
         return kShade;
     case Stage::Shadow:

@@ -90,12 +90,21 @@ void check_scene_memory(const DeviceInfo& device, const DeviceScene& scene) {
 } // namespace
 
 ChosenLaunchPlan choose_launch_plan(LaunchPlan requested, const DeviceInfo& device,
-                                    bool vectorised_tracing, std::optional<bool> regeneration) {
+                                    bool vectorised_tracing, std::optional<bool> regeneration,
+                                    ShadeOrder shade_order) {
     const bool cpu = device.type == "CPU";
+    const bool sorted = shade_order == ShadeOrder::Sorted;
+    if (sorted && requested != LaunchPlan::Auto && requested != LaunchPlan::Stages)
+        throw std::runtime_error("--shade-order sorted needs the stages launch plan, not "
+                                 "--launch-plan " +
+                                 to_string(requested));
     ChosenLaunchPlan chosen;
     if (requested != LaunchPlan::Auto) {
         chosen.plan = requested;
         chosen.why = "asked for (--launch-plan " + to_string(requested) + ")";
+    } else if (sorted) {
+        chosen.plan = LaunchPlan::Stages;
+        chosen.why = "auto: --shade-order sorted, which only the stages plan runs";
     } else if (!cpu) {
         chosen.plan = LaunchPlan::Stages;
         chosen.why = "auto: a " + (device.type.empty() ? std::string("non-CPU") : device.type) +
@@ -125,6 +134,24 @@ ChosenLaunchPlan choose_launch_plan(LaunchPlan requested, const DeviceInfo& devi
         chosen.regeneration = true;
         chosen.regeneration_why = "auto: on for a GPU, whose launches it keeps full (3.5x the "
                                   "samples/s on the H200, docs/gpu.md)";
+    }
+    if (chosen.plan != LaunchPlan::Stages) {
+        chosen.sorted_shading = false;
+        chosen.shade_order_why = "arrival: the " + to_string(chosen.plan) +
+                                 " plan shades each ray in the work-item that traced it";
+    } else if (shade_order != ShadeOrder::Auto) {
+        chosen.sorted_shading = sorted;
+        chosen.shade_order_why = "asked for (--shade-order " + to_string(shade_order) + ")";
+    } else {
+        // PoCL runs shade scalar, so a sorted queue buys no SIMD coherence and
+        // costs the sort; on a GPU, where warps would gain, it is unmeasured.
+        chosen.sorted_shading = false;
+        chosen.shade_order_why =
+            cpu ? "auto: arrival on a CPU device (sorted measured slower on PoCL, which runs "
+                  "shade scalar: no gain in shade on the showcase, a loss on the hexroom, plus "
+                  "the sort; docs/performance.md, \"Shading sorted by material\")"
+                : "auto: arrival (sorted is not yet measured on a GPU; docs/performance.md, "
+                  "\"Shading sorted by material\")";
     }
     // The film: on a CPU device a fold costs about what the iterations
     // between folds do; a GPU runs 32 iterations in a fraction of the fold's
@@ -173,7 +200,8 @@ WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const PreparedSc
         }
     }
     plan_ = choose_launch_plan(options_.launch_plan, device_.info,
-                               compiled.fixed_counts && !compiled.bvh, options_.regeneration);
+                               compiled.fixed_counts && !compiled.bvh, options_.regeneration,
+                               options_.shade_order);
     check_scene_memory(device_.info, scene);
     program_ = build_wavefront_program(device_.context, device_.info.device, build_options,
                                        options_.program_cache);
@@ -182,6 +210,8 @@ WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const PreparedSc
         mirror_shadow_kernel_ = cl::Kernel(program_.program, "mirror_shadow");
     for (std::size_t i = 0; i < kStageKernelNames.size(); ++i)
         kernels_[i] = cl::Kernel(program_.program, std::string(kStageKernelNames[i]).c_str());
+    if (plan_.sorted_shading)
+        shade_sort_count_kernel_ = cl::Kernel(program_.program, "shade_sort_count");
 
     frame_.camera = scene.camera;
     frame_.width = static_cast<wp_uint>(width);
@@ -207,10 +237,12 @@ WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const PreparedSc
         bind_buffers(kernel, buffers_);
     if (mirror_shadows_)
         bind_buffers(mirror_shadow_kernel_, buffers_);
+    if (plan_.sorted_shading)
+        bind_buffers(shade_sort_count_kernel_, buffers_);
 }
 
 std::string WavefrontIntegrator::launch_summary() const {
-    return to_string(plan_.plan) +
+    return to_string(plan_.plan) + (plan_.sorted_shading ? ", shade sorted by material" : "") +
            (plan_.regeneration ? ", regeneration" : ", one wave at a time") + ", pool " +
            std::to_string(pool_size_) + ", work-groups of " + std::to_string(group_size_);
 }
@@ -322,6 +354,9 @@ void WavefrontIntegrator::render_range(std::uint32_t first_sample, std::uint32_t
 void WavefrontIntegrator::trace_bounces(Film& film,
                                         const std::function<void(double)>& on_progress) {
     const bool fused = plan_.plan == LaunchPlan::Bounce;
+    // The launches per iteration whose items are the queue's rays: bounce,
+    // or intersect, (the sort's two,) shade.
+    const std::size_t ray_launches = fused ? 1 : plan_.sorted_shading ? 4 : 2;
     cl::CommandQueue& q = device_.queue;
 
     // The two ray queues swap roles every iteration: intersect and shade read
@@ -368,10 +403,12 @@ void WavefrontIntegrator::trace_bounces(Film& film,
             launch(Stage::Bounce, make_launch(0, in), bound);
         } else {
             launch(Stage::Intersect, make_launch(0, in), bound);
-            launch(Stage::Shade, make_launch(0, in), bound);
+            if (plan_.sorted_shading) // the queue sorted by material (kernels/shade_sort.cl)
+                sort_for_shade(in, bound);
+            launch(Stage::Shade, make_launch(0, in, false, plan_.sorted_shading), bound);
         }
         if (profiler_ && bound > 0)
-            first_ray_record = profiler_->last_record() - (fused ? 0 : 1);
+            first_ray_record = profiler_->last_record() - (ray_launches - 1);
 
         // The one synchronisation per iteration: how long each queue is.
         std::array<cl_uint, WP_COUNTER_MIRROR_SHADOW_RAYS + 1> counts{};
@@ -395,8 +432,7 @@ void WavefrontIntegrator::trace_bounces(Film& film,
             // Launches were sized for the most the queues could hold; now the
             // device has said how many items there really were.
             if (first_ray_record)
-                for (std::size_t r = *first_ray_record; r < *first_ray_record + (fused ? 1 : 2);
-                     ++r)
+                for (std::size_t r = *first_ray_record; r < *first_ray_record + ray_launches; ++r)
                     profiler_->set_items(r, traced);
             if (generate_record != kNoRecord)
                 profiler_->set_items(generate_record, traced - survivors);
@@ -447,6 +483,14 @@ void WavefrontIntegrator::trace_bounces(Film& film,
         if ((iteration + 1) % plan_.iterations_per_flush == 0)
             flush_film(film);
     }
+}
+
+void WavefrontIntegrator::sort_for_shade(cl_uint queue, std::uint32_t bound) {
+    static const std::array<cl_uint, 2 * WP_SHADE_KEY_COUNT> zeros{};
+    device_.queue.enqueueWriteBuffer(buffers_.shade_key_counts, CL_FALSE, 0, sizeof(zeros),
+                                     zeros.data());
+    launch(Stage::ShadeSort, make_launch(0, queue), bound, &shade_sort_count_kernel_);
+    launch(Stage::ShadeSort, make_launch(0, queue), bound);
 }
 
 void WavefrontIntegrator::trace_waves(std::uint32_t count, Film& film,

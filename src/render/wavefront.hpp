@@ -59,14 +59,20 @@ struct ChosenLaunchPlan {
     std::string why;
     bool regeneration = false;
     std::string regeneration_why;
+    // Whether shade takes its rays sorted by material (--shade-order, the
+    // stages plan only), and why.
+    bool sorted_shading = false;
+    std::string shade_order_why;
     // Iterations of the stages plans between folds of the film; samples per
     // render call the CLI asks for (the wave plan folds per call).
     std::uint32_t iterations_per_flush = 32;
     std::uint32_t samples_per_call = 1;
 };
+// Throws std::runtime_error for --shade-order sorted with a fused plan.
 ChosenLaunchPlan choose_launch_plan(LaunchPlan requested, const DeviceInfo& device,
                                     bool vectorised_tracing,
-                                    std::optional<bool> regeneration = std::nullopt);
+                                    std::optional<bool> regeneration = std::nullopt,
+                                    ShadeOrder shade_order = ShadeOrder::Auto);
 
 // The features the integrator gives `scene` under `options` (analyse_features,
 // then the traversal and shadow culling asked for), and those its kernels are
@@ -134,6 +140,9 @@ class WavefrontIntegrator {
     // The stages and bounce plans: a launch per stage (or one fused launch)
     // and one sync per bounce, until every slot has finished its samples.
     void trace_bounces(Film& film, const std::function<void(double)>& on_progress);
+    // Sorts ray queue `queue` (at most `bound` rays) by material into
+    // shade_order (kernels/shade_sort.cl): zeroes the counts, two launches.
+    void sort_for_shade(cl_uint queue, std::uint32_t bound);
     // The wave plan: megakernel launches of `count` samples' tasks, no
     // per-bounce sync.
     void trace_waves(std::uint32_t count, Film& film,
@@ -166,6 +175,7 @@ class WavefrontIntegrator {
     // go to mirror_shadow (kernels/shadow.cl) after the shadow stage.
     bool mirror_shadows_ = false;
     cl::Kernel mirror_shadow_kernel_;
+    cl::Kernel shade_sort_count_kernel_; // the sort's first launch (with sorted_shading)
     Profiler* profiler_ = nullptr;
 
     std::array<cl::Kernel, kStageKernelNames.size()> kernels_; // by Stage

@@ -17,6 +17,12 @@ bool traces_rays(Stage stage) {
     return stage == Stage::Intersect || stage == Stage::Shadow;
 }
 
+// The kernels that only some launch plans run (the fused kernels, the sort
+// of --shade-order sorted): rows only when they ran.
+bool optional_kernel(Stage stage) {
+    return stage == Stage::Bounce || stage == Stage::Wave || stage == Stage::ShadeSort;
+}
+
 // Queue lengths per iteration, shortened to the first and last few.
 std::string queue_summary(const std::vector<std::uint32_t>& lengths) {
     std::string out;
@@ -61,8 +67,8 @@ nlohmann::json stages_json(const std::vector<StageTotals>& totals, double memory
     nlohmann::json stages = nlohmann::json::array();
     for (int s = 0; s < kStageCount; ++s) {
         const Stage stage = static_cast<Stage>(s);
-        // The fused kernels (launch plans) only when they ran, as in the table.
-        if ((stage == Stage::Bounce || stage == Stage::Wave) && totals[s].launches == 0)
+        // The optional kernels only when they ran, as in the table.
+        if (optional_kernel(stage) && totals[s].launches == 0)
             continue;
         stages.push_back(stage_json(stage, totals[s], memory_bandwidth));
     }
@@ -86,11 +92,11 @@ std::string profile_table(const Profiler& profiler, const RenderStats& stats,
     for (int s = 0; s < kStageCount; ++s) {
         const StageTotals& t = totals[s];
         Stage stage = static_cast<Stage>(s);
-        // The fused kernels' rows only when they ran; with a fused plan, only
-        // the kernels that ran (the wave plan's one kernel holds every stage).
-        const bool fused_kernel = stage == Stage::Bounce || stage == Stage::Wave;
+        // The optional kernels' rows only when they ran; with a fused plan,
+        // only the kernels that ran (the wave plan's one kernel holds every
+        // stage).
         const bool fused_plan = context.launch_plan == "bounce" || context.launch_plan == "wave";
-        if (t.launches == 0 && stage != Stage::Transfer && (fused_kernel || fused_plan))
+        if (t.launches == 0 && stage != Stage::Transfer && (optional_kernel(stage) || fused_plan))
             continue;
         double rate = t.device_seconds > 0 ? static_cast<double>(t.items) / t.device_seconds : 0.0;
         std::string rate_text = stage == Stage::Transfer ? format_text("%.3g MB/s", rate / 1e6)

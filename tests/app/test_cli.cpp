@@ -103,6 +103,11 @@ TEST_CASE("cli: bad input gives one clear line and a non-zero exit") {
                                       s),
                              "does not exist");
     }
+    SECTION("shade sorted by material with a fused launch plan") {
+        check_one_line_error(
+            wavepath("render " + kHexroom + to + " --shade-order sorted --launch-plan wave", s),
+            "--shade-order sorted needs the stages launch plan");
+    }
     SECTION("more pixels than the device can hold") {
         check_one_line_error(wavepath("render " + kHexroom +
                                           " --width 16384 --height 16384 --out '" + out.string() +

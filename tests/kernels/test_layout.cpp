@@ -143,7 +143,7 @@ namespace {
     X(WpLaunch, count)                                                                             \
     X(WpLaunch, ray_queue)                                                                         \
     X(WpLaunch, from_finished)                                                                     \
-    X(WpLaunch, pad0)
+    X(WpLaunch, sorted)
 
 struct Entry {
     std::string what;

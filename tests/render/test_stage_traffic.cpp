@@ -53,9 +53,10 @@ TEST_CASE("stage traffic: each stage's table matches the buffers its kernel touc
 #define WP_NAME(name, ...) path_buffers.insert(#name);
     WP_PATH_BUFFERS(WP_NAME)
 #undef WP_NAME
-    path_buffers.erase("counters"); // atomics on one cache line, not counted
-    for (Stage stage :
-         {Stage::Generate, Stage::Intersect, Stage::Shade, Stage::Shadow, Stage::Accumulate}) {
+    path_buffers.erase("counters");         // atomics on one cache line, not counted
+    path_buffers.erase("shade_key_counts"); // the same, per key (shade_sort.cl)
+    for (Stage stage : {Stage::Generate, Stage::Intersect, Stage::ShadeSort, Stage::Shade,
+                        Stage::Shadow, Stage::Accumulate}) {
         const std::string file = std::string(stage_name(stage)) + ".cl";
         const std::string code = code_of(file);
         std::set<std::string> listed;
