@@ -7,8 +7,9 @@
  * pushed farthest first with their entry distances, and the nearest is
  * visited next; popped children that start beyond the closest hit found since
  * are skipped. An any-hit query pushes them in node order, unsorted: it stops
- * at any hit, and most shadow segments are not blocked at all (whether sorting
- * would find blockers sooner was not measured, docs/performance.md).
+ * at any hit, and most shadow segments are not blocked at all. (Shadow rays
+ * take a traversal of their own, bvh_any_hit.h; this one answers any-hit
+ * queries inside instances.)
  * Leaves of triangles are tested four at a time (triangle4.h), other leaves
  * one primitive at a time; both give the hits of the loop over all primitives
  * (traverse.h): the same tests, limits and update rule, so a ray finds the

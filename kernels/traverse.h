@@ -26,6 +26,7 @@
 #define WP_TRAVERSE_H
 
 #include "bvh.h"
+#include "bvh_any_hit.h"
 #include "primitive.h"
 #include "sphere.h"
 #include "triangle.h"
@@ -178,11 +179,16 @@ static inline WP_ALWAYS_INLINE wp_uint wp_closest_hit(const WpSceneView* scene, 
     return wp_trace(scene, origin, direction, t_max, 0, 0, t_hit);
 }
 
-/* 1 if any primitive lies on the segment origin + t * direction, 0 < t < t_max. */
+/* 1 if any primitive lies on the segment origin + t * direction, 0 < t < t_max.
+ * Through a hierarchy, its own traversal (bvh_any_hit.h). */
 static inline WP_ALWAYS_INLINE int wp_occluded(const WpSceneView* scene, float3 origin,
                                                float3 direction, float t_max) {
+#if WP_USE_BVH
+    return wp_bvh_occluded(scene, origin, direction, t_max);
+#else
     float t;
-    return wp_trace(scene, origin, direction, t_max, 1, 0, &t) != WP_NO_HIT;
+    return wp_loop_trace(scene, origin, direction, t_max, 1, 0, &t) != WP_NO_HIT;
+#endif
 }
 
 /* The same for a shadow ray: a segment between two points of the scene's
@@ -190,8 +196,12 @@ static inline WP_ALWAYS_INLINE int wp_occluded(const WpSceneView* scene, float3 
  * skips the faces that cannot block it. The shadow stages call this. */
 static inline WP_ALWAYS_INLINE int wp_shadow_occluded(const WpSceneView* scene, float3 origin,
                                                       float3 direction, float t_max) {
+#if WP_USE_BVH
+    return wp_bvh_occluded(scene, origin, direction, t_max);
+#else
     float t;
-    return wp_trace(scene, origin, direction, t_max, 1, 1, &t) != WP_NO_HIT;
+    return wp_loop_trace(scene, origin, direction, t_max, 1, 1, &t) != WP_NO_HIT;
+#endif
 }
 
 #endif /* WP_TRAVERSE_H */

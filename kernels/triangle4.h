@@ -92,6 +92,29 @@ static inline int4 wp_triangle4_test(const WpShearedRay* ray, float4 p0x, float4
     return inside & in_box & in_range;
 }
 
+/* wp_triangle4_test on the four triangles group .. group + 3 of a leaf whose
+ * last triangle is `last`: lanes past the leaf's end test its last triangle
+ * again and are dropped from the result (0 in their lane). */
+static inline int4 wp_triangle4_group_test(__global const WpTriangle* triangles, wp_uint group,
+                                           wp_uint last, const WpShearedRay* ray, float t_max,
+                                           float4* T, float4* det) {
+    __global const WpTriangle* t0 = &triangles[group];
+    __global const WpTriangle* t1 = &triangles[min(group + 1u, last)];
+    __global const WpTriangle* t2 = &triangles[min(group + 2u, last)];
+    __global const WpTriangle* t3 = &triangles[min(group + 3u, last)];
+    float4 a0 = t0->v0, a1 = t1->v0, a2 = t2->v0, a3 = t3->v0;
+    float4 b0 = t0->v1, b1 = t1->v1, b2 = t2->v1, b3 = t3->v1;
+    float4 c0 = t0->v2, c1 = t1->v2, c2 = t2->v2, c3 = t3->v2;
+    int4 found =
+        wp_triangle4_test(ray, (float4)(a0.x, a1.x, a2.x, a3.x), (float4)(a0.y, a1.y, a2.y, a3.y),
+                          (float4)(a0.z, a1.z, a2.z, a3.z), (float4)(b0.x, b1.x, b2.x, b3.x),
+                          (float4)(b0.y, b1.y, b2.y, b3.y), (float4)(b0.z, b1.z, b2.z, b3.z),
+                          (float4)(c0.x, c1.x, c2.x, c3.x), (float4)(c0.y, c1.y, c2.y, c3.y),
+                          (float4)(c0.z, c1.z, c2.z, c3.z), t_max, T, det);
+    wp_uint lanes = min(last - group + 1u, 4u);
+    return found & ((int4)(0, 1, 2, 3) < (int4)((int)lanes));
+}
+
 /* The triangles first .. first + count - 1 of `triangles` hit by the ray at
  * 0 < t < *closest: returns the closest one (with any_hit, the first one in
  * order) and lowers *closest to its t, or returns WP_NO_HIT and leaves
@@ -102,24 +125,8 @@ static inline wp_uint wp_leaf_triangles(__global const WpTriangle* triangles, wp
     wp_uint hit = WP_NO_HIT;
     wp_uint last = first + count - 1u;
     for (wp_uint group = first; group <= last; group += 4u) {
-        /* Lanes past the leaf's end test its last triangle again, and are
-         * dropped below. */
-        __global const WpTriangle* t0 = &triangles[group];
-        __global const WpTriangle* t1 = &triangles[min(group + 1u, last)];
-        __global const WpTriangle* t2 = &triangles[min(group + 2u, last)];
-        __global const WpTriangle* t3 = &triangles[min(group + 3u, last)];
-        float4 a0 = t0->v0, a1 = t1->v0, a2 = t2->v0, a3 = t3->v0;
-        float4 b0 = t0->v1, b1 = t1->v1, b2 = t2->v1, b3 = t3->v1;
-        float4 c0 = t0->v2, c1 = t1->v2, c2 = t2->v2, c3 = t3->v2;
         float4 T, det;
-        int4 found = wp_triangle4_test(
-            ray, (float4)(a0.x, a1.x, a2.x, a3.x), (float4)(a0.y, a1.y, a2.y, a3.y),
-            (float4)(a0.z, a1.z, a2.z, a3.z), (float4)(b0.x, b1.x, b2.x, b3.x),
-            (float4)(b0.y, b1.y, b2.y, b3.y), (float4)(b0.z, b1.z, b2.z, b3.z),
-            (float4)(c0.x, c1.x, c2.x, c3.x), (float4)(c0.y, c1.y, c2.y, c3.y),
-            (float4)(c0.z, c1.z, c2.z, c3.z), *closest, &T, &det);
-        wp_uint lanes = min(last - group + 1u, 4u);
-        found &= (int4)(0, 1, 2, 3) < (int4)((int)lanes);
+        int4 found = wp_triangle4_group_test(triangles, group, last, ray, *closest, &T, &det);
         if (!any(found))
             continue;
         float Ts[4], dets[4];
@@ -139,6 +146,21 @@ static inline wp_uint wp_leaf_triangles(__global const WpTriangle* triangles, wp
         }
     }
     return hit;
+}
+
+/* 1 if any of the triangles first .. first + count - 1 lies on the ray at
+ * 0 < t < t_max. The bound never shrinks here, so a lane that the four-lane
+ * test accepts is a hit as it stands: no lane is looked at on its own, no t
+ * is divided out. The same answer as wp_leaf_triangles with any_hit. */
+static inline int wp_leaf_triangles_occluded(__global const WpTriangle* triangles, wp_uint first,
+                                             wp_uint count, const WpShearedRay* ray, float t_max) {
+    wp_uint last = first + count - 1u;
+    for (wp_uint group = first; group <= last; group += 4u) {
+        float4 T, det;
+        if (any(wp_triangle4_group_test(triangles, group, last, ray, t_max, &T, &det)))
+            return 1;
+    }
+    return 0;
 }
 
 #endif /* WP_TRIANGLE4_H */

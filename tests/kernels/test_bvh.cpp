@@ -211,6 +211,77 @@ TEST_CASE("bvh traversal: closest and any hit equal testing every primitive, for
     CHECK(ties < rays / 100);
 }
 
+TEST_CASE("bvh any hit: segments ending just short of, at and just past the nearest hit, and "
+          "degenerate triangles, are blocked exactly where testing every primitive says so",
+          "[cl][bvh]") {
+    // The shadow rays' traversal (kernels/bvh_any_hit.h) against the loop over
+    // every primitive: a random scene with degenerate triangles (repeated and
+    // collinear corners) among the loose ones, rays aimed at its triangles,
+    // and for each ray that hits, segments that end a few ulps short of the
+    // nearest hit's t (as the loop computes it), at it, and a few ulps past it.
+    Scene scene = random_scene(23, 24, 200, 12);
+    std::mt19937 generator(29);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const auto material = scene.triangles.front().material;
+    for (int k = 0; k < 200; ++k) {
+        const glm::dvec3 a(20 * unit(generator) - 10, 4 * unit(generator),
+                           20 * unit(generator) - 10);
+        const glm::dvec3 b = a + glm::dvec3(unit(generator), unit(generator), unit(generator));
+        scene.triangles.push_back({{a, b, k % 2 ? b : 0.25 * a + 0.75 * b}, material});
+    }
+    std::vector<cl_float4> origins, directions;
+    const int rays = 20000;
+    for (int k = 0; k < rays; ++k) {
+        const Triangle& aim = scene.triangles[generator() % scene.triangles.size()];
+        double u = unit(generator), v = unit(generator);
+        if (u + v > 1)
+            u = 1 - u, v = 1 - v;
+        const glm::dvec3 target = aim.v[0] + u * (aim.v[1] - aim.v[0]) + v * (aim.v[2] - aim.v[0]);
+        const glm::dvec3 o(24 * unit(generator) - 12, 10 * unit(generator) - 3,
+                           24 * unit(generator) - 12);
+        origins.push_back(f4(o));
+        directions.push_back(f4(glm::normalize(target - o), INFINITY));
+    }
+    const Compared nearest = compare(scene, origins, directions);
+
+    // Five segments a ray: 4 ulps short, 1 ulp short, at, 1 ulp and 4 ulps past.
+    std::vector<cl_float4> segment_origins, segment_directions;
+    for (int k = 0; k < rays; ++k) {
+        if (nearest.hits[4 * k + 1] == WP_NO_HIT)
+            continue;
+        const float t = nearest.t[2 * k + 1];
+        const float ends[5] = {
+            std::nextafter(std::nextafter(std::nextafter(std::nextafter(t, 0.0f), 0.0f), 0.0f),
+                           0.0f),
+            std::nextafter(t, 0.0f), t, std::nextafter(t, INFINITY),
+            std::nextafter(
+                std::nextafter(std::nextafter(std::nextafter(t, INFINITY), INFINITY), INFINITY),
+                INFINITY)};
+        for (float end : ends) {
+            segment_origins.push_back(origins[std::size_t(k)]);
+            cl_float4 d = directions[std::size_t(k)];
+            d.s[3] = end;
+            segment_directions.push_back(d);
+        }
+    }
+    const std::size_t segments = segment_origins.size();
+    REQUIRE(segments > 5 * rays / 2);
+    const Compared r = compare(scene, segment_origins, segment_directions);
+    std::size_t differ = 0, blocked_short = 0, blocked_past = 0;
+    for (std::size_t k = 0; k < segments; ++k) {
+        differ += r.hits[4 * k + 2] != r.hits[4 * k + 3];
+        blocked_short += k % 5 == 0 && r.hits[4 * k + 3] != 0;
+        blocked_past += k % 5 == 4 && r.hits[4 * k + 3] != 0;
+    }
+    WARN("bvh any hit at the nearest hit: " << segments / 5 << " rays; blocked 4 ulps short "
+                                            << blocked_short << ", 4 ulps past " << blocked_past);
+    CHECK(differ == 0);
+    // Both sides of the boundary were exercised: the segments short of the
+    // nearest hit are mostly clear, those past it mostly blocked.
+    CHECK(blocked_short < segments / 5 / 10);
+    CHECK(blocked_past > segments / 5 * 9 / 10);
+}
+
 TEST_CASE("bvh traversal: no ray from inside a closed mesh of 43200 triangles slips through an "
           "edge or vertex (10^6 rays)",
           "[cl][bvh]") {

@@ -8,7 +8,9 @@
 // shrinking bound may give to either copy: the four-lane test must pick the same one), degenerate
 // triangles (repeated and collinear corners) and rays aimed at interiors, edges and vertices, with
 // infinite and finite bounds. The closest hits are also held against a double-precision host
-// reference: the reported t is the ray's distance to that triangle's plane.
+// reference: the reported t is the ray's distance to that triangle's plane. The any-hit leaf test
+// of the shadow rays' traversal (wp_leaf_triangles_occluded) must say hit exactly where the loop
+// finds a first hit.
 #include "support/kernel_test_util.hpp"
 
 #include <cmath>
@@ -55,10 +57,11 @@ __kernel void leaf(__global const WpTriangle* triangles, __global const uint2* l
     float four_closest = t_max, four_any = t_max;
     wp_uint four_hit = wp_leaf_triangles(triangles, first, n, &ray, 0, &four_closest);
     wp_uint four_first = wp_leaf_triangles(triangles, first, n, &ray, 1, &four_any);
-    hits_out[4 * i + 0] = hit;
-    hits_out[4 * i + 1] = four_hit;
-    hits_out[4 * i + 2] = first_hit;
-    hits_out[4 * i + 3] = four_first;
+    hits_out[5 * i + 0] = hit;
+    hits_out[5 * i + 1] = four_hit;
+    hits_out[5 * i + 2] = first_hit;
+    hits_out[5 * i + 3] = four_first;
+    hits_out[5 * i + 4] = wp_leaf_triangles_occluded(triangles, first, n, &ray, t_max);
     t_out[2 * i + 0] = closest;
     t_out[2 * i + 1] = four_closest;
 }
@@ -163,40 +166,43 @@ TEST_CASE("leaf triangles: four at a time give the one-at-a-time test's hits bit
     cl::Kernel kernel(program(kLeafSource, "leaf_triangles.cl"), "leaf");
     cl::Buffer triangle_buffer = upload(triangles), leaf_buffer = upload(leaves),
                origin_buffer = upload(origins), direction_buffer = upload(directions);
-    cl::Buffer hits = upload(std::vector<cl_uint>(4 * count)),
+    cl::Buffer hits = upload(std::vector<cl_uint>(5 * count)),
                ts = upload(std::vector<float>(2 * count));
     set_args(kernel, triangle_buffer, leaf_buffer, cl_uint(count), origin_buffer, direction_buffer,
              hits, ts);
     launch(kernel, count);
-    std::vector<cl_uint> hit = download<cl_uint>(hits, 4 * count);
+    std::vector<cl_uint> hit = download<cl_uint>(hits, 5 * count);
     std::vector<float> t = download<float>(ts, 2 * count);
 
     std::size_t closest_hits = 0, any_hits = 0, ties = 0, differ = 0, any_differ = 0,
-                far_from_plane = 0;
+                occluded_differ = 0, far_from_plane = 0;
     for (std::size_t i = 0; i < count; ++i) {
-        if (hit[4 * i] != hit[4 * i + 1] || float_bits(t[2 * i]) != float_bits(t[2 * i + 1]))
+        if (hit[5 * i] != hit[5 * i + 1] || float_bits(t[2 * i]) != float_bits(t[2 * i + 1]))
             ++differ;
-        if (hit[4 * i + 2] != hit[4 * i + 3])
+        if (hit[5 * i + 2] != hit[5 * i + 3])
             ++any_differ;
-        if (hit[4 * i] == WP_NO_HIT)
+        if ((hit[5 * i + 2] != WP_NO_HIT) != (hit[5 * i + 4] != 0))
+            ++occluded_differ;
+        if (hit[5 * i] == WP_NO_HIT)
             continue;
         ++closest_hits;
-        any_hits += hit[4 * i + 2] != WP_NO_HIT;
+        any_hits += hit[5 * i + 2] != WP_NO_HIT;
         // A duplicate ahead of the hit (a tie the loop gave to the later copy).
-        if (hit[4 * i] > leaves[i].s[0] &&
-            std::memcmp(&triangles[hit[4 * i]], &triangles[hit[4 * i] - 1], sizeof(WpTriangle)) ==
+        if (hit[5 * i] > leaves[i].s[0] &&
+            std::memcmp(&triangles[hit[5 * i]], &triangles[hit[5 * i] - 1], sizeof(WpTriangle)) ==
                 0)
             ++ties;
-        if (degenerate[hit[4 * i]] || grazing[i])
+        if (degenerate[hit[5 * i]] || grazing[i])
             continue;
         Corner o = corner(origins[i]), d = corner(directions[i]);
-        double reference = plane_distance(triangles[hit[4 * i]], o, d);
+        double reference = plane_distance(triangles[hit[5 * i]], o, d);
         if (!(std::abs(double(t[2 * i]) - reference) <= 1.0e-4 * std::max(1.0, reference)))
             ++far_from_plane;
     }
     INFO("rays " << count << ", closest hits " << closest_hits << ", any hits " << any_hits);
     CHECK(differ == 0);
     CHECK(any_differ == 0);
+    CHECK(occluded_differ == 0);
     CHECK(ties > 0); // the ties were exercised
     CHECK(far_from_plane == 0);
     // The rays must exercise both outcomes (all are aimed at a triangle; the

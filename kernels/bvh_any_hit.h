@@ -1,0 +1,128 @@
+/* Any hit through the hierarchy (WP_USE_BVH): whether anything lies on a ray
+ * segment, the question of every shadow ray.
+ *
+ * wp_bvh_trace answers it too, but carries the closest hit's bookkeeping:
+ * entry distances on the stack, the test of each popped child against the
+ * bound, the leaf's lanes looked at one by one. None of that can change an
+ * any-hit answer: the bound is the segment's end throughout (the query ends
+ * at its first hit), so every child pushed stays in range and a lane the
+ * four-lane leaf test accepts is a hit as it stands. So here:
+ *   - the stack holds the children alone (number and count), no distances;
+ *   - a node's hit children are pushed in node order, unsorted, without a
+ *     branch per child (nearest first was measured slower: most shadow
+ *     segments are not blocked at all and visit every node they cross
+ *     whatever the order);
+ *   - a leaf of triangles answers as soon as one of its groups of four has a
+ *     lane hit (wp_leaf_triangles_occluded);
+ *   - the pushed children's first cache lines are prefetched: at 10^6
+ *     triangles the traversal waits mostly on loads of nodes and triangles
+ *     that miss the caches, and a pushed child is popped only after its
+ *     siblings' subtrees, time enough for its lines to arrive.
+ * docs/performance.md ("Any-hit traversal") has the measurements, and what
+ * did not help.
+ *
+ * The answer is the same as wp_bvh_trace's with any_hit: the same box tests
+ * against the same bound, the same leaf tests, so the same primitives are
+ * found (maybe another one first, which an any-hit query cannot tell). */
+#ifndef WP_BVH_ANY_HIT_H
+#define WP_BVH_ANY_HIT_H
+
+#include "bvh.h"
+
+/* A hint that the 64-byte line at `address` is wanted soon. OpenCL's own
+ * prefetch() compiles to nothing on PoCL 3.1 (no prefetch instruction in the
+ * kernel's code), Clang's builtin to the CPU's prefetch instruction. Only
+ * where the kernel is compiled for a CPU: for other targets the builtin
+ * becomes an llvm.prefetch call that some cannot run (Oclgrind, which
+ * compiles for SPIR, stops on it as an undefined function); there nothing. */
+#if defined(__clang__) && (defined(__x86_64__) || defined(__aarch64__))
+#define WP_PREFETCH_LINE(address) __builtin_prefetch((__global const char*)(address))
+#else
+#define WP_PREFETCH_LINE(address) ((void)(address))
+#endif
+
+/* Pushes the children of node n whose boxes the ray meets at 0 <= t <= t_max,
+ * in node order. Every child is written at the top and kept only if hit:
+ * straight-line code, four stores (a missed child's write lands one past the
+ * top, which the stack has room for). Then each kept child's first lines are
+ * prefetched: a node's two, or a leaf's first three (its first four
+ * triangles); a leaf of other primitives is left alone. */
+static inline void wp_bvh_push_hit_children(const WpSceneView* scene, __global const WpBvhNode* n,
+                                            const WpBoxRay* ray, float t_max, wp_uint* children,
+                                            wp_uint* counts, int* top) {
+    float4 enter;
+    int4 hit = wp_hit_child_boxes(n, ray, t_max, &enter);
+    int first = *top, at = first;
+    children[at] = n->child[0];
+    counts[at] = n->count[0];
+    at -= hit.s0;
+    children[at] = n->child[1];
+    counts[at] = n->count[1];
+    at -= hit.s1;
+    children[at] = n->child[2];
+    counts[at] = n->count[2];
+    at -= hit.s2;
+    children[at] = n->child[3];
+    counts[at] = n->count[3];
+    at -= hit.s3;
+    *top = at;
+    for (int i = first; i < at; ++i) {
+        if (counts[i] == 0u) {
+            __global const char* node = (__global const char*)&scene->bvh_nodes[children[i]];
+            WP_PREFETCH_LINE(node);
+            WP_PREFETCH_LINE(node + 64);
+        } else if (children[i] + counts[i] <= scene->triangle_count) {
+            __global const char* leaf = (__global const char*)&scene->triangles[children[i]];
+            WP_PREFETCH_LINE(leaf);
+            WP_PREFETCH_LINE(leaf + 64);
+            WP_PREFETCH_LINE(leaf + 128);
+        }
+    }
+}
+
+/* 1 if a primitive lies on origin + t direction, 0 < t < t_max. */
+static inline int wp_bvh_occluded(const WpSceneView* scene, float3 origin, float3 direction,
+                                  float t_max) {
+    WpShearedRay sheared = wp_shear_ray(origin, direction);
+    WpBoxRay box_ray = wp_box_ray(origin, direction);
+    /* The host keeps the deepest path's pushes within WP_BVH_STACK_SIZE; one
+     * more for a missed child's write past the top. */
+    wp_uint children[WP_BVH_STACK_SIZE + 1], counts[WP_BVH_STACK_SIZE + 1];
+    int top = 0;
+    wp_uint child = 0u, count = 0u; /* the root */
+    for (;;) {
+        if (count == 0u) {
+            wp_bvh_push_hit_children(scene, &scene->bvh_nodes[child], &box_ray, t_max, children,
+                                     counts, &top);
+        } else if (child + count <= scene->triangle_count) {
+            if (wp_leaf_triangles_occluded(scene->triangles, child, count, &sheared, t_max))
+                return 1;
+        } else {
+            for (wp_uint k = 0; k < count; ++k) {
+                wp_uint primitive = child + k;
+                float t;
+#if WP_TRACE_INSTANCES
+                /* Past the plain primitives: an instance, traversed in its
+                 * object space (instance_trace.h). */
+                wp_uint plain = scene->triangle_count + scene->sphere_count;
+                if (primitive >= plain) {
+                    if (wp_instance_trace(scene, primitive - plain, origin, direction, t_max, 1,
+                                          &t) != WP_NO_HIT)
+                        return 1;
+                    continue;
+                }
+#endif
+                if (wp_intersect_primitive(scene, &sheared, origin, direction, primitive, t_max,
+                                           &t))
+                    return 1;
+            }
+        }
+        if (top == 0)
+            return 0;
+        --top;
+        child = children[top];
+        count = counts[top];
+    }
+}
+
+#endif /* WP_BVH_ANY_HIT_H */
