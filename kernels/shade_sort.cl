@@ -28,14 +28,27 @@ static inline wp_uint wp_shade_key(const WpSceneView* scene, wp_uint primitive) 
     return scene->materials[wp_primitive_material(scene, primitive)].kind;
 }
 
+/* This work-item's entry of the launch's ray queue: its slot and its key. A
+ * surplus work-item past the queue's end has no key (WP_SHADE_KEY_COUNT,
+ * counted nowhere) and slot 0, which it never writes. */
+static inline wp_uint wp_queued_shade_key(const WpSceneView* scene, WpFrame frame, WpLaunch launch,
+                                          __global wp_uint* counters, __global wp_uint* ray_queues,
+                                          __global wp_uint* hit_primitive, wp_uint* slot) {
+    wp_uint index = get_global_id(0);
+    if (index >= counters[launch.ray_queue]) {
+        *slot = 0u;
+        return WP_SHADE_KEY_COUNT;
+    }
+    *slot = wp_ray_queue(ray_queues, frame, launch.ray_queue)[index];
+    return wp_shade_key(scene, hit_primitive[*slot]);
+}
+
 __kernel void shade_sort_count(WP_STAGE_PARAMETERS) {
     __local wp_uint keys[WP_MAX_WORK_GROUP_SIZE];
     WP_SCENE_VIEW(scene);
-    wp_uint index = get_global_id(0), item = get_local_id(0);
-    /* A surplus work-item past the queue's end has no key (WP_SHADE_KEY_COUNT). */
-    int queued = index < counters[launch.ray_queue];
-    wp_uint slot = queued ? wp_ray_queue(ray_queues, frame, launch.ray_queue)[index] : 0u;
-    keys[item] = queued ? wp_shade_key(&scene, hit_primitive[slot]) : WP_SHADE_KEY_COUNT;
+    wp_uint item = get_local_id(0), slot;
+    keys[item] =
+        wp_queued_shade_key(&scene, frame, launch, counters, ray_queues, hit_primitive, &slot);
     barrier(CLK_LOCAL_MEM_FENCE);
     if (item == 0u) {
         wp_uint in_group[WP_SHADE_KEY_COUNT];
@@ -55,10 +68,9 @@ __kernel void shade_sort(WP_STAGE_PARAMETERS) {
     __local wp_uint place_in_group[WP_MAX_WORK_GROUP_SIZE]; /* among the group's rays of its key */
     __local wp_uint first_place[WP_SHADE_KEY_COUNT];        /* the group's first place per key */
     WP_SCENE_VIEW(scene);
-    wp_uint index = get_global_id(0), item = get_local_id(0);
-    int queued = index < counters[launch.ray_queue];
-    wp_uint slot = queued ? wp_ray_queue(ray_queues, frame, launch.ray_queue)[index] : 0u;
-    wp_uint key = queued ? wp_shade_key(&scene, hit_primitive[slot]) : WP_SHADE_KEY_COUNT;
+    wp_uint item = get_local_id(0), slot;
+    wp_uint key =
+        wp_queued_shade_key(&scene, frame, launch, counters, ray_queues, hit_primitive, &slot);
     keys[item] = key;
     barrier(CLK_LOCAL_MEM_FENCE);
     if (item == 0u) {
