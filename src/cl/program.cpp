@@ -4,6 +4,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <functional>
 #include <iostream>
 #include <optional>
 #include <set>
@@ -159,6 +161,31 @@ const char* cache_outcome_name(CacheOutcome outcome) {
     return "?";
 }
 
+namespace {
+
+// WAVEPATH_PROGRAM_LOG=FILE appends one line per program build asked for:
+// a hash of the expanded source and options, the source's name, the options
+// and the process's arguments (a test case's name under ctest), so that a suite run
+// counts the distinct programs each test compiles (tools/program-census,
+// docs/testing.md). A cold suite's time is mostly those compiles.
+void log_program_request(std::string_view source_name, const std::string& expanded,
+                         const std::string& options) {
+    const char* path = std::getenv("WAVEPATH_PROGRAM_LOG");
+    if (path == nullptr || *path == '\0')
+        return;
+    std::string process;
+    if (std::ifstream cmdline("/proc/self/cmdline", std::ios::binary); cmdline) {
+        std::string argument;
+        while (std::getline(cmdline, argument, '\0'))
+            process += (process.empty() ? "" : " ") + argument;
+    }
+    const std::size_t program = std::hash<std::string>{}(expanded + '\n' + options);
+    std::ofstream(path, std::ios::app)
+        << std::hex << program << '\t' << source_name << '\t' << options << '\t' << process << '\n';
+}
+
+} // namespace
+
 // Options a device needs besides the caller's.
 //  - Division and square root correctly rounded wherever the device can: by
 //    default OpenCL allows 2.5 and 3 ulps, which NVIDIA's compiler uses, and
@@ -191,6 +218,7 @@ BuiltProgram build_program(const cl::Context& context, const cl::Device& device,
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     };
     std::string expanded = expand_includes(source, source_name);
+    log_program_request(source_name, expanded, options);
     BuiltProgram built;
     built.options = caller_options;
 
