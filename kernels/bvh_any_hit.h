@@ -80,101 +80,48 @@ static inline void wp_bvh_push_hit_children(const WpSceneView* scene, __global c
     }
 }
 
-/* One any-hit query under way: the ray, its stack of children still to
- * visit, and the child it visits next. A work-item may hold several and step
- * them in turn (wp_bvh_occluded_stream), so that while one waits for a node
- * or leaf to arrive from memory the others' work goes on. */
-typedef struct {
-    WpShearedRay sheared;
-    WpBoxRay box_ray;
-    float3 origin, direction;
-    float t_max;
-    /* The host keeps the deepest path's pushes within WP_BVH_STACK_SIZE; one
-     * more for a missed child's write past the top. */
-    wp_uint children[WP_BVH_STACK_SIZE + 1], counts[WP_BVH_STACK_SIZE + 1];
-    int top;
-    wp_uint child, count; /* the next to visit */
-    int running;          /* 0 once answered */
-    int blocked;          /* the answer */
-} WpAnyHitWalk;
-
-static inline void wp_any_hit_walk_start(WpAnyHitWalk* walk, float3 origin, float3 direction,
-                                         float t_max) {
-    walk->sheared = wp_shear_ray(origin, direction);
-    walk->box_ray = wp_box_ray(origin, direction);
-    walk->origin = origin;
-    walk->direction = direction;
-    walk->t_max = t_max;
-    walk->top = 0;
-    walk->child = 0u; /* the root */
-    walk->count = 0u;
-    walk->running = 1;
-    walk->blocked = 0;
-}
-
-/* Visits the walk's next child (pushes a node's hit children, or tests a
- * leaf) and takes the one after it off the stack; stops the walk at a hit or
- * once the stack is empty. */
-static inline void wp_any_hit_walk_step(const WpSceneView* scene, WpAnyHitWalk* walk) {
-    wp_uint child = walk->child, count = walk->count;
-    float t_max = walk->t_max;
-    int hit = 0;
-    if (count == 0u) {
-        wp_bvh_push_hit_children(scene, &scene->bvh_nodes[child], &walk->box_ray, t_max,
-                                 walk->children, walk->counts, &walk->top);
-    } else if (child + count <= scene->triangle_count) {
-        hit = wp_leaf_triangles_occluded(scene->triangles, child, count, &walk->sheared, t_max);
-    } else {
-        for (wp_uint k = 0; k < count && !hit; ++k) {
-            wp_uint primitive = child + k;
-            float t;
-#if WP_TRACE_INSTANCES
-            /* Past the plain primitives: an instance, traversed in its
-             * object space (instance_trace.h). */
-            wp_uint plain = scene->triangle_count + scene->sphere_count;
-            if (primitive >= plain) {
-                hit = wp_instance_trace(scene, primitive - plain, walk->origin, walk->direction,
-                                        t_max, 1, &t) != WP_NO_HIT;
-                continue;
-            }
-#endif
-            hit = wp_intersect_primitive(scene, &walk->sheared, walk->origin, walk->direction,
-                                         primitive, t_max, &t);
-        }
-    }
-    if (hit || walk->top == 0) {
-        walk->blocked = hit;
-        walk->running = 0;
-        return;
-    }
-    --walk->top;
-    walk->child = walk->children[walk->top];
-    walk->count = walk->counts[walk->top];
-}
-
 /* 1 if a primitive lies on origin + t direction, 0 < t < t_max. */
 static inline int wp_bvh_occluded(const WpSceneView* scene, float3 origin, float3 direction,
                                   float t_max) {
-    WpAnyHitWalk walk;
-    wp_any_hit_walk_start(&walk, origin, direction, t_max);
-    while (walk.running)
-        wp_any_hit_walk_step(scene, &walk);
-    return walk.blocked;
-}
-
-/* The queries of `rays` walks at once (started, or with running 0 for none),
- * stepped in turn, one node or leaf each, until all are answered: the
- * traversal of one ray waits on memory one load after another, and stepping
- * another ray in between gives each load the other's work to hide behind. */
-static inline void wp_bvh_occluded_stream(const WpSceneView* scene, WpAnyHitWalk* walks, int rays) {
-    for (int running = 1; running;) {
-        running = 0;
-        for (int r = 0; r < rays; ++r) {
-            if (walks[r].running) {
-                wp_any_hit_walk_step(scene, &walks[r]);
-                running |= walks[r].running;
+    WpShearedRay sheared = wp_shear_ray(origin, direction);
+    WpBoxRay box_ray = wp_box_ray(origin, direction);
+    /* The host keeps the deepest path's pushes within WP_BVH_STACK_SIZE; one
+     * more for a missed child's write past the top. */
+    wp_uint children[WP_BVH_STACK_SIZE + 1], counts[WP_BVH_STACK_SIZE + 1];
+    int top = 0;
+    wp_uint child = 0u, count = 0u; /* the root */
+    for (;;) {
+        if (count == 0u) {
+            wp_bvh_push_hit_children(scene, &scene->bvh_nodes[child], &box_ray, t_max, children,
+                                     counts, &top);
+        } else if (child + count <= scene->triangle_count) {
+            if (wp_leaf_triangles_occluded(scene->triangles, child, count, &sheared, t_max))
+                return 1;
+        } else {
+            for (wp_uint k = 0; k < count; ++k) {
+                wp_uint primitive = child + k;
+                float t;
+#if WP_TRACE_INSTANCES
+                /* Past the plain primitives: an instance, traversed in its
+                 * object space (instance_trace.h). */
+                wp_uint plain = scene->triangle_count + scene->sphere_count;
+                if (primitive >= plain) {
+                    if (wp_instance_trace(scene, primitive - plain, origin, direction, t_max, 1,
+                                          &t) != WP_NO_HIT)
+                        return 1;
+                    continue;
+                }
+#endif
+                if (wp_intersect_primitive(scene, &sheared, origin, direction, primitive, t_max,
+                                           &t))
+                    return 1;
             }
         }
+        if (top == 0)
+            return 0;
+        --top;
+        child = children[top];
+        count = counts[top];
     }
 }
 

@@ -6,47 +6,6 @@
 #include "stage.h"
 #include "traverse.h"
 
-/* Adds a queued shadow ray's contribution to its path's radiance. */
-static inline void wp_add_shadow_contribution(__global float4* radiance,
-                                              __global const float4* shadow_contribution,
-                                              wp_uint slot) {
-    __global float* sum = (__global float*)(radiance + slot);
-    __global const float* add = (__global const float*)(shadow_contribution + slot);
-    sum[0] += add[0];
-    sum[1] += add[1];
-    sum[2] += add[2];
-    sum[3] += add[3];
-}
-
-#if WP_USE_BVH
-/* Through the hierarchy, each work-item takes WP_BVH_SHADOW_RAYS_PER_ITEM
- * consecutive queue entries (the host launches that many fewer items) and
- * steps their traversals in turn, so that one ray's wait for a node that
- * misses the caches overlaps the other's work (bvh_any_hit.h). The last
- * item may hold fewer. */
-__kernel void shadow(WP_STAGE_PARAMETERS) {
-    wp_uint first = (wp_uint)get_global_id(0) * WP_BVH_SHADOW_RAYS_PER_ITEM;
-    if (first >= launch.count)
-        return;
-    WP_SCENE_VIEW(scene);
-    WpAnyHitWalk walks[WP_BVH_SHADOW_RAYS_PER_ITEM];
-    wp_uint slots[WP_BVH_SHADOW_RAYS_PER_ITEM];
-    for (wp_uint r = 0; r < WP_BVH_SHADOW_RAYS_PER_ITEM; ++r) {
-        int queued = first + r < launch.count;
-        wp_uint slot = queued ? shadow_queue[first + r] : 0u;
-        slots[r] = slot;
-        wp_any_hit_walk_start(&walks[r], wp_load_xyz(shadow_origin, slot),
-                              wp_load_xyz(shadow_direction, slot),
-                              wp_load_w(shadow_direction, slot));
-        walks[r].running = queued;
-        walks[r].blocked = !queued;
-    }
-    wp_bvh_occluded_stream(&scene, walks, WP_BVH_SHADOW_RAYS_PER_ITEM);
-    for (wp_uint r = 0; r < WP_BVH_SHADOW_RAYS_PER_ITEM; ++r)
-        if (!walks[r].blocked)
-            wp_add_shadow_contribution(radiance, shadow_contribution, slots[r]);
-}
-#else
 __kernel void shadow(WP_STAGE_PARAMETERS) {
     wp_uint index = get_global_id(0);
     int queued = index < launch.count;
@@ -61,10 +20,15 @@ __kernel void shadow(WP_STAGE_PARAMETERS) {
     int blocked =
         wp_shadow_occluded(&scene, wp_load_xyz(shadow_origin, slot),
                            wp_load_xyz(shadow_direction, slot), wp_load_w(shadow_direction, slot));
-    if (queued && !blocked)
-        wp_add_shadow_contribution(radiance, shadow_contribution, slot);
+    if (queued && !blocked) {
+        __global float* sum = (__global float*)(radiance + slot);
+        __global const float* add = (__global const float*)(shadow_contribution + slot);
+        sum[0] += add[0];
+        sum[1] += add[1];
+        sum[2] += add[2];
+        sum[3] += add[3];
+    }
 }
-#endif
 
 /* The same test for a shadow ray that a fused kernel traces as soon as shade
  * made it (bounce.cl, wave.cl): the same additions to the same radiance. */

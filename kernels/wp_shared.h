@@ -429,11 +429,6 @@ typedef struct {
  * node, its deepest path pushes at most 3 x 20 + 4 = 64 entries. */
 #define WP_BVH_MAX_DEPTH 41u
 
-/* Shadow rays one work-item of the shadow stage traces through the hierarchy,
- * their traversals stepped in turn (kernels/shadow.cl); without a hierarchy
- * each work-item traces one, and the stage vectorises across them. */
-#define WP_BVH_SHADOW_RAYS_PER_ITEM 2u
-
 /* The pixel reconstruction filters, one row each: X(KIND, Name, name, value,
  * sampled), Mitsuba 3's names. A sample's position in its pixel is drawn
  * from the filter (filter importance sampling, kernels/camera.h), so that the

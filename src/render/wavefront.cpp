@@ -206,8 +206,6 @@ WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const PreparedSc
     program_ = build_wavefront_program(device_.context, device_.info.device, build_options,
                                        options_.program_cache);
     mirror_shadows_ = build_options.find("WP_MIRROR_NEE=1") != std::string::npos;
-    if (build_options.find("WP_USE_BVH=1") != std::string::npos)
-        shadow_rays_per_item_ = WP_BVH_SHADOW_RAYS_PER_ITEM;
     if (mirror_shadows_)
         mirror_shadow_kernel_ = cl::Kernel(program_.program, "mirror_shadow");
     for (std::size_t i = 0; i < kStageKernelNames.size(); ++i)
@@ -268,11 +266,8 @@ void WavefrontIntegrator::launch(Stage stage, const WpLaunch& arguments, std::ui
     cl::Kernel& kernel = other ? *other : kernels_[static_cast<std::size_t>(stage)];
     kernel.setArg(kFrameArgument, frame_);
     kernel.setArg(kLaunchArgument, arguments);
-    // The shadow kernel traces shadow_rays_per_item_ of its rays per work-item.
-    const std::uint32_t per_item = stage == Stage::Shadow && !other ? shadow_rays_per_item_ : 1u;
-    std::size_t work_items = (items + per_item - 1) / per_item;
     std::size_t group = group_size_;
-    std::size_t global = (work_items + group - 1) / group * group;
+    std::size_t global = (items + group - 1) / group * group;
     cl::Event* event = profiler_ ? profiler_->begin(stage, items) : nullptr;
     device_.queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global),
                                        cl::NDRange(group), nullptr, event);

@@ -174,7 +174,6 @@ class WavefrontIntegrator {
     // Kernels built with WP_MIRROR_NEE: the mirror queue's two-leg shadow rays
     // go to mirror_shadow (kernels/shadow.cl) after the shadow stage.
     bool mirror_shadows_ = false;
-    std::uint32_t shadow_rays_per_item_ = 1; // WP_BVH_SHADOW_RAYS_PER_ITEM through a hierarchy
     cl::Kernel mirror_shadow_kernel_;
     cl::Kernel shade_sort_count_kernel_; // the sort's first launch (with sorted_shading)
     Profiler* profiler_ = nullptr;
