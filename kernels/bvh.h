@@ -1,15 +1,13 @@
-/* Traversal of the bounding volume hierarchy (WP_USE_BVH): the closest hit,
- * or any hit, among the primitives on a ray segment.
+/* Traversal of the bounding volume hierarchy (WP_USE_BVH): the closest hit
+ * among the primitives on a ray segment.
  *
  * Depth first with a private stack over four-wide nodes: at a node all four
  * children's boxes are tested at once (float4 code, one child a lane, from
  * the bounds stored as arrays of each coordinate), the children hit are
  * pushed farthest first with their entry distances, and the nearest is
  * visited next; popped children that start beyond the closest hit found since
- * are skipped. An any-hit query pushes them in node order, unsorted: it stops
- * at any hit, and most shadow segments are not blocked at all. (Shadow rays
- * take a traversal of their own, bvh_any_hit.h; this one answers any-hit
- * queries inside instances.)
+ * are skipped. (Any-hit queries, the shadow rays' and those inside instances,
+ * take a traversal of their own: bvh_any_hit.h.)
  * Leaves of triangles are tested four at a time (triangle4.h), other leaves
  * one primitive at a time; both give the hits of the loop over all primitives
  * (traverse.h): the same tests, limits and update rule, so a ray finds the
@@ -88,11 +86,10 @@ typedef struct {
     float enter;
 } WpBvhEntry;
 
-/* Pushes the children of node n that the ray meets before `closest`; with
- * `ordered`, farthest first, so that the nearest is on top (an any-hit query
- * takes them in node order: it stops at its first hit wherever that is). */
+/* Pushes the children of node n that the ray meets before `closest`,
+ * farthest first, so that the nearest is on top. */
 static inline void wp_bvh_push_children(__global const WpBvhNode* n, const WpBoxRay* box_ray,
-                                        float closest, int ordered, WpBvhEntry* stack, int* top) {
+                                        float closest, WpBvhEntry* stack, int* top) {
     float4 enter4;
     int4 hit4 = wp_hit_child_boxes(n, box_ray, closest, &enter4);
     if (!any(hit4))
@@ -108,7 +105,7 @@ static inline void wp_bvh_push_children(__global const WpBvhNode* n, const WpBox
         float enter = enters[i];
         /* Insert, keeping this node's entries nearest on top. */
         int j = (*top)++;
-        while (ordered && j > base && stack[j - 1].enter < enter) {
+        while (j > base && stack[j - 1].enter < enter) {
             stack[j] = stack[j - 1];
             --j;
         }
@@ -136,7 +133,7 @@ static inline int wp_bvh_pop(WpBvhEntry* stack, int* top, float closest, WpBvhEn
 #endif
 
 static inline wp_uint wp_bvh_trace(const WpSceneView* scene, float3 origin, float3 direction,
-                                   float t_max, int any_hit, float* t_hit) {
+                                   float t_max, float* t_hit) {
     wp_uint hit = WP_NO_HIT;
     float closest = t_max;
     WpShearedRay sheared = wp_shear_ray(origin, direction);
@@ -151,19 +148,13 @@ static inline wp_uint wp_bvh_trace(const WpSceneView* scene, float3 origin, floa
     current.enter = 0.0f;
     for (;;) {
         if (current.count == 0u) {
-            wp_bvh_push_children(&scene->bvh_nodes[current.child], &box_ray, closest, !any_hit,
-                                 stack, &top);
+            wp_bvh_push_children(&scene->bvh_nodes[current.child], &box_ray, closest, stack, &top);
         } else if (current.child + current.count <= scene->triangle_count) {
             /* A leaf of triangles: four at a time (triangle4.h). */
             wp_uint found = wp_leaf_triangles(scene->triangles, current.child, current.count,
-                                              &sheared, any_hit, &closest);
-            if (found != WP_NO_HIT) {
+                                              &sheared, 0, &closest);
+            if (found != WP_NO_HIT)
                 hit = found;
-                if (any_hit) {
-                    *t_hit = closest;
-                    return hit;
-                }
-            }
         } else {
             for (wp_uint k = 0; k < current.count; ++k) {
                 wp_uint primitive = current.child + k;
@@ -173,15 +164,11 @@ static inline wp_uint wp_bvh_trace(const WpSceneView* scene, float3 origin, floa
                  * object space (instance.h). */
                 wp_uint plain = scene->triangle_count + scene->sphere_count;
                 if (primitive >= plain) {
-                    wp_uint instance_hit = wp_instance_trace(scene, primitive - plain, origin,
-                                                             direction, closest, any_hit, &t);
+                    wp_uint instance_hit =
+                        wp_instance_trace(scene, primitive - plain, origin, direction, closest, &t);
                     if (instance_hit != WP_NO_HIT) {
                         closest = t;
                         hit = instance_hit;
-                        if (any_hit) {
-                            *t_hit = closest;
-                            return hit;
-                        }
                     }
                     continue;
                 }
@@ -190,10 +177,6 @@ static inline wp_uint wp_bvh_trace(const WpSceneView* scene, float3 origin, floa
                                            &t)) {
                     closest = t;
                     hit = primitive;
-                    if (any_hit) {
-                        *t_hit = closest;
-                        return hit;
-                    }
                 }
             }
         }

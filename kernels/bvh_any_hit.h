@@ -1,9 +1,9 @@
 /* Any hit through the hierarchy (WP_USE_BVH): whether anything lies on a ray
  * segment, the question of every shadow ray.
  *
- * wp_bvh_trace answers it too, but carries the closest hit's bookkeeping:
- * entry distances on the stack, the test of each popped child against the
- * bound, the leaf's lanes looked at one by one. None of that can change an
+ * The closest hit's traversal (wp_bvh_trace) would answer it too, but carries
+ * its bookkeeping: entry distances on the stack, the test of each popped
+ * child against the bound, the leaf's lanes looked at one by one. None of that can change an
  * any-hit answer: the bound is the segment's end throughout (the query ends
  * at its first hit), so every child pushed stays in range and a lane the
  * four-lane leaf test accepts is a hit as it stands. So here:
@@ -19,11 +19,11 @@
  *     that miss the caches, and a pushed child is popped only after its
  *     siblings' subtrees, time enough for its lines to arrive.
  * docs/performance.md ("Any-hit traversal") has the measurements, and what
- * did not help.
+ * did not help (two or four rays a work-item, their walks stepped in turn).
  *
- * The answer is the same as wp_bvh_trace's with any_hit: the same box tests
- * against the same bound, the same leaf tests, so the same primitives are
- * found (maybe another one first, which an any-hit query cannot tell). */
+ * Instances are walked the same way in their object space
+ * (wp_instance_occluded). The answer is whether wp_bvh_trace finds a closest
+ * hit before t_max: the same box tests, the same leaf tests. */
 #ifndef WP_BVH_ANY_HIT_H
 #define WP_BVH_ANY_HIT_H
 
@@ -41,13 +41,16 @@
 #define WP_PREFETCH_LINE(address) ((void)(address))
 #endif
 
-/* Pushes the children of node n whose boxes the ray meets at 0 <= t <= t_max,
- * in node order. Every child is written at the top and kept only if hit:
- * straight-line code, four stores (a missed child's write lands one past the
- * top, which the stack has room for). Then each kept child's first lines are
- * prefetched: a node's two, or a leaf's first three (its first four
- * triangles); a leaf of other primitives is left alone. */
-static inline void wp_bvh_push_hit_children(const WpSceneView* scene, __global const WpBvhNode* n,
+/* Pushes the children of node n (of `nodes`, whose leaves index `triangles`
+ * up to triangle_end and other primitives past it) whose boxes the ray meets
+ * at 0 <= t <= t_max, in node order. Every child is written at the top and
+ * kept only if hit: straight-line code, four stores (a missed child's write
+ * lands one past the top, which the stack has room for). Then each kept
+ * child's first lines are prefetched: a node's two, or a leaf's first three
+ * (its first four triangles); a leaf of other primitives is left alone. */
+static inline void wp_bvh_push_hit_children(__global const WpBvhNode* nodes,
+                                            __global const WpTriangle* triangles,
+                                            wp_uint triangle_end, __global const WpBvhNode* n,
                                             const WpBoxRay* ray, float t_max, wp_uint* children,
                                             wp_uint* counts, int* top) {
     float4 enter;
@@ -68,17 +71,60 @@ static inline void wp_bvh_push_hit_children(const WpSceneView* scene, __global c
     *top = at;
     for (int i = first; i < at; ++i) {
         if (counts[i] == 0u) {
-            __global const char* node = (__global const char*)&scene->bvh_nodes[children[i]];
+            __global const char* node = (__global const char*)&nodes[children[i]];
             WP_PREFETCH_LINE(node);
             WP_PREFETCH_LINE(node + 64);
-        } else if (children[i] + counts[i] <= scene->triangle_count) {
-            __global const char* leaf = (__global const char*)&scene->triangles[children[i]];
+        } else if (children[i] + counts[i] <= triangle_end) {
+            __global const char* leaf = (__global const char*)&triangles[children[i]];
             WP_PREFETCH_LINE(leaf);
             WP_PREFETCH_LINE(leaf + 64);
             WP_PREFETCH_LINE(leaf + 128);
         }
     }
 }
+
+/* Takes the next child off the stack into *child and *count; 0 when the
+ * stack is empty (the walk is over). */
+static inline int wp_bvh_pop_child(const wp_uint* children, const wp_uint* counts, int* top,
+                                   wp_uint* child, wp_uint* count) {
+    if (*top == 0)
+        return 0;
+    --*top;
+    *child = children[*top];
+    *count = counts[*top];
+    return 1;
+}
+
+#if WP_TRACE_INSTANCES
+/* 1 if a triangle of instance `instance` lies on origin + t direction
+ * (world), 0 < t < t_max: the same walk through its group's hierarchy in
+ * object space (instance_trace.h has the closest hit's), whose leaves are
+ * all triangles. */
+static inline int wp_instance_occluded(const WpSceneView* scene, wp_uint instance, float3 origin,
+                                       float3 direction, float t_max) {
+    __global const WpInstance* m = &scene->instances[instance];
+    float3 o, d;
+    wp_instance_object_ray(m, origin, direction, &o, &d);
+    WpShearedRay sheared = wp_shear_ray(o, d);
+    WpBoxRay box_ray = wp_box_ray(o, d);
+    /* As wp_bvh_occluded's below; the host checks the groups' depths too. */
+    wp_uint children[WP_BVH_STACK_SIZE + 1], counts[WP_BVH_STACK_SIZE + 1];
+    int top = 0;
+    wp_uint child = m->root, count = 0u;
+    for (;;) {
+        if (count == 0u) {
+            wp_bvh_push_hit_children(scene->group_bvh_nodes, scene->group_triangles, 0xffffffffu,
+                                     &scene->group_bvh_nodes[child], &box_ray, t_max, children,
+                                     counts, &top);
+        } else if (wp_leaf_triangles_occluded(scene->group_triangles, child, count, &sheared,
+                                              t_max)) {
+            return 1;
+        }
+        if (!wp_bvh_pop_child(children, counts, &top, &child, &count))
+            return 0;
+    }
+}
+#endif
 
 /* 1 if a primitive lies on origin + t direction, 0 < t < t_max. */
 static inline int wp_bvh_occluded(const WpSceneView* scene, float3 origin, float3 direction,
@@ -92,8 +138,9 @@ static inline int wp_bvh_occluded(const WpSceneView* scene, float3 origin, float
     wp_uint child = 0u, count = 0u; /* the root */
     for (;;) {
         if (count == 0u) {
-            wp_bvh_push_hit_children(scene, &scene->bvh_nodes[child], &box_ray, t_max, children,
-                                     counts, &top);
+            wp_bvh_push_hit_children(scene->bvh_nodes, scene->triangles, scene->triangle_count,
+                                     &scene->bvh_nodes[child], &box_ray, t_max, children, counts,
+                                     &top);
         } else if (child + count <= scene->triangle_count) {
             if (wp_leaf_triangles_occluded(scene->triangles, child, count, &sheared, t_max))
                 return 1;
@@ -106,8 +153,7 @@ static inline int wp_bvh_occluded(const WpSceneView* scene, float3 origin, float
                  * object space (instance_trace.h). */
                 wp_uint plain = scene->triangle_count + scene->sphere_count;
                 if (primitive >= plain) {
-                    if (wp_instance_trace(scene, primitive - plain, origin, direction, t_max, 1,
-                                          &t) != WP_NO_HIT)
+                    if (wp_instance_occluded(scene, primitive - plain, origin, direction, t_max))
                         return 1;
                     continue;
                 }
@@ -117,11 +163,8 @@ static inline int wp_bvh_occluded(const WpSceneView* scene, float3 origin, float
                     return 1;
             }
         }
-        if (top == 0)
+        if (!wp_bvh_pop_child(children, counts, &top, &child, &count))
             return 0;
-        --top;
-        child = children[top];
-        count = counts[top];
     }
 }
 

@@ -6,11 +6,11 @@
 #include "instance.h"
 
 /* The triangles of instance `instance` hit by origin + t direction (world),
- * 0 < t < t_max: the closest, or with any_hit the first found. Returns the
+ * 0 < t < t_max: the closest (bvh_any_hit.h has the any-hit query). Returns the
  * hit's primitive number (wp_shared.h, WpInstance) or WP_NO_HIT, and its t in
  * *t_hit. */
 static inline wp_uint wp_instance_trace(const WpSceneView* scene, wp_uint instance, float3 origin,
-                                        float3 direction, float t_max, int any_hit, float* t_hit) {
+                                        float3 direction, float t_max, float* t_hit) {
     __global const WpInstance* m = &scene->instances[instance];
     float3 o, d;
     wp_instance_object_ray(m, origin, direction, &o, &d);
@@ -26,16 +26,13 @@ static inline wp_uint wp_instance_trace(const WpSceneView* scene, wp_uint instan
     current.enter = 0.0f;
     for (;;) {
         if (current.count == 0u) {
-            wp_bvh_push_children(&scene->group_bvh_nodes[current.child], &box_ray, closest,
-                                 !any_hit, stack, &top);
+            wp_bvh_push_children(&scene->group_bvh_nodes[current.child], &box_ray, closest, stack,
+                                 &top);
         } else {
             wp_uint found = wp_leaf_triangles(scene->group_triangles, current.child, current.count,
-                                              &sheared, any_hit, &closest);
-            if (found != WP_NO_HIT) {
+                                              &sheared, 0, &closest);
+            if (found != WP_NO_HIT)
                 hit = found;
-                if (any_hit)
-                    break;
-            }
         }
         if (!wp_bvh_pop(stack, &top, closest, &current))
             break;

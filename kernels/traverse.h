@@ -166,8 +166,10 @@ static inline WP_ALWAYS_INLINE wp_uint wp_trace(const WpSceneView* scene, float3
                                                 float3 direction, float t_max, int any_hit,
                                                 int culled, float* t_hit) {
 #if WP_USE_BVH
-    (void)culled;
-    return wp_bvh_trace(scene, origin, direction, t_max, any_hit, t_hit);
+    /* A closest hit answers an any-hit query too (the hierarchy's own
+     * any-hit traversal is wp_occluded's, below). */
+    (void)culled, (void)any_hit;
+    return wp_bvh_trace(scene, origin, direction, t_max, t_hit);
 #else
     return wp_loop_trace(scene, origin, direction, t_max, any_hit, culled, t_hit);
 #endif

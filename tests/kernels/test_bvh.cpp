@@ -9,7 +9,9 @@
 // escapes.
 #include "support/kernel_test_util.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <random>
 #include <vector>
 
@@ -280,6 +282,77 @@ TEST_CASE("bvh any hit: segments ending just short of, at and just past the near
     // nearest hit are mostly clear, those past it mostly blocked.
     CHECK(blocked_short < segments / 5 / 10);
     CHECK(blocked_past > segments / 5 * 9 / 10);
+}
+
+TEST_CASE("bvh shadow stage: through the hierarchy, exactly the unblocked contributions are "
+          "added, for one ray, odd counts and a shuffled queue",
+          "[cl][bvh][shadow]") {
+    // The shadow kernel built with the hierarchy (kernels/shadow.cl through
+    // bvh_any_hit.h) against the loop over every primitive, run by compare()
+    // on the same segments. The queue is a shuffled subset of the slots
+    // (slot 0 never queued); launches of 1, 2, 3, an odd number and all the
+    // entries, each over a whole work-group.
+    const Scene scene = random_scene(31, 20, 150, 10);
+    std::mt19937 generator(37);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const std::size_t slots = 4001;
+    std::vector<cl_float4> origins, directions, contributions, radiance;
+    for (std::size_t k = 0; k < slots; ++k) {
+        const glm::dvec3 o(24 * unit(generator) - 12, 10 * unit(generator) - 3,
+                           24 * unit(generator) - 12);
+        const glm::dvec3 target(20 * unit(generator) - 10, 3 * unit(generator) - 1,
+                                20 * unit(generator) - 10);
+        const double length = glm::length(target - o) * (0.3 + 1.2 * unit(generator));
+        origins.push_back(f4(o));
+        directions.push_back(f4(glm::normalize(target - o), length));
+        const float f = float(k);
+        contributions.push_back(float4(0.5f + f, 1.0f / (f + 2.0f), 3.0f, 0.25f));
+        radiance.push_back(float4(f, -f, 0.125f * f, 1.0f));
+    }
+    const Compared reference = compare(scene, origins, directions);
+    std::vector<cl_uint> queue(slots - 1); // slot 0 is never queued
+    std::iota(queue.begin(), queue.end(), 1u);
+    std::shuffle(queue.begin(), queue.end(), generator);
+
+    const DeviceScene flat = flatten_scene(scene, true);
+    SceneFeatures features = analyse_features(scene);
+    features.fixed_counts = false;
+    features.bvh = true;
+    DeviceBuffers buffers = allocate_device_buffers(device().context, flat, slots, 1);
+    buffers.shadow_queue = upload(queue);
+    buffers.shadow_origin = upload(origins);
+    buffers.shadow_direction = upload(directions);
+    buffers.shadow_contribution = upload(contributions);
+    WpFrame frame{};
+    frame.triangle_count = cl_uint(flat.triangles.size());
+    frame.sphere_count = cl_uint(flat.spheres.size());
+    for (const std::size_t count :
+         {std::size_t(1), std::size_t(2), std::size_t(3), std::size_t(977), queue.size()}) {
+        INFO(count << " queued rays");
+        buffers.radiance = upload(radiance);
+        run_stage("shadow", frame, make_launch(cl_uint(count), 0), buffers, count,
+                  features.build_options());
+        const std::vector<cl_float4> got = download<cl_float4>(buffers.radiance, slots);
+        std::vector<bool> queued(slots, false);
+        for (std::size_t i = 0; i < count; ++i)
+            queued[queue[i]] = true;
+        std::size_t blocked = 0;
+        for (std::size_t k = 0; k < slots; ++k) {
+            const bool is_blocked = reference.hits[4 * k + 3] != 0;
+            INFO("slot " << k << (queued[k] ? ", queued" : "") << (is_blocked ? ", blocked" : ""));
+            for (int c = 0; c < 4; ++c) {
+                float expected = radiance[k].s[c];
+                if (queued[k] && !is_blocked)
+                    expected += contributions[k].s[c];
+                REQUIRE(got[k].s[c] == expected);
+            }
+            blocked += queued[k] && is_blocked;
+        }
+        if (count > 100) { // both answers occur
+            CHECK(blocked > count / 5);
+            CHECK(blocked < count * 4 / 5);
+        }
+    }
 }
 
 TEST_CASE("bvh traversal: no ray from inside a closed mesh of 43200 triangles slips through an "
