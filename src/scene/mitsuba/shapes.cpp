@@ -174,6 +174,10 @@ void add_mesh_file(Parameters& p, const Object& shape, std::uint32_t material, S
     const bool reverse = flip != options.transform.flips_orientation();
     for (const std::string& w : mesh.warnings)
         scene.warnings.push_back(shape.where.text() + ": " + w);
+    // Room for the whole mesh at once: grown by push_back, a 10^6-triangle
+    // mesh's 208-byte triangles were copied and their pages faulted in again
+    // at every doubling (17 % of a 10^6-triangle PLY load's samples in perf).
+    scene.triangles.reserve(scene.triangles.size() + mesh.triangles.size());
     for (const auto& [a, b, c] : mesh.triangles) {
         Triangle t{{mesh.positions[a], mesh.positions[b], mesh.positions[c]}, material};
         if (mesh.has_normals()) {
