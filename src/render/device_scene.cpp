@@ -52,6 +52,12 @@ bool has_anisotropy(const Scene& scene) {
             return true;
         return m.alpha_u_texture == 0 && m.alpha_u != m.alpha_v;
     };
+    // No anisotropic material, no pass over a big mesh's triangles.
+    bool any = false;
+    for (std::uint32_t m = 0; m < scene.materials.size(); ++m)
+        any = any || anisotropic(m);
+    if (!any)
+        return false;
     bool found = false;
     for_each_defined_triangle(scene,
                               [&](const Triangle& t) { found = found || anisotropic(t.material); });
