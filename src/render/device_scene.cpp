@@ -277,9 +277,9 @@ void build_hierarchy(DeviceScene& scene) {
         boxes.clear();
     auto kind = [&](std::uint32_t p) { return p < triangle_count ? 0 : p < plain_count ? 1 : 2; };
     // Within each leaf, triangles, then spheres, then instances (BinaryWriter
-    // splits mixed leaves there).
+    // splits mixed leaves there). A scene of one kind is in order already.
     for (const BvhNode& node : bvh.nodes)
-        if (node.is_leaf())
+        if (mixed && node.is_leaf())
             std::stable_sort(bvh.primitives.begin() + node.first_primitive,
                              bvh.primitives.begin() + node.first_primitive + node.primitive_count,
                              [&](std::uint32_t a, std::uint32_t b) { return kind(a) < kind(b); });
