@@ -882,6 +882,9 @@ DeviceScene flatten_without_hierarchy(const Scene& scene, bool hierarchy, LightP
     double total_area = 0.0;
     double triangle_power = 0.0; // sum of mean radiance x area: the triangles' power / pi
     out.triangles.reserve(scene.triangles.size()); // exactly: no growth by doubling
+    out.triangle_normals.reserve(normal_sets);     // (the shape groups' included)
+    if (uvs)
+        out.triangle_uvs.reserve(uv_sets);
     for (std::size_t i = 0; i < scene.triangles.size(); ++i) {
         const Triangle& t = scene.triangles[i];
         out.triangles.push_back(flatten_triangle(
