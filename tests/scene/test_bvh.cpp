@@ -145,7 +145,8 @@ TEST_CASE("bvh: the tree does not depend on the number of threads", "[bvh]") {
     }
 }
 
-TEST_CASE("bvh: WAVEPATH_BVH_THREADS sets the threads; a bad value is one clear error", "[bvh]") {
+TEST_CASE("bvh: WAVEPATH_BVH_THREADS sets the threads, and a bad value is one clear error",
+          "[bvh]") {
     const std::vector<Bounds3f> boxes = random_boxes(100000, 5);
     BvhBuildOptions one;
     one.threads = 1;
