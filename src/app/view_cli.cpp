@@ -45,6 +45,11 @@ void add_view_options(CLI::App& command, ViewOptions& view) {
 }
 
 double emitter_luminance_threshold(const Scene& scene) {
+    // Without an emitting material no triangle needs looking at.
+    if (std::none_of(scene.materials.begin(), scene.materials.end(), [](const Material& m) {
+            return luminance(m.emission.x, m.emission.y, m.emission.z) > 0.0;
+        }))
+        return std::numeric_limits<double>::infinity();
     std::vector<bool> used(scene.materials.size(), false);
     for (const Triangle& t : scene.triangles)
         used[t.material] = true;

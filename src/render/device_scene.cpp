@@ -52,6 +52,12 @@ bool has_anisotropy(const Scene& scene) {
             return true;
         return m.alpha_u_texture == 0 && m.alpha_u != m.alpha_v;
     };
+    // No anisotropic material, no pass over a big mesh's triangles.
+    bool any = false;
+    for (std::uint32_t m = 0; m < scene.materials.size(); ++m)
+        any = any || anisotropic(m);
+    if (!any)
+        return false;
     bool found = false;
     for_each_defined_triangle(scene,
                               [&](const Triangle& t) { found = found || anisotropic(t.material); });
@@ -271,9 +277,9 @@ void build_hierarchy(DeviceScene& scene) {
         boxes.clear();
     auto kind = [&](std::uint32_t p) { return p < triangle_count ? 0 : p < plain_count ? 1 : 2; };
     // Within each leaf, triangles, then spheres, then instances (BinaryWriter
-    // splits mixed leaves there).
+    // splits mixed leaves there). A scene of one kind is in order already.
     for (const BvhNode& node : bvh.nodes)
-        if (node.is_leaf())
+        if (mixed && node.is_leaf())
             std::stable_sort(bvh.primitives.begin() + node.first_primitive,
                              bvh.primitives.begin() + node.first_primitive + node.primitive_count,
                              [&](std::uint32_t a, std::uint32_t b) { return kind(a) < kind(b); });
@@ -876,6 +882,9 @@ DeviceScene flatten_without_hierarchy(const Scene& scene, bool hierarchy, LightP
     double total_area = 0.0;
     double triangle_power = 0.0; // sum of mean radiance x area: the triangles' power / pi
     out.triangles.reserve(scene.triangles.size()); // exactly: no growth by doubling
+    out.triangle_normals.reserve(normal_sets);     // (the shape groups' included)
+    if (uvs)
+        out.triangle_uvs.reserve(uv_sets);
     for (std::size_t i = 0; i < scene.triangles.size(); ++i) {
         const Triangle& t = scene.triangles[i];
         out.triangles.push_back(flatten_triangle(

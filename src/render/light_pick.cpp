@@ -1,5 +1,7 @@
 #include "render/light_pick.hpp"
 
+#include <optional>
+
 #include "render/device_scene.hpp"
 #include "scene/luminance.hpp"
 #include "scene/scene.hpp"
@@ -17,6 +19,18 @@ std::string to_string(LightPick pick) {
 }
 
 bool triangle_radiances_differ(const Scene& scene) {
+    // Only emissive materials of two luminances can differ: otherwise no
+    // pass over a big mesh's triangles.
+    std::optional<double> some;
+    bool two = false;
+    for (const Material& material : scene.materials)
+        if (material.is_emissive()) {
+            const double y = luminance(material.emission);
+            two = two || (some && *some != y);
+            some = y;
+        }
+    if (!two)
+        return false;
     bool found = false;
     double first = 0.0;
     for (const Triangle& t : scene.triangles) {

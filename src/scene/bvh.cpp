@@ -5,10 +5,13 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <future>
 #include <limits>
-#include <memory>
+#include <stdexcept>
+#include <string>
 #include <thread>
+#include <utility>
 
 #include <glm/common.hpp>
 
@@ -29,8 +32,9 @@ bool Bounds3f::contains(const Bounds3f& b) const {
 namespace {
 
 constexpr int kBins = 16;
-// Subtrees of at least this many primitives are built on a thread of their own.
-constexpr std::size_t kParallelSubtree = 1 << 15;
+// More threads than this gain nothing at the sizes a scene has (the top
+// levels stay serial) and each holds a partition buffer.
+constexpr unsigned kMaxThreads = 16;
 
 struct Primitive {
     Bounds3f bounds;
@@ -38,12 +42,14 @@ struct Primitive {
     std::uint32_t index;
 };
 
-// The tree while it is built: children by pointer, so that subtrees built on
-// different threads need no shared node array.
-struct BuildNode {
-    Bounds3f bounds;
-    std::unique_ptr<BuildNode> children[2];
-    std::uint32_t first = 0, count = 0; // leaves: a range of the primitive array
+// A range of primitives with its boxes' bounds and its centroids' bounds:
+// what a node needs before it is split. A parent computes its children's
+// while it partitions (the primitives are read once a level, not twice).
+struct Range {
+    std::size_t begin = 0, end = 0;
+    Bounds3f bounds, centroids;
+
+    std::size_t count() const { return end - begin; }
 };
 
 struct Split {
@@ -52,61 +58,113 @@ struct Split {
     double cost = std::numeric_limits<double>::infinity();
 };
 
+// A subtree's nodes in depth-first order, numbered from its own first node,
+// and what flatten used to count.
+struct Subtree {
+    std::vector<BvhNode> nodes;
+    std::uint32_t leaves = 0, depth = 0, largest_leaf = 0;
+
+    // `other` after this subtree's nodes: its inner nodes' second children
+    // move by the nodes before it.
+    void append(const Subtree& other) {
+        const auto offset = static_cast<std::uint32_t>(nodes.size());
+        nodes.reserve(nodes.size() + other.nodes.size());
+        for (BvhNode node : other.nodes) {
+            if (!node.is_leaf())
+                node.second_child += offset;
+            nodes.push_back(node);
+        }
+        leaves += other.leaves;
+        depth = std::max(depth, other.depth);
+        largest_leaf = std::max(largest_leaf, other.largest_leaf);
+    }
+};
+
+// What a thread's partitions reuse from node to node (one allocation per
+// thread, not two per node).
+struct Scratch {
+    std::vector<std::uint8_t> left;
+    std::vector<Primitive> buffer;
+};
+
+Range range_of(const std::vector<Primitive>& primitives, std::size_t begin, std::size_t end) {
+    Range r{begin, end, {}, {}};
+    for (std::size_t i = begin; i < end; ++i) {
+        r.bounds.extend(primitives[i].bounds);
+        r.centroids.extend(primitives[i].centroid);
+    }
+    return r;
+}
+
+// Builds the tree straight into depth-first node arrays. A subtree built on
+// another thread goes into an array of its own, as does its sibling, and the
+// two are appended to their parent's array left first: the nodes' order is
+// the tree's, never the threads' (one thread or sixteen give the same array).
 class Builder {
   public:
-    Builder(std::vector<Primitive>& primitives, const BvhBuildOptions& options)
+    Builder(std::vector<Primitive>& primitives, const BvhBuildOptions& options, unsigned threads)
         : primitives_(primitives), options_(options) {
-        unsigned threads = options.threads ? options.threads : std::thread::hardware_concurrency();
-        spare_threads_ = static_cast<int>(std::max(1u, threads)) - 1;
+        spare_threads_ = static_cast<int>(threads) - 1;
     }
 
-    std::unique_ptr<BuildNode> build(std::size_t begin, std::size_t end, std::uint32_t depth) {
-        auto node = std::make_unique<BuildNode>();
-        Bounds3f centroids;
-        for (std::size_t i = begin; i < end; ++i) {
-            node->bounds.extend(primitives_[i].bounds);
-            centroids.extend(primitives_[i].centroid);
-        }
-        const std::size_t count = end - begin;
+    void build(const Range& range, std::uint32_t depth, Subtree& out, Scratch& scratch) {
+        const auto index = out.nodes.size();
+        out.nodes.emplace_back();
+        out.nodes[index].bounds = range.bounds;
+        const std::size_t count = range.count();
         auto make_leaf = [&] {
-            node->first = static_cast<std::uint32_t>(begin);
-            node->count = static_cast<std::uint32_t>(count);
-            return std::move(node);
+            out.nodes[index].first_primitive = static_cast<std::uint32_t>(range.begin);
+            out.nodes[index].primitive_count = static_cast<std::uint32_t>(count);
+            out.leaves += 1;
+            out.depth = std::max(out.depth, depth);
+            out.largest_leaf = std::max(out.largest_leaf, static_cast<std::uint32_t>(count));
         };
         if (count <= options_.max_leaf_size || depth >= options_.max_depth)
             return make_leaf();
 
-        const Split split = best_split(begin, end, node->bounds, centroids);
+        const Split split = best_split(range);
         const double leaf_cost = options_.intersection_cost * static_cast<double>(count);
         // A leaf when no plane separates the centroids, or when a leaf is
         // cheaper and small enough to stay fast in the worst case.
         if (split.axis < 0 || (split.cost >= leaf_cost && count <= 4 * options_.max_leaf_size))
             return make_leaf();
 
-        std::size_t middle = partition(begin, end, centroids, split);
-        if (middle == begin || middle == end) { // centroids too close for the bins
-            middle = begin + count / 2;
+        auto [left, right] = partition(range, split, scratch);
+        if (left.count() == 0 || right.count() == 0) { // centroids too close for the bins
+            const std::size_t middle = range.begin + count / 2;
             const int axis = split.axis;
-            std::nth_element(primitives_.begin() + static_cast<std::ptrdiff_t>(begin),
+            std::nth_element(primitives_.begin() + static_cast<std::ptrdiff_t>(range.begin),
                              primitives_.begin() + static_cast<std::ptrdiff_t>(middle),
-                             primitives_.begin() + static_cast<std::ptrdiff_t>(end),
+                             primitives_.begin() + static_cast<std::ptrdiff_t>(range.end),
                              [axis](const Primitive& a, const Primitive& b) {
                                  return a.centroid[axis] < b.centroid[axis] ||
                                         (a.centroid[axis] == b.centroid[axis] && a.index < b.index);
                              });
+            left = range_of(primitives_, range.begin, middle);
+            right = range_of(primitives_, middle, range.end);
         }
 
-        // The larger child on another thread, if one is free.
-        std::future<std::unique_ptr<BuildNode>> left_async;
-        if (std::min(middle - begin, end - middle) >= kParallelSubtree && take_thread())
-            left_async = std::async(std::launch::async, [this, begin, middle, depth] {
-                auto subtree = build(begin, middle, depth + 1);
+        // The left child on another thread, if one is free; both children
+        // then go into arrays of their own, appended in order.
+        if (std::min(left.count(), right.count()) >= options_.parallel_subtree && take_thread()) {
+            auto left_async = std::async(std::launch::async, [this, left = left, depth] {
+                Subtree subtree;
+                Scratch own;
+                build(left, depth + 1, subtree, own);
                 ++spare_threads_;
                 return subtree;
             });
-        node->children[1] = build(middle, end, depth + 1);
-        node->children[0] = left_async.valid() ? left_async.get() : build(begin, middle, depth + 1);
-        return node;
+            Subtree right_subtree;
+            build(right, depth + 1, right_subtree, scratch);
+            const Subtree left_subtree = left_async.get();
+            out.append(left_subtree);
+            out.nodes[index].second_child = static_cast<std::uint32_t>(out.nodes.size());
+            out.append(right_subtree);
+            return;
+        }
+        build(left, depth + 1, out, scratch);
+        out.nodes[index].second_child = static_cast<std::uint32_t>(out.nodes.size());
+        build(right, depth + 1, out, scratch);
     }
 
   private:
@@ -127,10 +185,10 @@ class Builder {
     // One pass over the primitives bins them along all three axes (the
     // primitives are read once, not once an axis: binning is most of the
     // build's time).
-    Split best_split(std::size_t begin, std::size_t end, const Bounds3f& node_bounds,
-                     const Bounds3f& centroids) const {
+    Split best_split(const Range& range) const {
         Split best;
-        const double node_area = node_bounds.surface_area();
+        const Bounds3f& centroids = range.centroids;
+        const double node_area = range.bounds.surface_area();
         bool splittable[3];
         for (int axis = 0; axis < 3; ++axis)
             splittable[axis] = centroids.upper[axis] > centroids.lower[axis];
@@ -138,7 +196,7 @@ class Builder {
             return best;
         std::array<std::array<Bounds3f, kBins>, 3> bins;
         std::array<std::array<std::size_t, kBins>, 3> counts{};
-        for (std::size_t i = begin; i < end; ++i) {
+        for (std::size_t i = range.begin; i < range.end; ++i) {
             const Primitive& p = primitives_[i];
             for (int axis = 0; axis < 3; ++axis) {
                 if (!splittable[axis])
@@ -165,7 +223,7 @@ class Builder {
             for (int b = 0; b < kBins - 1; ++b) {
                 left.extend(bins[axis][b]);
                 left_count += counts[axis][b];
-                if (left_count == 0 || left_count == end - begin)
+                if (left_count == 0 || left_count == range.count())
                     continue;
                 const double cost = options_.traversal_cost +
                                     options_.intersection_cost *
@@ -185,19 +243,31 @@ class Builder {
     // A stable partition, as std::stable_partition's, that buffers only the
     // smaller side: std::stable_partition buffers the whole range, which at
     // the root is a second copy of every primitive, the build's peak memory.
-    // The larger side is compacted in place, keeping its order.
-    std::size_t partition(std::size_t begin, std::size_t end, const Bounds3f& centroids,
-                          const Split& split) {
-        std::vector<std::uint8_t> left(end - begin);
+    // The larger side is compacted in place, keeping its order. The pass
+    // that sorts the primitives to their sides also bounds each side.
+    std::pair<Range, Range> partition(const Range& range, const Split& split, Scratch& scratch) {
+        const std::size_t begin = range.begin, end = range.end;
+        std::vector<std::uint8_t>& left = scratch.left;
+        left.resize(end - begin);
+        Range l, r;
         std::size_t left_count = 0;
         for (std::size_t i = begin; i < end; ++i) {
-            left[i - begin] = bin_of(primitives_[i].centroid, centroids, split.axis) <= split.bin;
-            left_count += left[i - begin];
+            const Primitive& p = primitives_[i];
+            const bool is_left = bin_of(p.centroid, range.centroids, split.axis) <= split.bin;
+            left[i - begin] = is_left;
+            left_count += is_left;
+            Range& side = is_left ? l : r;
+            side.bounds.extend(p.bounds);
+            side.centroids.extend(p.centroid);
         }
         const std::size_t middle = begin + left_count;
+        l.begin = begin;
+        l.end = middle;
+        r.begin = middle;
+        r.end = end;
         const bool buffer_left = left_count <= end - middle;
-        std::vector<Primitive> buffer;
-        buffer.reserve(buffer_left ? left_count : end - middle);
+        std::vector<Primitive>& buffer = scratch.buffer;
+        buffer.clear();
         if (buffer_left) { // the right side moves to the back, last first
             std::size_t to = end;
             for (std::size_t i = end; i-- > begin;)
@@ -217,7 +287,7 @@ class Builder {
             std::copy(buffer.begin(), buffer.end(),
                       primitives_.begin() + static_cast<std::ptrdiff_t>(middle));
         }
-        return middle;
+        return {l, r};
     }
 
     std::vector<Primitive>& primitives_;
@@ -225,22 +295,25 @@ class Builder {
     std::atomic<int> spare_threads_{0};
 };
 
-// Depth-first layout: a node's first child follows it.
-void flatten(const BuildNode& node, std::uint32_t depth, Bvh& out) {
-    const auto index = static_cast<std::uint32_t>(out.nodes.size());
-    out.nodes.emplace_back();
-    out.nodes[index].bounds = node.bounds;
-    out.stats.depth = std::max(out.stats.depth, depth);
-    if (node.count > 0) {
-        out.nodes[index].first_primitive = node.first;
-        out.nodes[index].primitive_count = node.count;
-        out.stats.leaves += 1;
-        out.stats.largest_leaf = std::max(out.stats.largest_leaf, node.count);
-        return;
-    }
-    flatten(*node.children[0], depth + 1, out);
-    out.nodes[index].second_child = static_cast<std::uint32_t>(out.nodes.size());
-    flatten(*node.children[1], depth + 1, out);
+// The number of threads a build uses: the options', else
+// WAVEPATH_BVH_THREADS (1 forces a serial build, e.g. to compare), else the
+// machine's; at most kMaxThreads.
+unsigned build_threads(const BvhBuildOptions& options) {
+    unsigned threads = options.threads;
+    if (threads == 0)
+        if (const char* text = std::getenv("WAVEPATH_BVH_THREADS")) {
+            char* end = nullptr;
+            const long value = std::strtol(text, &end, 10);
+            if (end == text || *end != '\0' || value < 1 || value > 1024)
+                throw std::invalid_argument(
+                    std::string(
+                        "WAVEPATH_BVH_THREADS must be a whole number from 1 to 1024, got '") +
+                    text + "'");
+            threads = static_cast<unsigned>(value);
+        }
+    if (threads == 0)
+        threads = std::thread::hardware_concurrency();
+    return std::clamp(threads, 1u, kMaxThreads);
 }
 
 } // namespace
@@ -250,23 +323,28 @@ Bvh build_bvh(std::vector<Bounds3f> boxes, const BvhBuildOptions& options) {
     Bvh bvh;
     if (boxes.empty())
         return bvh;
+    const unsigned threads = build_threads(options);
     const std::size_t count = boxes.size();
     std::vector<Primitive> primitives(count);
     for (std::size_t i = 0; i < count; ++i)
         primitives[i] = {boxes[i], boxes[i].centroid(), static_cast<std::uint32_t>(i)};
     std::vector<Bounds3f>().swap(boxes);
-    Builder builder(primitives, options);
-    std::unique_ptr<BuildNode> root = builder.build(0, count, 0);
-    // The leaf order out of the primitives, which are then freed before the
-    // tree is laid out: the build's memory peaks once, not twice.
+    Subtree tree;
+    {
+        Scratch scratch;
+        Builder(primitives, options, threads)
+            .build(range_of(primitives, 0, count), 0, tree, scratch);
+    }
+    // The leaf order out of the primitives, which are then freed.
     bvh.primitives.resize(count);
     for (std::size_t i = 0; i < count; ++i)
         bvh.primitives[i] = primitives[i].index;
     std::vector<Primitive>().swap(primitives);
-    bvh.nodes.reserve(2 * count);
-    flatten(*root, 0, bvh);
-    root.reset();
+    bvh.nodes = std::move(tree.nodes);
     bvh.stats.nodes = static_cast<std::uint32_t>(bvh.nodes.size());
+    bvh.stats.leaves = tree.leaves;
+    bvh.stats.depth = tree.depth;
+    bvh.stats.largest_leaf = tree.largest_leaf;
     bvh.stats.sah_cost = bvh_sah_cost(bvh, options);
     bvh.stats.build_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

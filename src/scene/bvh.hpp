@@ -14,7 +14,9 @@
 // between two bins that minimises
 //     cost = traversal + (area(left) n_left + area(right) n_right) / area(node)
 // wins, unless a leaf is cheaper. Subtrees of many primitives are built on
-// their own threads. The result does not depend on the number of threads.
+// their own threads, each into a node array of its own that its parent
+// appends in the tree's order: the result, node for node, does not depend on
+// the number of threads or on their timing.
 #pragma once
 
 #include <cstdint>
@@ -57,7 +59,13 @@ struct BvhBuildOptions {
     double traversal_cost = 1.0;     // ... or until a leaf is cheaper by SAH
     double intersection_cost = 1.0;  // per primitive in a leaf
     std::uint32_t max_depth = 48;    // deeper nodes become leaves (the device stack)
-    std::uint32_t threads = 0;       // 0: std::thread::hardware_concurrency()
+    // 0: WAVEPATH_BVH_THREADS if set (1 forces a serial build), else
+    // std::thread::hardware_concurrency(); at most 16.
+    std::uint32_t threads = 0;
+    // Subtrees of at least this many primitives on either side of a split
+    // may go to another thread (smaller ones cost more to hand over than to
+    // build); tests lower it to hand over many.
+    std::uint32_t parallel_subtree = 1u << 15;
 };
 
 struct BvhStats {

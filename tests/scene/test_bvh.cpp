@@ -1,16 +1,21 @@
 // The hierarchy builder: every primitive in exactly one leaf, every node's box
 // holding its children's and its primitives' boxes, the depth within the
 // device's stack, the SAH cost it reports equal to one computed from the
-// finished tree, and a tree that does not depend on the number of threads.
+// finished tree, and a tree that does not depend on the number of threads
+// (byte for byte, on random boxes and the bunny).
 #include <catch2/catch.hpp>
 
 #include <algorithm>
 #include <cstdint>
+#include <cstdlib>
+#include <cstring>
 #include <random>
+#include <string>
 #include <utility>
 #include <vector>
 
 #include "scene/bvh.hpp"
+#include "scene/mesh.hpp"
 
 using namespace wp;
 
@@ -85,21 +90,79 @@ TEST_CASE("bvh: every primitive exactly once, boxes nested, depth and SAH cost a
     }
 }
 
-TEST_CASE("bvh: the tree does not depend on the number of threads", "[bvh]") {
-    const std::vector<Bounds3f> boxes = random_boxes(200000, 3);
-    BvhBuildOptions one, many;
-    one.threads = 1;
-    many.threads = 4;
-    const Bvh a = build_bvh(boxes, one), b = build_bvh(boxes, many);
+namespace {
+
+// The same flat arrays, byte for byte, and the same statistics.
+void check_same_tree(const Bvh& a, const Bvh& b) {
+    static_assert(sizeof(BvhNode) == 36, "no padding: the nodes compare byte for byte");
     REQUIRE(a.nodes.size() == b.nodes.size());
+    CHECK(std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(BvhNode)) == 0);
     CHECK(a.primitives == b.primitives);
-    bool same = true;
-    for (std::size_t i = 0; i < a.nodes.size(); ++i)
-        same = same && a.nodes[i].second_child == b.nodes[i].second_child &&
-               a.nodes[i].primitive_count == b.nodes[i].primitive_count &&
-               a.nodes[i].bounds.lower == b.nodes[i].bounds.lower &&
-               a.nodes[i].bounds.upper == b.nodes[i].bounds.upper;
-    CHECK(same);
+    CHECK(a.stats.leaves == b.stats.leaves);
+    CHECK(a.stats.depth == b.stats.depth);
+    CHECK(a.stats.largest_leaf == b.stats.largest_leaf);
+    CHECK(a.stats.sah_cost == b.stats.sah_cost);
+}
+
+// The boxes of the bunny's triangles in float, as the device's hierarchy has them.
+std::vector<Bounds3f> bunny_boxes() {
+    const TriangleMesh mesh = load_mesh(WAVEPATH_SOURCE_DIR "/scenes/models/stanford-bunny.obj");
+    std::vector<Bounds3f> boxes;
+    for (const auto& triangle : mesh.triangles) {
+        Bounds3f b;
+        for (std::uint32_t v : triangle)
+            b.extend(glm::vec3(mesh.positions[v]));
+        boxes.push_back(b);
+    }
+    return boxes;
+}
+
+} // namespace
+
+// Subtrees go to other threads from 256 primitives on, so that many are
+// handed over and appended; 1, 2 and 4 threads give the same arrays.
+TEST_CASE("bvh: the tree does not depend on the number of threads", "[bvh]") {
+    const std::vector<std::pair<const char*, std::vector<Bounds3f>>> scenes = {
+        {"random boxes", random_boxes(200000, 3)}, {"the bunny", bunny_boxes()}};
+    for (const auto& [name, boxes] : scenes) {
+        INFO(name << ", " << boxes.size() << " boxes");
+        REQUIRE(boxes.size() > 60000);
+        BvhBuildOptions options; // the device hierarchy's
+        options.max_leaf_size = 8;
+        options.traversal_cost = 2.0;
+        options.parallel_subtree = 256;
+        options.threads = 1;
+        const Bvh serial = build_bvh(boxes, options);
+        for (std::uint32_t threads : {2u, 4u}) {
+            INFO(threads << " threads");
+            options.threads = threads;
+            check_same_tree(serial, build_bvh(boxes, options));
+        }
+        // The default hand-over size, on as many threads as the machine has.
+        options.threads = 0;
+        options.parallel_subtree = BvhBuildOptions{}.parallel_subtree;
+        check_same_tree(serial, build_bvh(boxes, options));
+    }
+}
+
+TEST_CASE("bvh: WAVEPATH_BVH_THREADS sets the threads, and a bad value is one clear error",
+          "[bvh]") {
+    const std::vector<Bounds3f> boxes = random_boxes(100000, 5);
+    BvhBuildOptions one;
+    one.threads = 1;
+    const Bvh serial = build_bvh(boxes, one);
+    const char* saved = std::getenv("WAVEPATH_BVH_THREADS");
+    const std::string restore = saved ? saved : "";
+    ::setenv("WAVEPATH_BVH_THREADS", "2", 1);
+    check_same_tree(serial, build_bvh(boxes));
+    ::setenv("WAVEPATH_BVH_THREADS", "two", 1);
+    CHECK_THROWS_WITH(build_bvh(boxes), "WAVEPATH_BVH_THREADS must be a whole number from 1 to "
+                                        "1024, got 'two'");
+    CHECK_NOTHROW(build_bvh(boxes, one)); // the options' count comes first
+    if (saved)
+        ::setenv("WAVEPATH_BVH_THREADS", restore.c_str(), 1);
+    else
+        ::unsetenv("WAVEPATH_BVH_THREADS");
 }
 
 TEST_CASE("bvh: a depth limit turns deeper nodes into leaves", "[bvh]") {
