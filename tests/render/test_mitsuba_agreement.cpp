@@ -53,13 +53,14 @@ Image squared(Image image) {
 
 // Renders `scene` at `spp` and compares the image mean and every kBlock x
 // kBlock block mean, per channel, with Mitsuba's NAME.exr.
-void check_agreement(const std::string& name, const Scene& scene, std::uint32_t spp) {
+void check_agreement(const std::string& name, const Scene& scene, std::uint32_t spp,
+                     const IntegratorOptions& options = {}) {
     const Image reference = read_exr(kDir + name + ".exr");
     const Image reference_variance = squared(read_exr(kDir + name + "-error.exr"));
     REQUIRE(reference.width == scene.camera.width);
     REQUIRE(reference.height == scene.camera.height);
 
-    const Rendered ours = render(scene, spp, 11);
+    const Rendered ours = render(scene, spp, 11, 0, options);
     CHECK(ours.stats.nonfinite_samples == 0);
     const Image mean = ours.film.mean(), variance = ours.film.variance_of_mean();
 
@@ -224,6 +225,40 @@ TEST_CASE("Mitsuba 3 agreement: mitsuba-data's Cornell box, unchanged (spectra, 
     SceneReadOptions options;
     options.defines = {{"res", "64"}, {"max_depth", "-1"}};
     check_agreement("cbox-mitsuba-data",
+                    load_scene(std::string(WAVEPATH_SOURCE_DIR) +
+                                   "/tests/data/third-party/mitsuba-data/scenes/cbox/cbox.xml",
+                               options),
+                    1024);
+}
+
+TEST_CASE("Mitsuba 3 agreement: max_depth 2 and 3, by a mirror and a rough conductor, with and "
+          "without next-event estimation through the mirror",
+          "[render][mitsuba][max-depth][statistical]") {
+    // max-depth.xml read with -D max_depth=M, as Mitsuba rendered it
+    // (max-depth-M.exr, README.md): paths of at most M edges, the camera ray
+    // included. At M = 2 a light sample through the mirror would be a path
+    // of three edges; at M = 3 it is made, at the first vertex only.
+    for (int max_depth : {2, 3})
+        for (bool mirror_next_event : {true, false}) {
+            INFO("max_depth " << max_depth << ", mirror next-event estimation "
+                              << (mirror_next_event ? "on" : "off"));
+            SceneReadOptions read;
+            read.defines = {{"max_depth", std::to_string(max_depth)}};
+            IntegratorOptions options;
+            options.mirror_next_event = mirror_next_event;
+            check_agreement("max-depth-" + std::to_string(max_depth),
+                            load_scene(kDir + "max-depth.xml", read), 1024, options);
+        }
+}
+
+TEST_CASE("Mitsuba 3 agreement: mitsuba-data's Cornell box at max_depth 3",
+          "[render][mitsuba][max-depth][third-party][statistical]") {
+    // The file as mitsuba-data has it, read by both with -D res=32 -D
+    // max_depth=3 (cbox-max-depth-3.exr, README.md): direct light and one
+    // bounce of indirect light.
+    SceneReadOptions options;
+    options.defines = {{"res", "32"}, {"max_depth", "3"}};
+    check_agreement("cbox-max-depth-3",
                     load_scene(std::string(WAVEPATH_SOURCE_DIR) +
                                    "/tests/data/third-party/mitsuba-data/scenes/cbox/cbox.xml",
                                options),
