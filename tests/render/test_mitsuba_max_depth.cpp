@@ -3,7 +3,8 @@
 // included, as Mitsuba's path integrator does (docs/mitsuba-import.md,
 // "max_depth"). Its agreement with Mitsuba's own renders at M = 2 and 3 is in
 // test_mitsuba_agreement.cpp, the launch plans' in test_launch_plans.cpp;
-// here M = 1, where the image is known exactly.
+// here M = 1, where the image is known exactly, what one edge more adds,
+// and rr_depth.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -79,4 +80,21 @@ TEST_CASE("Mitsuba max_depth: one edge more adds light to every sample, and cuts
         CHECK(sum > last_sum);
         last = mean;
     }
+}
+
+TEST_CASE("Mitsuba rr_depth: a file's is the roulette depth the render uses", "[render][mitsuba]") {
+    // rr_depth counts as --roulette-depth does (Mitsuba 3's roulette runs
+    // once depth + 1 >= rr_depth after the bounce at `depth`, wavepath's
+    // once depth + 1 >= roulette_depth): the scene's gives the image of the
+    // option's, bit for bit, and not the default's. The reading is tested
+    // in tests/scene/test_mitsuba_import.cpp.
+    Scene scene = max_depth_scene(-1);
+    const Image roulette_from_1 = render(scene, 4, 3).film.mean();
+    IntegratorOptions option;
+    option.roulette_depth = 4;
+    const Image from_option = render(scene, 4, 3, 0, option).film.mean();
+    scene.rr_depth = 4;
+    const Image from_file = render(scene, 4, 3).film.mean();
+    CHECK(from_file.rgb == from_option.rgb);
+    CHECK(from_file.rgb != roulette_from_1.rgb);
 }
