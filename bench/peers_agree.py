@@ -134,7 +134,7 @@ def main():
                         "--wp-options='--roulette-depth 5'")
     parser.add_argument("-D", "--define", action="append", default=[], metavar="NAME=VALUE",
                         help="set the XML scene's $NAME in both renderers, as Mitsuba's -D "
-                        "(repeatable): -D res=128 -D max_depth=-1")
+                        "(repeatable): -D res=128 -D max_depth=3")
     parser.add_argument("--threads", type=int, default=2)
     parser.add_argument("--variant", default="llvm_ad_rgb")
     parser.add_argument("--llvm", default=None, help="libLLVM for Mitsuba's llvm variant")

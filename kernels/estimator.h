@@ -66,6 +66,18 @@
 #define WP_ROULETTE_DEPTH 1
 #endif
 
+/* WP_PATH_LENGTH: what frame.max_depth ends (IntegratorOptions::depth_rule).
+ *   0: wavepath's safety cap: a path bounces at most frame.max_depth times;
+ *     its last vertex still samples a light, and a path cut is counted.
+ *   1: Mitsuba 3's max_depth M (a Mitsuba file's, docs/mitsuba-import.md):
+ *     paths of at most M edges, the camera ray included; frame.max_depth is
+ *     M - 1, the depth of the last vertex, which adds its emission and ends
+ *     the path (no light sample there, no bounce), and a light sample by way
+ *     of a mirror (two edges) is made only two vertices before it. */
+#ifndef WP_PATH_LENGTH
+#define WP_PATH_LENGTH 0
+#endif
+
 /* WP_ROULETTE_RULE: the survival probability of WP_DIFFUSE_COSINE's
  * throughput roulette (IntegratorOptions::roulette_rule, --roulette).
  *   WP_ROULETTE_THROUGHPUT (0): min(1, max(throughput)).

@@ -32,6 +32,8 @@
  *     throughput.w.
  *     Past frame.max_depth bounces a path is cut and counted; the cap is a
  *     guard against endless mirror corridors, not part of the estimator.
+ *     With WP_PATH_LENGTH (Mitsuba's max_depth, estimator.h) it is part of
+ *     it: the vertex at depth frame.max_depth ends its path after step 1.
  *     With WP_DIFFUSE_SAMPLING == WP_DIFFUSE_REPORT it is the report's albedo
  *     roulette instead (estimator.h, bsdf/diffuse.h).
  *
@@ -312,6 +314,12 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
                               0.0f);
     if (wp_bsdf_is_black(&material))
         return WP_SHADED_ENDS;
+#if WP_PATH_LENGTH
+    /* Mitsuba's max_depth: a light sample or a bounce from the last vertex
+     * would make a path one edge longer than Mitsuba's longest. */
+    if (depth >= frame.max_depth)
+        return WP_SHADED_ENDS;
+#endif
 
     /* Shadow rays and reflected rays leave by the side the ray came from,
      * transmitted ones (and shadow rays towards lights behind a surface that
@@ -332,8 +340,10 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
             wp_shade_next_event(&scene, &material, &surface, direction, &point, origin,
                                 origin_behind, beta, u_pick, u_light, v_light, shadow);
 #if WP_MIRROR_NEE
+        /* Its two legs make a path two edges longer than this vertex's. */
         shadow->mirror_made =
             WP_MIRROR_NEXT_EVENT_SELECTED(frame.path_types, flags) &&
+            (!WP_PATH_LENGTH || depth + 1u < frame.max_depth) &&
             wp_mirror_next_event(&scene, &material, &surface, direction, &point, origin, beta,
                                  u_pick, u_light, v_light, &shadow->mirror);
 #endif

@@ -9,8 +9,8 @@ the gallery's table (times, sample counts, image means).
                                     [--out-dir docs/images/gallery]
 
 Both renderers read the file as it is, with the same -D values: the size
-(res, or width and height) and max_depth=-1 (wavepath ends paths by
-Russian roulette alone, docs/mitsuba-import.md). Mitsuba renders with
+(res, or width and height); each applies the file's max_depth
+(docs/mitsuba-import.md, "max_depth"). Mitsuba renders with
 `llvm_ad_rgb` through bench/peers_mitsuba.py (2 threads), wavepath with
 `wavepath render` (PoCL, 2 threads); each time is the renderer's own
 (wavepath's --profile-json wall time, Mitsuba's render call), loading
@@ -34,11 +34,11 @@ import peers_image  # noqa: E402
 import peers_renderers  # noqa: E402
 
 DATA = REPOSITORY / "tests/data/third-party/mitsuba-data/scenes"
-# name, scene file, -D values (the size, and no max_depth cap)
+# name, scene file, -D values (the size)
 SCENES = [
-    ("cbox", DATA / "cbox/cbox.xml", ["res=128", "max_depth=-1"]),
-    ("cbox-rgb", DATA / "cbox/cbox-rgb.xml", ["res=128", "max_depth=-1"]),
-    ("matpreview", DATA / "matpreview/matpreview.xml", ["width=171", "height=128", "max_depth=-1"]),
+    ("cbox", DATA / "cbox/cbox.xml", ["res=128"]),
+    ("cbox-rgb", DATA / "cbox/cbox-rgb.xml", ["res=128"]),
+    ("matpreview", DATA / "matpreview/matpreview.xml", ["width=171", "height=128"]),
 ]
 
 

@@ -68,9 +68,13 @@ void add_integrator_options(CLI::App& command, IntegratorOptions& options) {
     command
         .add_option("--max-depth", options.max_depth,
                     "Safety cap on bounces; Russian roulette ends paths long before it. Paths it "
-                    "cuts are counted and reported")
+                    "cuts are counted and reported. With a Mitsuba XML scene it is Mitsuba's "
+                    "max_depth and overrides the file's: the longest path in edges, the camera "
+                    "ray included (1: emitters seen directly, 2: direct light; "
+                    "docs/mitsuba-import.md)")
         ->capture_default_str()
-        ->check(CLI::Range(1u, cli_limits::max_depth));
+        ->check(CLI::Range(1u, cli_limits::max_depth))
+        ->each([&options](const std::string&) { options.max_depth_given = true; });
     command.add_flag("!--no-nee", options.next_event_estimation,
                      "Next-event estimation off: light only from paths that hit an emitter");
     command
@@ -109,9 +113,11 @@ void add_integrator_options(CLI::App& command, IntegratorOptions& options) {
     command
         .add_option("--roulette-depth", options.roulette_depth,
                     "The first bounce at which Russian roulette may end a path (1: every "
-                    "bounce); before it every path goes on")
+                    "bounce); before it every path goes on. Overrides a Mitsuba file's rr_depth, "
+                    "which counts the same")
         ->capture_default_str()
-        ->check(CLI::Range(1u, cli_limits::max_depth));
+        ->check(CLI::Range(1u, cli_limits::max_depth))
+        ->each([&options](const std::string&) { options.roulette_depth_given = true; });
     add_choice(command, "--roulette", options.roulette_rule,
                {RouletteRule::Throughput, RouletteRule::Mitsuba},
                "Russian roulette's survival probability: 'throughput' (min(1, max(throughput))) "

@@ -290,7 +290,6 @@ int run_render(const RenderCommand& command) {
 
     const bool profiling =
         command.profile || !command.profile_json.empty() || !command.trace.empty();
-    const IntegratorOptions& options = command.integrator;
     // The checkpoints' scene hash covers the triangles, which open_renderer
     // frees; hashed only for checkpoints (a 10^6-triangle mesh's 208 MB took
     // a tenth of its render's loading time).
@@ -300,6 +299,10 @@ int run_render(const RenderCommand& command) {
     // Every device of --device, and with MPI the other ranks' (render_devices.hpp).
     std::unique_ptr<MultiDeviceRenderer> renderer = open_renderer(command, scene, profiling);
     MultiDeviceRenderer& integrator = *renderer;
+    // The command line's options with the scene's own (a Mitsuba file's
+    // max_depth, rr_depth, hide_emitters: prepared_scene.hpp), as rendered:
+    // what the metadata and the checkpoints record.
+    const IntegratorOptions& options = integrator.integrator().options();
     // After the integrator, whose device check is arithmetic: allocating (and
     // zeroing) a film first would take a minute and all host memory before
     // an image too big for the device is refused.

@@ -194,6 +194,8 @@ std::string describe_estimator(const IntegratorOptions& options) {
         text += "+roulette-" + to_string(options.roulette_rule);
     if (options.path_types != kAllPathTypes)
         text += "+paths=" + describe_path_types(options.path_types);
+    if (options.depth_rule == DepthRule::PathLength)
+        text += "+path-length-" + std::to_string(options.max_depth);
     return text;
 }
 

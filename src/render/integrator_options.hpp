@@ -58,6 +58,15 @@ enum class Traversal {
     Loop,      // always every primitive (the images agree; only the speed differs)
 };
 
+// What max_depth counts (docs/mitsuba-import.md, "max_depth"):
+enum class DepthRule {
+    Bounces,    // wavepath's safety cap: at most max_depth bounces; the last vertex
+                // still samples a light, and the paths it cuts are counted
+    PathLength, // Mitsuba's max_depth: paths of at most max_depth edges, the camera ray
+                // included; the vertex at the last edge adds its emission and ends
+                // the path (no light sample there, no bounce: kernels/shade.cl)
+};
+
 // How the stages are launched (docs/architecture.md, "Launch plans"). Every
 // plan runs the same stage functions in the same order per path, so the
 // images agree (tests/render/test_launch_plans.cpp says how closely).
@@ -85,6 +94,12 @@ struct IntegratorOptions {
     // any scene with absorption; it exists for lossless mirror corridors. The
     // number of paths it cuts is counted in RenderStats::capped_paths.
     std::uint32_t max_depth = 1024;
+    DepthRule depth_rule = DepthRule::Bounces;
+    // Whether the command line gave max_depth and roulette_depth: a scene's
+    // own (a Mitsuba file's max_depth and rr_depth) then gives way to them
+    // (prepare_scene).
+    bool max_depth_given = false;
+    bool roulette_depth_given = false;
     bool general_kernels = false; // compile every feature, not just the scene's
     Traversal traversal = Traversal::Auto;
     // Start rays from the smooth surface that vertex normals describe, not the
@@ -199,7 +214,7 @@ std::string describe_path_types(std::uint32_t types);
 // (Light sampling is left out without next-event estimation: it does not apply.)
 // The area light pick adds "+area-pick"; a roulette depth other than the
 // default "+roulette-from-N", Mitsuba's roulette rule "+roulette-mitsuba", a subset
-// of the path types "+paths=direct,caustic".
+// of the path types "+paths=direct,caustic", Mitsuba's max_depth M "+path-length-M".
 std::string describe_estimator(const IntegratorOptions& options);
 
 } // namespace wp

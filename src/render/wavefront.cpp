@@ -227,7 +227,11 @@ WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const PreparedSc
     frame_.emitter_count = static_cast<wp_uint>(scene.emitters.size());
     frame_.emitter_pick = scene.emitter_pick;
     frame_.instance_count = static_cast<wp_uint>(scene.instances.size());
-    frame_.max_depth = options_.max_depth;
+    // The kernels' max_depth is the depth of the last vertex shaded: under
+    // Mitsuba's rule (M edges at most) the vertex at depth M - 1, where the
+    // path ends (kernels/shade.cl); under wavepath's the last bounce's.
+    frame_.max_depth =
+        options_.depth_rule == DepthRule::PathLength ? options_.max_depth - 1u : options_.max_depth;
     frame_.path_types = options_.path_types;
 
     buffers_ = allocate_device_buffers(device_.context, scene, pool_size_, pixel_count_,
@@ -634,6 +638,8 @@ std::string kernel_build_options(const SceneFeatures& features, const Integrator
         text += " -D WP_SHADOW_TERMINATOR_FIX=0";
     if (options.aovs != 0) // only then: without, the kernels are as they were
         text += " -D WP_AOV=1";
+    if (options.depth_rule == DepthRule::PathLength) // only then: the default is as it was
+        text += " -D WP_PATH_LENGTH=1";
     return text;
 }
 

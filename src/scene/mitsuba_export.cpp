@@ -293,12 +293,19 @@ std::string integrator(const Scene& scene) {
     // a guard against lossless mirror corridors; no path reaches the cap in a
     // scene that absorbs anything. Mitsuba's `path` with no depth limit (-1)
     // and its own roulette (from depth rr_depth = 5) estimates the same
-    // integral: both are unbiased, so the images agree in expectation.
-    return std::string("    <integrator type=\"path\">\n"
-                       "        <integer name=\"max_depth\" value=\"-1\"/>\n") +
-           (scene.hide_emitters ? "        <boolean name=\"hide_emitters\" value=\"true\"/>\n"
-                                : "") +
-           "    </integrator>\n";
+    // integral: both are unbiased, so the images agree in expectation. A
+    // Mitsuba file's own max_depth and rr_depth (Scene::max_depth) go back
+    // as they came.
+    std::string text = "    <integrator type=\"path\">\n";
+    text +=
+        "        <integer name=\"max_depth\" value=\"" + std::to_string(scene.max_depth) + "\"/>\n";
+    if (scene.rr_depth > 0)
+        text += "        <integer name=\"rr_depth\" value=\"" + std::to_string(scene.rr_depth) +
+                "\"/>\n";
+    if (scene.hide_emitters)
+        text += "        <boolean name=\"hide_emitters\" value=\"true\"/>\n";
+    text += "    </integrator>\n";
+    return text;
 }
 
 // A point, spot, directional, constant or envmap emitter as Mitsuba 3's plugin of

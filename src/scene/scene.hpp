@@ -241,6 +241,16 @@ struct Scene {
     // as before everywhere else, reflections included. The renderer leaves
     // out the camera path type (WP_PATH_TYPE_CAMERA).
     bool hide_emitters = false;
+    // Mitsuba's path integrator's max_depth and rr_depth, as a Mitsuba file
+    // gives them (docs/mitsuba-import.md, "max_depth"); a JSON scene has
+    // neither. max_depth is the longest path in edges, the camera ray
+    // included (-1: unlimited), rendered with that meaning
+    // (DepthRule::PathLength) unless the command line gives --max-depth;
+    // with a Mitsuba file --max-depth has that meaning too (mitsuba_depths).
+    // rr_depth is wavepath's roulette_depth (0: the file gives none).
+    bool mitsuba_depths = false;
+    int max_depth = -1;
+    std::uint32_t rr_depth = 0;
     std::vector<std::string> warnings; // e.g. skipped zero-area triangles
 };
 

@@ -160,6 +160,36 @@ TEST_CASE("Launch plans: one sample per render call (the CLI without regeneratio
     }
 }
 
+TEST_CASE("Launch plans: a Mitsuba file's max_depth renders the stages plan's image bit for bit "
+          "in every plan, with and without next-event estimation through mirrors",
+          "[render][launch-plan][mitsuba]") {
+    // max_depth 3 (DepthRule::PathLength): the last vertex adds its emission
+    // and ends the path, the mirror's light sample is made only at the first
+    // vertex (kernels/shade.cl). One sample per render call, as above.
+    SceneReadOptions read;
+    read.defines = {{"max_depth", "3"}};
+    const Scene scene = load_scene(WAVEPATH_SOURCE_DIR "/tests/data/mitsuba/max-depth.xml", read);
+    const std::uint32_t spp = 4;
+    std::uint64_t shadow_rays[2] = {0, 0};
+    for (bool mirror_next_event : {false, true}) {
+        IntegratorOptions options;
+        options.mirror_next_event = mirror_next_event;
+        const PlanRender stages = render_plan(scene, LaunchPlan::Stages, options, spp, 1);
+        CHECK(stages.stats.capped_paths == 0);
+        shadow_rays[mirror_next_event] = stages.stats.shadow_rays;
+        for (LaunchPlan plan : {LaunchPlan::Bounce, LaunchPlan::Wave}) {
+            INFO(to_string(plan) << ", mirror next-event estimation " << mirror_next_event);
+            const PlanRender other = render_plan(scene, plan, options, spp, 1);
+            check_same_counts(stages, other);
+            CHECK(compare(stages.film.mean(), other.film.mean()).differing == 0);
+            CHECK(
+                compare(stages.film.variance_of_mean(), other.film.variance_of_mean()).differing ==
+                0);
+        }
+    }
+    CHECK(shadow_rays[1] > shadow_rays[0]); // the mirror's light samples were made
+}
+
 TEST_CASE("Shade's work-group compaction of its queue pushes: the image and the counts do not "
           "depend on the work-group size",
           "[render][launch-plan]") {

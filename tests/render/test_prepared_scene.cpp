@@ -71,3 +71,39 @@ TEST_CASE("prepared scene: an integrator of a prepared scene renders the image o
     REQUIRE(a.rgb.size() == b.rgb.size());
     CHECK(std::memcmp(a.rgb.data(), b.rgb.data(), a.rgb.size() * sizeof(float)) == 0);
 }
+
+TEST_CASE("prepared scene: a Mitsuba file's max_depth and rr_depth, unless the command line "
+          "gives its own") {
+    Scene scene = test::hexroom(4, 4);
+    // A JSON scene: wavepath's bounce cap, as the options say.
+    IntegratorOptions options;
+    options.max_depth = 7;
+    options.max_depth_given = true;
+    CHECK(prepare_scene(scene, options).options.depth_rule == DepthRule::Bounces);
+    CHECK(prepare_scene(scene, options).options.max_depth == 7);
+    // A Mitsuba file's: its max_depth counts edges, its rr_depth is the
+    // roulette depth ...
+    scene.mitsuba_depths = true;
+    scene.max_depth = 3;
+    scene.rr_depth = 5;
+    const IntegratorOptions file = prepare_scene(scene, IntegratorOptions{}).options;
+    CHECK(file.depth_rule == DepthRule::PathLength);
+    CHECK(file.max_depth == 3);
+    CHECK(file.roulette_depth == 5);
+    // ... unless the command line gives them: --max-depth then counts edges
+    // as the file's would, --roulette-depth is wavepath's.
+    options.roulette_depth = 2;
+    options.roulette_depth_given = true;
+    const IntegratorOptions given = prepare_scene(scene, options).options;
+    CHECK(given.depth_rule == DepthRule::PathLength);
+    CHECK(given.max_depth == 7);
+    CHECK(given.roulette_depth == 2);
+    // Mitsuba's -1 (no limit) is wavepath's default, the safety cap.
+    scene.max_depth = -1;
+    scene.rr_depth = 0;
+    const IntegratorOptions unlimited = prepare_scene(scene, IntegratorOptions{}).options;
+    CHECK(unlimited.depth_rule == DepthRule::Bounces);
+    CHECK(unlimited.max_depth == IntegratorOptions{}.max_depth);
+    CHECK(unlimited.roulette_depth == IntegratorOptions{}.roulette_depth);
+    CHECK(describe_estimator(file).find("+path-length-3") != std::string::npos);
+}

@@ -278,6 +278,31 @@ TEST_CASE("mitsuba import: the path integrator's hide_emitters, read and exporte
     }
 }
 
+TEST_CASE("mitsuba import: the path integrator's max_depth and rr_depth, read and exported",
+          "[scene][mitsuba][import]") {
+    wp::test::TempDir dir;
+    const wp::Scene plain = load(dir, R"(<integrator type="path"/>)");
+    CHECK(plain.mitsuba_depths);
+    CHECK(plain.max_depth == -1); // Mitsuba's default: no limit
+    CHECK(plain.rr_depth == 0);   // none given: wavepath's roulette
+    const wp::Scene set = load(dir, R"(<integrator type="path"><integer name="max_depth" value="3"/>
+        <integer name="rr_depth" value="2"/></integrator>)");
+    CHECK(set.max_depth == 3);
+    CHECK(set.rr_depth == 2);
+    CHECK(load(dir, "").mitsuba_depths); // no <integrator>: Mitsuba's path, -1
+    // export-mitsuba writes them back, and the export reads back with them;
+    // a JSON scene has neither (-1, and no rr_depth).
+    for (const wp::Scene* scene : {&plain, &set}) {
+        wp::write_mitsuba(wp::export_mitsuba(*scene, "back"), dir / "back.xml");
+        const wp::Scene back = wp::load_scene(dir / "back.xml");
+        CHECK(back.max_depth == scene->max_depth);
+        CHECK(back.rr_depth == scene->rr_depth);
+    }
+    const wp::Scene json = wp::load_scene(WAVEPATH_SOURCE_DIR "/scenes/cornell-box.json");
+    CHECK_FALSE(json.mitsuba_depths);
+    CHECK(json.max_depth == -1);
+}
+
 TEST_CASE("mitsuba import: bad input is one line with the file, line and column",
           "[scene][mitsuba][import][errors]") {
     wp::test::TempDir dir;
@@ -397,6 +422,28 @@ TEST_CASE("mitsuba import: bad input is one line with the file, line and column"
          head + repeated(kNested, 100000) + repeated("</bsdf>", 100000) + "</scene>",
          "2:" + std::to_string(1 + 64 * std::string(kNested).size()), "nested more than 64 deep"},
         {"no sensor", head + "<shape type=\"cube\"/></scene>", "1:1", "has no <sensor>"},
+        {"max_depth 0 (Mitsuba renders black)",
+         head + "<integrator type=\"path\">\n  <integer name=\"max_depth\" value=\"0\"/>"
+                "</integrator></scene>",
+         "3:3",
+         "max_depth\">: must be -1 (no limit) or in [1, 1048576] (the longest path in "
+         "edges, the camera ray included), got 0"},
+        {"max_depth -2",
+         head + "<integrator type=\"path\">\n  <integer name=\"max_depth\" value=\"-2\"/>"
+                "</integrator></scene>",
+         "3:3", "must be -1 (no limit) or in [1, 1048576]"},
+        {"max_depth not an integer",
+         head + "<integrator type=\"path\">\n  <integer name=\"max_depth\" value=\"2.5\"/>"
+                "</integrator></scene>",
+         "3:3", "2.5"},
+        {"max_depth as a float",
+         head + "<integrator type=\"path\">\n  <float name=\"max_depth\" value=\"3\"/>"
+                "</integrator></scene>",
+         "3:3", "must be <integer>, not <float>"},
+        {"rr_depth 0 (Mitsuba refuses it)",
+         head + "<integrator type=\"path\">\n  <integer name=\"rr_depth\" value=\"0\"/>"
+                "</integrator></scene>",
+         "3:3", "rr_depth\">: must be in [1, 1048576], got 0"},
     };
     for (const Case& c : cases) {
         INFO(c.what << "\n" << c.xml);

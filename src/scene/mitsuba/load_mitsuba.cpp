@@ -158,24 +158,28 @@ bool is_supported_scene_emitter(const std::string& type) {
            type == "envmap";
 }
 
-// Mitsuba's `path` integrator. wavepath's paths end by Russian roulette
-// alone (a cap of 1024 bounces guards lossless corridors), which is
-// Mitsuba's max_depth -1; a finite max_depth is noted, since it darkens
-// Mitsuba's image. rr_depth changes the noise only.
+// Mitsuba's `path` integrator: max_depth and rr_depth as Mitsuba reads
+// them, applied by the renderer (Scene::max_depth; docs/mitsuba-import.md,
+// "max_depth"). Mitsuba takes a max_depth of 0 and renders black; wavepath
+// refuses it with the other values that render nothing.
 void read_integrator(const Object& integrator, Scene& scene) {
-    std::vector<std::string>& warnings = scene.warnings;
     Parameters p(integrator);
     if (integrator.type != "path")
         p.fail("unsupported integrator '" + json::shorten(integrator.type, 40) +
                "' (wavepath renders with Mitsuba's path integrator; --lenient renders the scene "
                "with it)");
+    constexpr long long kMostDepth = 1 << 20; // the command line's --max-depth bound
     const long long max_depth = p.integer("max_depth").value_or(-1);
-    if (max_depth != -1)
-        warnings.push_back(integrator.where.text() + ": " + integrator.element() + ": max_depth " +
-                           std::to_string(max_depth) +
-                           " is not applied: wavepath ends paths by Russian roulette only (as "
-                           "max_depth -1); set --max-depth for a cap");
-    p.ignore("rr_depth");
+    if (max_depth != -1 && !(max_depth >= 1 && max_depth <= kMostDepth))
+        p.fail("max_depth", "must be -1 (no limit) or in [1, " + std::to_string(kMostDepth) +
+                                "] (the longest path in edges, the camera ray included), got " +
+                                std::to_string(max_depth));
+    const std::optional<long long> rr_depth = p.integer("rr_depth");
+    if (rr_depth && !(*rr_depth >= 1 && *rr_depth <= kMostDepth))
+        p.fail("rr_depth", "must be in [1, " + std::to_string(kMostDepth) + "], got " +
+                               std::to_string(*rr_depth));
+    scene.max_depth = static_cast<int>(max_depth);
+    scene.rr_depth = static_cast<std::uint32_t>(rr_depth.value_or(0));
     scene.hide_emitters = p.boolean("hide_emitters").value_or(false);
     for (const auto& child : integrator.children)
         fail_at(child->where, child->element(),
@@ -191,6 +195,7 @@ class SceneAssembler {
                    const std::map<std::string, std::string>& defines) {
         const Document document = read_document(path, defines);
         scene_.source = path.string();
+        scene_.mitsuba_depths = true; // --max-depth counts edges, as max_depth does
         scene_.files.assign(document.files.begin() + 1, document.files.end());
         const Object& root = *document.scene;
         bool has_sensor = false;
