@@ -45,7 +45,7 @@ struct Primitive {
 // A range of primitives with its boxes' bounds and its centroids' bounds:
 // what a node needs before it is split. A parent computes its children's
 // while it partitions (the primitives are read once a level, not twice).
-struct Range {
+struct PrimitiveRange {
     std::size_t begin = 0, end = 0;
     Bounds3f bounds, centroids;
 
@@ -87,8 +87,9 @@ struct Scratch {
     std::vector<Primitive> buffer;
 };
 
-Range range_of(const std::vector<Primitive>& primitives, std::size_t begin, std::size_t end) {
-    Range r{begin, end, {}, {}};
+PrimitiveRange range_of(const std::vector<Primitive>& primitives, std::size_t begin,
+                        std::size_t end) {
+    PrimitiveRange r{begin, end, {}, {}};
     for (std::size_t i = begin; i < end; ++i) {
         r.bounds.extend(primitives[i].bounds);
         r.centroids.extend(primitives[i].centroid);
@@ -107,7 +108,7 @@ class Builder {
         spare_threads_ = static_cast<int>(threads) - 1;
     }
 
-    void build(const Range& range, std::uint32_t depth, Subtree& out, Scratch& scratch) {
+    void build(const PrimitiveRange& range, std::uint32_t depth, Subtree& out, Scratch& scratch) {
         const auto index = out.nodes.size();
         out.nodes.emplace_back();
         out.nodes[index].bounds = range.bounds;
@@ -185,7 +186,7 @@ class Builder {
     // One pass over the primitives bins them along all three axes (the
     // primitives are read once, not once an axis: binning is most of the
     // build's time).
-    Split best_split(const Range& range) const {
+    Split best_split(const PrimitiveRange& range) const {
         Split best;
         const Bounds3f& centroids = range.centroids;
         const double node_area = range.bounds.surface_area();
@@ -245,18 +246,19 @@ class Builder {
     // the root is a second copy of every primitive, the build's peak memory.
     // The larger side is compacted in place, keeping its order. The pass
     // that sorts the primitives to their sides also bounds each side.
-    std::pair<Range, Range> partition(const Range& range, const Split& split, Scratch& scratch) {
+    std::pair<PrimitiveRange, PrimitiveRange> partition(const PrimitiveRange& range,
+                                                        const Split& split, Scratch& scratch) {
         const std::size_t begin = range.begin, end = range.end;
         std::vector<std::uint8_t>& left = scratch.left;
         left.resize(end - begin);
-        Range l, r;
+        PrimitiveRange l, r;
         std::size_t left_count = 0;
         for (std::size_t i = begin; i < end; ++i) {
             const Primitive& p = primitives_[i];
             const bool is_left = bin_of(p.centroid, range.centroids, split.axis) <= split.bin;
             left[i - begin] = is_left;
             left_count += is_left;
-            Range& side = is_left ? l : r;
+            PrimitiveRange& side = is_left ? l : r;
             side.bounds.extend(p.bounds);
             side.centroids.extend(p.centroid);
         }
