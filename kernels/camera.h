@@ -56,20 +56,64 @@ static inline float wp_sample_gaussian_filter(float u, float radius, float scale
 }
 #endif
 
-/* A sample's position within the image, in pixels from the image's left
- * (top) edge, for pixel column (row) `index` and the uniform number u. The
- * box keeps the form it always had, index + u, so its images do not change
- * by a bit. */
-static inline float wp_filter_position(const WpCamera* camera, wp_uint index, float u) {
+#if WP_HAS_TENT_FILTER || WP_HAS_GAUSSIAN_FILTER
+/* The filter's CDF over signed offsets, F(x) = 1/2 + sign(x) C(|x|) / 2 with
+ * C the normalised CDF of |x| above: the function the two samplers invert. */
+static inline float wp_filter_cdf(const WpCamera* camera, float x) {
+    float y = fmin(fabs(x), camera->filter_radius), c = 1.0f;
 #if WP_HAS_TENT_FILTER
-    if (camera->filter == WP_FILTER_TENT)
-        return (float)index + 0.5f + wp_sample_tent(u, camera->filter_radius);
+    if (camera->filter == WP_FILTER_TENT) {
+        float t = 1.0f - y / camera->filter_radius;
+        c = 1.0f - t * t;
+    }
 #endif
 #if WP_HAS_GAUSSIAN_FILTER
     if (camera->filter == WP_FILTER_GAUSSIAN)
-        return (float)index + 0.5f +
-               wp_sample_gaussian_filter(u, camera->filter_radius, camera->filter_scale,
-                                         camera->filter_bias);
+        c = wp_gaussian_filter_cdf(y, camera->filter_scale, camera->filter_bias) /
+            wp_gaussian_filter_cdf(camera->filter_radius, camera->filter_scale,
+                                   camera->filter_bias);
+#endif
+    return x < 0.0f ? 0.5f - 0.5f * c : 0.5f + 0.5f * c;
+}
+
+/* Mitsuba's film samples only inside the image (hdrfilm's sample_border is
+ * off by default) and splats each sample with the filter's weight, so a
+ * pixel within the filter's radius of the edge converges to the weighted
+ * mean over the part of its footprint inside the image. The same
+ * expectation here: u is mapped into [F(lo), F(hi)], the CDF's values at the
+ * offsets where the image ends, so the offset follows the filter restricted
+ * to the image. Drawn from the whole filter instead, the Cornell box's
+ * outermost ring of pixels at 32x32 came out 18 % darker than Mitsuba's
+ * (docs/lights-and-camera.md). Interior pixels keep u as it is. */
+static inline float wp_filter_inside_image(const WpCamera* camera, float centre, wp_uint size,
+                                           float u) {
+    float r = camera->filter_radius;
+    float lo = fmax(-r, -centre), hi = fmin(r, (float)size - centre);
+    if (lo > -r || hi < r) {
+        float f_lo = wp_filter_cdf(camera, lo), f_hi = wp_filter_cdf(camera, hi);
+        u = f_lo + u * (f_hi - f_lo);
+    }
+    return u;
+}
+#endif
+
+/* A sample's position within the image, in pixels from the image's left
+ * (top) edge, for pixel column (row) `index` of `size` and the uniform
+ * number u. The box keeps the form it always had, index + u, so its images
+ * do not change by a bit. */
+static inline float wp_filter_position(const WpCamera* camera, wp_uint index, wp_uint size,
+                                       float u) {
+    float centre = (float)index + 0.5f;
+#if WP_HAS_TENT_FILTER
+    if (camera->filter == WP_FILTER_TENT)
+        return centre + wp_sample_tent(wp_filter_inside_image(camera, centre, size, u),
+                                       camera->filter_radius);
+#endif
+#if WP_HAS_GAUSSIAN_FILTER
+    if (camera->filter == WP_FILTER_GAUSSIAN)
+        return centre + wp_sample_gaussian_filter(wp_filter_inside_image(camera, centre, size, u),
+                                                  camera->filter_radius, camera->filter_scale,
+                                                  camera->filter_bias);
 #endif
     return (float)index + u;
 }

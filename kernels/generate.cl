@@ -37,8 +37,10 @@ static inline int wp_generate_path(WP_STAGE_PARAMETERS, wp_uint slot) {
     float jx = wp_random(frame.seed, pixel, sample, 0u, WP_DIM_JITTER_X);
     float jy = wp_random(frame.seed, pixel, sample, 0u, WP_DIM_JITTER_Y);
     /* Film coordinates in [-1, 1]: x to the right, y up (row 0 is the top). */
-    float sx = 2.0f * wp_filter_position(&frame.camera, x, jx) / (float)frame.width - 1.0f;
-    float sy = 1.0f - 2.0f * wp_filter_position(&frame.camera, y, jy) / (float)frame.height;
+    float sx =
+        2.0f * wp_filter_position(&frame.camera, x, frame.width, jx) / (float)frame.width - 1.0f;
+    float sy =
+        1.0f - 2.0f * wp_filter_position(&frame.camera, y, frame.height, jy) / (float)frame.height;
     float3 origin = frame.camera.eye.xyz;
     float3 direction =
         frame.camera.forward.xyz + sx * frame.camera.right.xyz + sy * frame.camera.up.xyz;
