@@ -340,10 +340,14 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
             wp_shade_next_event(&scene, &material, &surface, direction, &point, origin,
                                 origin_behind, beta, u_pick, u_light, v_light, shadow);
 #if WP_MIRROR_NEE
-        /* Its two legs make a path two edges longer than this vertex's. */
+        /* Its two legs make a path two edges longer than this vertex's,
+         * which under Mitsuba's max_depth must fit. (An #if, not a constant
+         * operand: clang's GPU targets warn about `!0 || ...`.) */
         shadow->mirror_made =
             WP_MIRROR_NEXT_EVENT_SELECTED(frame.path_types, flags) &&
-            (!WP_PATH_LENGTH || depth + 1u < frame.max_depth) &&
+#if WP_PATH_LENGTH
+            depth + 1u < frame.max_depth &&
+#endif
             wp_mirror_next_event(&scene, &material, &surface, direction, &point, origin, beta,
                                  u_pick, u_light, v_light, &shadow->mirror);
 #endif
