@@ -321,7 +321,7 @@ CLI::App* add_kernel_source_subcommand(CLI::App& app, KernelSourceCommand& comma
 int run_kernel_source(const KernelSourceCommand& command) {
     check_output(command.source);
     const Scene scene = load_scene(command.scene, scene_read_options());
-    const IntegratorOptions& options = command.integrator;
+    const IntegratorOptions options = with_scene_settings(command.integrator, scene);
     const SceneFeatures compiled = compiled_features(integrator_features(scene, options), options);
     if (!command.source.empty()) {
         const std::string text = expand_includes(wavefront_program_source(), "wavefront.cl");

@@ -8,27 +8,6 @@
 namespace wp {
 namespace {
 
-// A Mitsuba scene's path integrator, where the command line did not say
-// otherwise. hide_emitters leaves out the light a camera ray sees directly:
-// the camera path type, which the kernels then track (kernels/path_type.h);
-// --path-types may have left out others already. max_depth counts edges, as
-// Mitsuba counts them, and so does --max-depth with a Mitsuba file: a number
-// that overrides the file's means what the file's means. Its -1 (no limit)
-// is wavepath's default, the safety cap. rr_depth is roulette_depth.
-IntegratorOptions with_scene_settings(IntegratorOptions options, const Scene& scene) {
-    if (scene.hide_emitters)
-        options.path_types &= ~(1u << WP_PATH_TYPE_CAMERA);
-    if (scene.mitsuba_depths && options.max_depth_given)
-        options.depth_rule = DepthRule::PathLength;
-    else if (scene.max_depth > 0 && !options.max_depth_given) {
-        options.max_depth = static_cast<std::uint32_t>(scene.max_depth);
-        options.depth_rule = DepthRule::PathLength;
-    }
-    if (scene.rr_depth > 0 && !options.roulette_depth_given)
-        options.roulette_depth = scene.rr_depth;
-    return options;
-}
-
 // `release`: the scene's triangles, freed once flattened, or null.
 PreparedScene prepare(const Scene& scene, const IntegratorOptions& options,
                       std::vector<Triangle>* release) {
@@ -50,6 +29,27 @@ PreparedScene prepare(const Scene& scene, const IntegratorOptions& options,
 }
 
 } // namespace
+
+// A Mitsuba scene's path integrator, where the command line did not say
+// otherwise. hide_emitters leaves out the light a camera ray sees directly:
+// the camera path type, which the kernels then track (kernels/path_type.h);
+// --path-types may have left out others already. max_depth counts edges, as
+// Mitsuba counts them, and so does --max-depth with a Mitsuba file: a number
+// that overrides the file's means what the file's means. Its -1 (no limit)
+// is wavepath's default, the safety cap. rr_depth is roulette_depth.
+IntegratorOptions with_scene_settings(IntegratorOptions options, const Scene& scene) {
+    if (scene.hide_emitters)
+        options.path_types &= ~(1u << WP_PATH_TYPE_CAMERA);
+    if (scene.mitsuba_depths && options.max_depth_given)
+        options.depth_rule = DepthRule::PathLength;
+    else if (scene.max_depth > 0 && !options.max_depth_given) {
+        options.max_depth = static_cast<std::uint32_t>(scene.max_depth);
+        options.depth_rule = DepthRule::PathLength;
+    }
+    if (scene.rr_depth > 0 && !options.roulette_depth_given)
+        options.roulette_depth = scene.rr_depth;
+    return options;
+}
 
 PreparedScene prepare_scene(const Scene& scene, const IntegratorOptions& options) {
     return prepare(scene, options, nullptr);

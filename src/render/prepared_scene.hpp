@@ -31,6 +31,11 @@ struct PreparedScene {
     int height = 0;
 };
 
+// `options` with the scene's own settings where the command line gave none:
+// a Mitsuba file's path integrator (max_depth, rr_depth, hide_emitters).
+// What prepare_scene renders with, and what `kernel-source` prints.
+IntegratorOptions with_scene_settings(IntegratorOptions options, const Scene& scene);
+
 // Prepares `scene` for `options`; throws what integrator_features and
 // flatten_scene throw (e.g. --traversal loop on a scene with instances).
 PreparedScene prepare_scene(const Scene& scene, const IntegratorOptions& options);
