@@ -5,7 +5,7 @@ a grid of blocks, each with its standard error, for comparing against
 wavepath (tests/app/test_cli_export.cpp, docs/mitsuba-export.md).
 
     python3 tools/mitsuba_render.py SCENE.xml [--seeds K] [--spp N] [--blocks B] [--out IMG.exr]
-                                    [--error-out ERR.exr] [-D NAME=VALUE ...]
+                                    [--error-out ERR.exr] [--variant V] [-D NAME=VALUE ...]
     python3 tools/mitsuba_render.py --images A.exr B.exr ... [--blocks B]
 
 The second form prints the same statistics over images already rendered
@@ -24,9 +24,13 @@ standard error is sd(m_k) / sqrt(K), sd the sample standard deviation
 variation of the image itself, only noise. The blocks tell images apart
 that have the same mean but not the same picture (one upside down).
 
-Uses the scalar_rgb variant: wavepath's colours are RGB, and it needs no
-LLVM or CUDA (and no numpy). `--out` writes the mean of the renders, and
-`--error-out` each pixel's standard error of that mean (from the K renders,
+Uses the scalar_rgb variant by default: wavepath's colours are RGB, and it
+needs no LLVM or CUDA (and no numpy). `--variant llvm_ad_rgb` renders with
+LLVM instead, and evaluates the pixel filter exactly where scalar_rgb looks
+it up in a 31-step table (docs/lights-and-camera.md, "the film's edge"): the
+references of scenes with a tent or Gaussian filter use it.
+
+`--out` writes the mean of the renders, and `--error-out` each pixel's standard error of that mean (from the K renders,
 as above): the two images of a committed reference (tools/mitsuba-references.sh). Exit status 2 with one line on stderr when
 mitsuba cannot be imported, 1 when the scene does not load.
 """
@@ -84,6 +88,8 @@ def main():
     parser.add_argument("--blocks", type=int, default=2, help="blocks per side of the grid")
     parser.add_argument("--out", help="also write the mean image (.exr)")
     parser.add_argument("--error-out", help="also write each pixel's standard error (.exr)")
+    parser.add_argument("--variant", default="scalar_rgb", choices=["scalar_rgb", "llvm_ad_rgb"],
+                        help="Mitsuba variant (default scalar_rgb)")
     parser.add_argument("-D", "--define", action="append", default=[], metavar="NAME=VALUE",
                         help="set the scene's $NAME, as Mitsuba's own -D (repeatable)")
     args = parser.parse_args()
@@ -107,7 +113,7 @@ def main():
         print(f"mitsuba_render: error: cannot import mitsuba ({error}); pip install mitsuba",
               file=sys.stderr)
         return 2
-    mi.set_variant("scalar_rgb")
+    mi.set_variant(args.variant if args.images is None else "scalar_rgb")
 
     if args.images is not None:
         estimates = []

@@ -1,7 +1,8 @@
 // The camera's sampling routines on the device (kernels/camera.h,
 // kernels/sampling.h): the thin lens's concentric disk map and the tent and
-// Gaussian pixel filters, each by a chi-square test of 2^20 samples against
-// its density, integrated over each bin in double precision on the host.
+// Gaussian pixel filters, whole and restricted to the image at its edge,
+// each by a chi-square test of 2^20 samples against its density, integrated
+// over each bin in double precision on the host.
 #include "rng.h"
 #include "support/chi_square.hpp"
 #include "support/kernel_test_util.hpp"
@@ -34,6 +35,22 @@ __kernel void filter_samples(uint kind, float radius, float scale, float bias, u
     out[i] = kind == WP_FILTER_TENT ? wp_sample_tent(u, radius)
                                     : wp_sample_gaussian_filter(u, radius, scale, bias);
 }
+
+/* Positions (pixels from the image's edge) of samples for pixel `index` of
+ * `size`, as generate.cl draws them: near the edge, from the filter
+ * restricted to the image. */
+__kernel void filter_positions(uint kind, float radius, float scale, float bias, uint index,
+                               uint size, uint seed, uint count, __global float* out) {
+    uint i = get_global_id(0);
+    if (i >= count) return;
+    WpCamera camera; /* only the filter's fields are read */
+    camera.filter = kind;
+    camera.filter_radius = radius;
+    camera.filter_scale = scale;
+    camera.filter_bias = bias;
+    float u = wp_random(seed, i, 0u, 0u, WP_DIM_JITTER_X);
+    out[i] = wp_filter_position(&camera, index, size, u);
+}
 )CL";
 
 constexpr cl_uint kSamples = 1u << 20;
@@ -49,6 +66,8 @@ struct Filter {
     cl_uint kind = WP_FILTER_TENT;
     double radius = 1.0; // tent
     double stddev = 0.5; // gaussian, which ends at 4 stddev
+
+    double radius_of() const { return kind == WP_FILTER_GAUSSIAN ? 4.0 * stddev : radius; }
 
     double eval(double x) const {
         if (kind == WP_FILTER_TENT)
@@ -69,7 +88,7 @@ struct Filter {
 };
 
 std::vector<float> filter_samples(const Filter& f, cl_uint seed) {
-    const double radius = f.kind == WP_FILTER_GAUSSIAN ? 4.0 * f.stddev : f.radius;
+    const double radius = f.radius_of();
     const double scale = 1.0 / (f.stddev * std::sqrt(2.0));
     cl::Kernel kernel(program(kCameraSource, "camera_test.cl"), "filter_samples");
     cl::Buffer out = upload(std::vector<float>(kSamples));
@@ -78,6 +97,72 @@ std::vector<float> filter_samples(const Filter& f, cl_uint seed) {
              out);
     launch(kernel, kSamples);
     return download<float>(out, kSamples);
+}
+
+// Samples' positions for pixel `index` of an image `size` pixels wide.
+std::vector<float> filter_positions(const Filter& f, cl_uint index, cl_uint size, cl_uint seed) {
+    const double radius = f.radius_of();
+    const double scale = 1.0 / (f.stddev * std::sqrt(2.0));
+    cl::Kernel kernel(program(kCameraSource, "camera_test.cl"), "filter_positions");
+    cl::Buffer out = upload(std::vector<float>(kSamples));
+    set_args(kernel, f.kind, static_cast<float>(radius), static_cast<float>(scale),
+             static_cast<float>(std::exp(-(radius * scale) * (radius * scale))), index, size, seed,
+             kSamples, out);
+    launch(kernel, kSamples);
+    return download<float>(out, kSamples);
+}
+
+// Samples x against the filter's density restricted to [lo, hi] (offsets
+// from the pixel's centre, centre at 0): every sample inside, a chi-square
+// test in 80 bins, and the first two moments within 5 standard errors of
+// the density's (a check of the tails, where the histogram's bins pool).
+void check_filter_samples(const std::vector<float>& x, const Filter& f, double lo, double hi) {
+    constexpr int kBins = 80;
+    std::vector<double> observed(kBins, 0.0), expected(kBins);
+    std::size_t outside = 0;
+    double sum = 0.0, sum2 = 0.0, sum4 = 0.0;
+    for (float v : x) {
+        if (!(v >= lo && v <= hi)) {
+            ++outside;
+            continue;
+        }
+        observed[std::min(kBins - 1, static_cast<int>((v - lo) / (hi - lo) * kBins))] += 1.0;
+        const double v2 = double(v) * v;
+        sum += v;
+        sum2 += v2;
+        sum4 += v2 * v2;
+    }
+    CHECK(outside == 0);
+    const double total = f.integral(lo, hi);
+    for (int i = 0; i < kBins; ++i)
+        expected[i] = double(kSamples) *
+                      f.integral(lo + (hi - lo) * i / kBins, lo + (hi - lo) * (i + 1) / kBins) /
+                      total;
+    const ChiSquare result = chi_square(observed, expected);
+    INFO("chi-square " << result.statistic << " for " << result.dof << " degrees of freedom, p "
+                       << result.p_value);
+    CHECK(result.outside == 0);
+    CHECK(result.p_value > kSignificance);
+
+    // The density's moments by Simpson's rule.
+    double m1_reference = 0.0, m2_reference = 0.0;
+    constexpr int kSteps = 4096;
+    const double h = (hi - lo) / kSteps;
+    for (int i = 0; i <= kSteps; ++i) {
+        const double t = lo + i * h;
+        const double w = (i == 0 || i == kSteps) ? 1.0 : (i % 2 ? 4.0 : 2.0);
+        m1_reference += w * t * f.eval(t);
+        m2_reference += w * t * t * f.eval(t);
+    }
+    m1_reference *= h / 3.0 / total;
+    m2_reference *= h / 3.0 / total;
+    const double n = double(kSamples), m1 = sum / n, m2 = sum2 / n;
+    const double m1_error = std::sqrt((m2 - m1 * m1) / n);
+    const double m2_error = std::sqrt((sum4 / n - m2 * m2) / n);
+    INFO("mean " << m1 << " +- " << m1_error << ", expected " << m1_reference << "; second moment "
+                 << m2 << " +- " << m2_error << ", expected " << m2_reference);
+    CHECK(std::fabs(m1 - m1_reference) <= 5.0 * m1_error);
+    CHECK(std::fabs(m2 - m2_reference) <= 5.0 * m2_error);
 }
 
 } // namespace
@@ -124,61 +209,44 @@ TEST_CASE("camera: the tent and Gaussian filters' samples follow the filters (ch
     };
     cl_uint seed = 99; // one per filter: independent tests
     for (const Filter& f : filters) {
-        const double radius = f.kind == WP_FILTER_GAUSSIAN ? 4.0 * f.stddev : f.radius;
+        const double radius = f.radius_of();
         INFO((f.kind == WP_FILTER_TENT ? "tent radius " : "gaussian stddev ")
              << (f.kind == WP_FILTER_TENT ? f.radius : f.stddev));
-        const std::vector<float> samples = filter_samples(f, seed++);
+        check_filter_samples(filter_samples(f, seed++), f, -radius, radius);
+    }
+}
 
-        constexpr int kBins = 80;
-        std::vector<double> observed(kBins, 0.0), expected(kBins);
-        std::size_t outside = 0;
-        for (float x : samples) {
-            if (!(std::fabs(x) <= radius)) {
-                ++outside;
-                continue;
-            }
-            const int bin =
-                std::min(kBins - 1, static_cast<int>((x + radius) / (2.0 * radius) * kBins));
-            observed[bin] += 1.0;
-        }
-        CHECK(outside == 0);
-        const double total = f.integral(-radius, radius);
-        for (int i = 0; i < kBins; ++i) {
-            const double a = -radius + 2.0 * radius * i / kBins;
-            const double b = -radius + 2.0 * radius * (i + 1) / kBins;
-            expected[i] = double(kSamples) * f.integral(a, b) / total;
-        }
-        const ChiSquare result = chi_square(observed, expected);
-        INFO("chi-square " << result.statistic << " for " << result.dof << " degrees of freedom, p "
-                           << result.p_value);
-        CHECK(result.outside == 0);
-        CHECK(result.p_value > kSignificance);
-
-        // The samples' variance against the density's, within 5 standard
-        // errors of the sample variance (a check of the tails, where the
-        // histogram's bins pool).
-        double sum = 0.0, sum2 = 0.0, sum4 = 0.0;
-        for (float x : samples) {
-            sum += x;
-            sum2 += double(x) * x;
-            sum4 += double(x) * x * double(x) * x;
-        }
-        const double n = double(kSamples), m2 = sum2 / n;
-        const double m2_error = std::sqrt((sum4 / n - m2 * m2) / n);
-        double reference = 0.0; // the second moment, by Simpson's rule
-        {
-            constexpr int kSteps = 4096;
-            const double h = 2.0 * radius / kSteps;
-            for (int i = 0; i <= kSteps; ++i) {
-                const double x = -radius + i * h;
-                const double w = (i == 0 || i == kSteps) ? 1.0 : (i % 2 ? 4.0 : 2.0);
-                reference += w * x * x * f.eval(x);
-            }
-            reference *= h / 3.0 / total;
-        }
-        INFO("second moment " << m2 << " +- " << m2_error << ", expected " << reference << "; mean "
-                              << sum / n);
-        CHECK(std::fabs(m2 - reference) <= 5.0 * m2_error);
-        CHECK(std::fabs(sum / n) <= 5.0 * std::sqrt(m2 / n));
+TEST_CASE("camera: a pixel near the image's edge samples its filter restricted to the image "
+          "(chi-square)",
+          "[cl][camera][statistical]") {
+    // Mitsuba's film draws positions only inside the image and weights each
+    // by the filter, so a pixel within the filter's radius of the edge
+    // averages its footprint's part inside the image (docs/lights-and-
+    // camera.md, "the film's edge"); wp_filter_position draws from that part
+    // alone. The whole filter would put samples outside the image, which the
+    // test counts.
+    struct Case {
+        Filter f;
+        cl_uint index, size;
+    };
+    const std::vector<Case> cases{
+        {{WP_FILTER_GAUSSIAN, 0.0, 0.5}, 0, 32},  // the first column: [-0.5, 2]
+        {{WP_FILTER_GAUSSIAN, 0.0, 0.5}, 1, 32},  // the second: [-1.5, 2]
+        {{WP_FILTER_GAUSSIAN, 0.0, 0.5}, 31, 32}, // the last: [-2, 0.5]
+        {{WP_FILTER_GAUSSIAN, 0.0, 0.5}, 1, 3},   // both sides: [-1.5, 1.5]
+        {{WP_FILTER_TENT, 1.0, 0.5}, 0, 32},      // [-0.5, 1]
+        {{WP_FILTER_TENT, 2.5, 0.5}, 1, 2},       // [-1.5, 0.5]
+    };
+    cl_uint seed = 199; // one per case: independent tests
+    for (const Case& c : cases) {
+        const double centre = c.index + 0.5, radius = c.f.radius_of();
+        const double lo = std::max(-radius, -centre), hi = std::min(radius, c.size - centre);
+        INFO((c.f.kind == WP_FILTER_TENT ? "tent radius " : "gaussian stddev ")
+             << (c.f.kind == WP_FILTER_TENT ? c.f.radius : c.f.stddev) << ", pixel " << c.index
+             << " of " << c.size << ": offsets in [" << lo << ", " << hi << "]");
+        std::vector<float> offsets = filter_positions(c.f, c.index, c.size, seed++);
+        for (float& x : offsets)
+            x = static_cast<float>(x - centre);
+        check_filter_samples(offsets, c.f, lo, hi);
     }
 }

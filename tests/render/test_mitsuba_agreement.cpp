@@ -310,9 +310,12 @@ TEST_CASE("Mitsuba 3 agreement: the film's edge: the Cornell box's outermost pix
     // offsets from the filter restricted to the image (kernels/camera.h).
     // Drawn from the whole filter, the outermost ring of this box, whose
     // walls end at the image's edge, came out 18 % darker than Mitsuba's
-    // (z = -31). The rings are compared here, where block means would mix
-    // them with the inside (cbox-edge-32.exr: -D res=32 -D max_depth=3, 16 x
-    // 1024 spp; README.md).
+    // (z = -31). The reference is Mitsuba's llvm_ad_rgb, which evaluates the
+    // filter exactly: scalar_rgb looks it up in a 31-step table, which
+    // widens it and puts its own ring 0 1.9 % above llvm_ad_rgb's (and
+    // wavepath's; docs/lights-and-camera.md, "The film's edge"). The rings
+    // are compared here, where block means would mix them with the inside
+    // (cbox-edge-32.exr: -D res=32 -D max_depth=3, 16 x 4096 spp; README.md).
     SceneReadOptions read;
     read.defines = {{"res", "32"}, {"max_depth", "3"}};
     const Scene scene = load_scene(std::string(WAVEPATH_SOURCE_DIR) +
@@ -322,7 +325,7 @@ TEST_CASE("Mitsuba 3 agreement: the film's edge: the Cornell box's outermost pix
     const Image reference_variance = squared(read_exr(kDir + "cbox-edge-32-error.exr"));
     REQUIRE(reference.width == 32);
     REQUIRE(reference.height == 32);
-    const Rendered ours = render(scene, 512, 11);
+    const Rendered ours = render(scene, 1024, 11);
     const Image mean = ours.film.mean(), variance = ours.film.variance_of_mean();
     // The mean of ring r (the pixels r steps in from the nearest edge) and
     // its standard error.
@@ -338,7 +341,7 @@ TEST_CASE("Mitsuba 3 agreement: the film's edge: the Cornell box's outermost pix
                 }
         return MeanWithError{sum / n, std::sqrt(sum_var) / n};
     };
-    for (int ring : {0, 1})
+    for (int ring : {0, 1, 2})
         for (int c = 0; c < 3; ++c) {
             const MeanWithError a = ring_mean(mean, variance, ring, c);
             const MeanWithError b = ring_mean(reference, reference_variance, ring, c);
@@ -346,7 +349,9 @@ TEST_CASE("Mitsuba 3 agreement: the film's edge: the Cornell box's outermost pix
                          << a.standard_error << ", Mitsuba 3 " << b.mean << " +- "
                          << b.standard_error);
             CHECK(sigmas_apart(a, b) < 5.0);
-            // The test's power: 5 sigma is under a third of the 18 % it found.
-            CHECK(5.0 * std::hypot(a.standard_error, b.standard_error) < 0.06 * b.mean);
+            // The test's power: 5 sigma is under a third of the 18 % the
+            // whole filter lost in ring 0.
+            if (ring == 0)
+                CHECK(5.0 * std::hypot(a.standard_error, b.standard_error) < 0.06 * b.mean);
         }
 }
