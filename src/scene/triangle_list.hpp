@@ -58,7 +58,8 @@ struct IndexedTriangles {
 // A list of triangles, some held whole and some indexed. It reads like a
 // std::vector<Triangle> that hands out copies: operator[], front(), back()
 // and its iterators give a Triangle by value (bind it to a const reference,
-// or a copy), and a triangle is changed with set().
+// or a copy), and a triangle is changed with set(). A pointer to such a copy
+// dangles once the statement or loop iteration ends: keep triangles by value.
 class TriangleList {
   public:
     class const_iterator {
