@@ -22,7 +22,7 @@ Triangle IndexedTriangles::triangle(std::size_t i) const {
     return t;
 }
 
-Triangle TriangleList::const_iterator::operator*() const {
+const Triangle TriangleList::const_iterator::operator*() const {
     return list_->blocks_[block_].at(index_);
 }
 
@@ -49,7 +49,7 @@ std::size_t TriangleList::block_of(std::size_t i) const {
     return static_cast<std::size_t>(after - blocks_.begin()) - 1;
 }
 
-Triangle TriangleList::operator[](std::size_t i) const {
+const Triangle TriangleList::operator[](std::size_t i) const {
     const Block& block = blocks_[block_of(i)];
     return block.at(i - block.first);
 }

@@ -58,8 +58,11 @@ struct IndexedTriangles {
 // A list of triangles, some held whole and some indexed. It reads like a
 // std::vector<Triangle> that hands out copies: operator[], front(), back()
 // and its iterators give a Triangle by value (bind it to a const reference,
-// or a copy), and a triangle is changed with set(). A pointer to such a copy
-// dangles once the statement or loop iteration ends: keep triangles by value.
+// or a copy), and a triangle is changed with set(). The copies are const, so
+// that writing to one (`list[i].v[0] = p`, a loop over `list[i].v` by
+// non-const reference) does not compile rather than change nothing. A
+// pointer to such a copy dangles once the statement or loop iteration ends:
+// keep triangles by value.
 class TriangleList {
   public:
     class const_iterator {
@@ -68,10 +71,10 @@ class TriangleList {
         using value_type = Triangle;
         using difference_type = std::ptrdiff_t;
         using pointer = void;
-        using reference = Triangle;
+        using reference = const Triangle;
 
         const_iterator() = default;
-        Triangle operator*() const;
+        const Triangle operator*() const;
         const_iterator& operator++();
         const_iterator operator++(int) {
             const_iterator before = *this;
@@ -110,9 +113,9 @@ class TriangleList {
 
     std::size_t size() const { return size_; }
     bool empty() const { return size_ == 0; }
-    Triangle operator[](std::size_t i) const;
-    Triangle front() const { return (*this)[0]; }
-    Triangle back() const { return (*this)[size_ - 1]; }
+    const Triangle operator[](std::size_t i) const;
+    const Triangle front() const { return (*this)[0]; }
+    const Triangle back() const { return (*this)[size_ - 1]; }
     const_iterator begin() const { return {this, 0, 0}; }
     const_iterator end() const { return {this, blocks_.size(), 0}; }
 
