@@ -812,6 +812,7 @@ class SceneReader : private json::Reader {
         indexed.normals = std::move(mesh.normals);
         indexed.uvs = std::move(mesh.uvs);
         indexed.corners = std::move(mesh.triangles);
+        // One material for every face (the common case) is held once.
         if (std::adjacent_find(materials.begin(), materials.end(), std::not_equal_to<>()) ==
             materials.end())
             indexed.material = materials.empty() ? material : materials.front();
