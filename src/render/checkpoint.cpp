@@ -172,7 +172,7 @@ std::uint64_t scene_content_hash(const Scene& scene) {
     // index of refraction must not resume silently.
     for (const Material& m : scene.materials)
         std::apply([&](const auto&... field) { (h.field(field), ...); }, m.rendered_fields());
-    auto triangles = [&](const std::vector<Triangle>& list) {
+    auto triangles = [&](const TriangleList& list) {
         h.u64(list.size());
         for (const Triangle& t : list) {
             for (const glm::dvec3& v : t.v)

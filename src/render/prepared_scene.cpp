@@ -9,8 +9,7 @@ namespace wp {
 namespace {
 
 // `release`: the scene's triangles, freed once flattened, or null.
-PreparedScene prepare(const Scene& scene, const IntegratorOptions& options,
-                      std::vector<Triangle>* release) {
+PreparedScene prepare(const Scene& scene, const IntegratorOptions& options, TriangleList* release) {
     PreparedScene prepared;
     prepared.options = with_scene_settings(options, scene);
     prepared.features = integrator_features(scene, prepared.options);
@@ -21,7 +20,7 @@ PreparedScene prepare(const Scene& scene, const IntegratorOptions& options,
     const bool hierarchy = prepared.features.bvh;
     DeviceScene flat = flatten_without_hierarchy(scene, hierarchy, prepared.options.light_pick);
     if (release)
-        std::vector<Triangle>().swap(*release);
+        *release = TriangleList();
     if (hierarchy)
         add_hierarchy(flat, scene.materials);
     prepared.device_scene = std::make_shared<const DeviceScene>(std::move(flat));

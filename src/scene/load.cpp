@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -774,7 +775,7 @@ class SceneReader : private json::Reader {
     }
 
     // A mesh shape with a `file`: the file's triangles, placed by `transform`,
-    // appended to Scene::triangles. Its `usemtl` names that are scene materials
+    // appended to Scene::triangles (held indexed). Its `usemtl` names that are scene materials
     // give those materials, every other face gets `material`. Vertex normals
     // (from the file, or smooth ones on request) become the triangles' shading
     // normals.
@@ -799,28 +800,25 @@ class SceneReader : private json::Reader {
             fail(pf, e.what()); // the mesh's message names the file and the place in it
         }
         std::vector<std::string> warnings = std::move(mesh.warnings);
-        const std::vector<std::uint32_t> materials =
+        std::vector<std::uint32_t> materials =
             resolve_materials(mesh, scene_.materials, material, warnings);
         for (const std::string& w : warnings)
             scene_.warnings.push_back(pointer_text(pf) + ": " + w);
 
         // load_mesh dropped the zero-area triangles (with one warning counting
-        // them), so every triangle is kept.
-        const auto& at = mesh.positions;
-        scene_.triangles.reserve(scene_.triangles.size() + mesh.triangles.size());
-        for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-            const auto& [a, b, c] = mesh.triangles[t];
-            Triangle triangle{{at[a], at[b], at[c]}, materials[t]};
-            if (!mesh.normals.empty()) {
-                triangle.has_normals = true;
-                triangle.normals = {mesh.normals[a], mesh.normals[b], mesh.normals[c]};
-            }
-            if (!mesh.uvs.empty()) {
-                triangle.has_uvs = true;
-                triangle.uvs = {mesh.uvs[a], mesh.uvs[b], mesh.uvs[c]};
-            }
-            scene_.triangles.push_back(triangle);
-        }
+        // them), so every triangle is kept, indexed as the file has it.
+        IndexedTriangles indexed;
+        indexed.positions = std::move(mesh.positions);
+        indexed.normals = std::move(mesh.normals);
+        indexed.uvs = std::move(mesh.uvs);
+        indexed.corners = std::move(mesh.triangles);
+        // One material for every face (the common case) is held once.
+        if (std::adjacent_find(materials.begin(), materials.end(), std::not_equal_to<>()) ==
+            materials.end())
+            indexed.material = materials.empty() ? material : materials.front();
+        else
+            indexed.materials = std::move(materials);
+        scene_.triangles.append(std::move(indexed));
     }
 
     void read_sphere(const Json& s, std::uint32_t material, const Ptr& p) {
@@ -874,7 +872,7 @@ class SceneReader : private json::Reader {
             fail(pg, "expected a non-empty array of shapes (triangle, quad, mesh), got " +
                          describe(shapes));
         // The group's shapes are read as the scene's, into an empty list.
-        std::vector<Triangle> outside = std::move(scene_.triangles);
+        TriangleList outside = std::move(scene_.triangles);
         scene_.triangles.clear();
         for (std::size_t i = 0; i < shapes.size(); ++i) {
             const Ptr ps = pg / i;

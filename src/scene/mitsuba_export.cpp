@@ -85,7 +85,7 @@ void append_vector(std::vector<unsigned char>& out, const glm::dvec3& v) {
 // three vertices per triangle (positions, and normals when asked) and faces
 // (0, 1, 2), (3, 4, 5), ... that keep each triangle's winding, hence its
 // front face, which is the side Mitsuba's area emitters emit on.
-std::vector<unsigned char> encode_ply(const Scene& scene, const std::vector<Triangle>& list,
+std::vector<unsigned char> encode_ply(const Scene& scene, const TriangleList& list,
                                       const std::vector<std::size_t>& triangles, bool with_normals,
                                       bool with_uvs) {
     const std::size_t vertices = 3 * triangles.size();
@@ -471,7 +471,7 @@ MitsubaExport export_mitsuba(const Scene& scene, const std::string& mesh_prefix,
     // The triangles of each material, in the list's order: one PLY file
     // each, for the scene's own triangles (group -1) and each shape group's.
     std::size_t smooth_triangles = 0;
-    auto add_meshes = [&](const std::vector<Triangle>& list, int group) {
+    auto add_meshes = [&](const TriangleList& list, int group) {
         std::map<std::uint32_t, std::vector<std::size_t>> by_material;
         for (std::size_t i = 0; i < list.size(); ++i)
             by_material[list[i].material].push_back(i);

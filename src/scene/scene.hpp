@@ -17,6 +17,7 @@
 #include <glm/vec3.hpp>
 
 #include "scene/texture.hpp"
+#include "scene/triangle_list.hpp"
 
 #include "wp_shared.h"
 
@@ -135,21 +136,6 @@ struct Material {
     }
 };
 
-// One triangle; its front face is the side of cross(v1 - v0, v2 - v0).
-struct Triangle {
-    std::array<glm::dvec3, 3> v;
-    std::uint32_t material = 0; // index into Scene::materials
-    // Unit vertex normals for shading (from a mesh file), interpolated across
-    // the triangle; without them the geometric normal shades. They shade only:
-    // which side is the front is still the winding's.
-    bool has_normals = false;
-    std::array<glm::dvec3, 3> normals{};
-    // Texture coordinates per vertex (a mesh file's, a quad's corners);
-    // without them a texture sees the barycentrics (b1, b2), as in Mitsuba.
-    bool has_uvs = false;
-    std::array<glm::dvec2, 3> uvs{};
-};
-
 struct Sphere {
     glm::dvec3 center{0.0};
     double radius = 1.0;
@@ -162,7 +148,7 @@ struct Sphere {
 // shape group; the loaders do too).
 struct ShapeGroup {
     std::string name; // its id, for messages and the export
-    std::vector<Triangle> triangles;
+    TriangleList triangles;
 };
 
 // One placement of a shape group (Mitsuba's instance): the group's triangles
@@ -230,7 +216,7 @@ struct Scene {
     std::vector<std::string> files;
     Camera camera;
     std::vector<Material> materials;
-    std::vector<Triangle> triangles; // quads and meshes are split into triangles
+    TriangleList triangles; // quads and meshes are split into triangles (meshes held indexed)
     std::vector<Sphere> spheres;
     std::vector<ShapeGroup> shape_groups; // shared meshes, placed by `instances`
     std::vector<Instance> instances;

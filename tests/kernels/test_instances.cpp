@@ -137,7 +137,7 @@ std::string options_for(const Scene& scene) {
 
 // A height field of (cells + 1)^2 vertices over [-1, 1]^2 in the xy plane,
 // two triangles a cell (every inner edge shared).
-void add_height_field(std::vector<Triangle>& out, std::uint32_t material, int cells,
+void add_height_field(TriangleList& out, std::uint32_t material, int cells,
                       std::mt19937& generator) {
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     std::vector<glm::dvec3> grid;

@@ -293,7 +293,9 @@ TEST_CASE("checkpoint: the scene hash sees every change that alters the image", 
     other.camera.width = 16; // resolution is checked on its own, not hashed
     CHECK(scene_content_hash(other) == h);
     other = scene;
-    other.triangles[3].v[1].x = std::nextafter(other.triangles[3].v[1].x, 1e9);
+    Triangle nudged = other.triangles[3];
+    nudged.v[1].x = std::nextafter(nudged.v[1].x, 1e9);
+    other.triangles.set(3, nudged);
     CHECK(scene_content_hash(other) != h);
     other = scene;
     other.spheres[0].radius *= 1.0 + 1e-15;
@@ -325,8 +327,10 @@ TEST_CASE("checkpoint: the scene hash sees every change that alters the image", 
     other.camera.filter_radius = 2.0;
     CHECK(scene_content_hash(other) != tent);
     other = scene;
-    other.triangles[0].material =
-        static_cast<std::uint32_t>((other.triangles[0].material + 1) % other.materials.size());
+    Triangle recoloured = other.triangles[0];
+    recoloured.material =
+        static_cast<std::uint32_t>((recoloured.material + 1) % other.materials.size());
+    other.triangles.set(0, recoloured);
     CHECK(scene_content_hash(other) != h);
     other = scene;
     other.triangles.pop_back();

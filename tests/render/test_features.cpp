@@ -53,7 +53,11 @@ Scene no_mirror() {
 Scene no_light() {
     Scene scene = hexroom();
     const std::uint32_t light = material_named(scene, "light");
-    std::erase_if(scene.triangles, [&](const Triangle& t) { return t.material == light; });
+    TriangleList unlit;
+    for (const Triangle& t : scene.triangles)
+        if (t.material != light)
+            unlit.push_back(t);
+    scene.triangles = std::move(unlit);
     scene.materials[material_named(scene, "red_sphere")].emission = glm::dvec3(20.0, 4.0, 2.0);
     return scene;
 }
@@ -387,7 +391,9 @@ TEST_CASE("features: specialised and general kernels render bit-identical images
         Scene scene = hexroom();
         auto bright = test::add_material(scene, MaterialKind::Emitter, glm::dvec3(0.0),
                                          glm::dvec3(400, 300, 200));
-        scene.triangles.back().material = bright; // the light's second triangle
+        Triangle light = scene.triangles.back(); // the light's second triangle
+        light.material = bright;
+        scene.triangles.set(scene.triangles.size() - 1, light);
         scene.spheres.push_back({{0.5, 0.3, -0.4}, 0.1, bright});
         const SceneFeatures f = analyse_features(scene);
         REQUIRE(f.power_light_pick);

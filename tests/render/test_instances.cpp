@@ -135,7 +135,7 @@ TEST_CASE("instances: textures and anisotropic highlights on instances follow th
     test::add_quad(scene, {0.4, 0.4, 0.999}, {0.4, 0.6, 0.999}, {0.6, 0.6, 0.999},
                    {0.6, 0.4, 0.999}, light);
     auto tile = [](std::uint32_t material, double x) {
-        std::vector<Triangle> out;
+        TriangleList out;
         const glm::dvec3 p[4] = {{x - 1, -1, 0}, {x + 1, -1, 0}, {x + 1, 1, 0}, {x - 1, 1, 0}};
         const glm::dvec2 uv[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
         for (const auto& [a, b, c] : {std::array<int, 3>{0, 1, 2}, std::array<int, 3>{0, 2, 3}}) {

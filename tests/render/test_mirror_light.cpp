@@ -134,7 +134,9 @@ TEST_CASE("mirror light: beside a sphere light and a point light, on and off agr
     Scene scene = test::hexroom(24, 24);
     auto bright = test::add_material(scene, MaterialKind::Emitter, glm::dvec3(0.0),
                                      glm::dvec3(300, 250, 200));
-    scene.triangles.back().material = bright;
+    Triangle light = scene.triangles.back();
+    light.material = bright;
+    scene.triangles.set(scene.triangles.size() - 1, light);
     scene.spheres.push_back({{4.0, -2.0, 2.0}, 0.3, bright});
     Emitter point;
     point.kind = EmitterKind::Point;

@@ -108,9 +108,10 @@ TEST_CASE("shadow culling: a face stops bounding the scene when anything or the 
     }
     SECTION("vertex normals: every triangle is kept") {
         Scene scene = box;
-        scene.triangles[5].has_normals = true;
-        scene.triangles[5].normals = {glm::dvec3(0, 0, -1), glm::dvec3(0, 0, -1),
-                                      glm::dvec3(0, 0, -1)};
+        Triangle smooth = scene.triangles[5];
+        smooth.has_normals = true;
+        smooth.normals = {glm::dvec3(0, 0, -1), glm::dvec3(0, 0, -1), glm::dvec3(0, 0, -1)};
+        scene.triangles.set(5, smooth);
         CHECK(shadow_occluders(scene) == all_but(scene, {}));
         CHECK_FALSE(analyse_features(scene).shadow_culling);
     }

@@ -712,12 +712,16 @@ TEST_CASE("validate_scene: rejects bad hand-built scenes", "[scene][validate]") 
     };
     {
         wp::Scene bad = s;
-        bad.triangles[0].v[1].y = std::nan("");
+        wp::Triangle t = bad.triangles[0];
+        t.v[1].y = std::nan("");
+        bad.triangles.set(0, t);
         CHECK(message(bad).find("built: triangles[0].v[1][1]: must be finite") == 0);
     }
     {
         wp::Scene bad = s;
-        bad.triangles[0].material = 7;
+        wp::Triangle t = bad.triangles[0];
+        t.material = 7;
+        bad.triangles.set(0, t);
         CHECK(message(bad).find("triangles[0].material") != std::string::npos);
     }
     {
@@ -732,7 +736,9 @@ TEST_CASE("validate_scene: rejects bad hand-built scenes", "[scene][validate]") 
     }
     {
         wp::Scene bad = s;
-        bad.triangles[0].v[2] = bad.triangles[0].v[1];
+        wp::Triangle t = bad.triangles[0];
+        t.v[2] = t.v[1];
+        bad.triangles.set(0, t);
         CHECK(message(bad).find("triangles[0]: zero-area") != std::string::npos);
     }
     {

@@ -100,8 +100,12 @@ TEST_CASE("loader: an OBJ and a PLY mesh file become scene triangles", "[scene][
     CHECK(s.triangles.back().v[0] == glm::dvec3(0, 0, 5));
     // Without a transform, both files give exactly the cube's eight corners.
     wp::Scene obj = s, ply = s;
-    obj.triangles.assign(s.triangles.begin(), s.triangles.begin() + 12);
-    ply.triangles.assign(s.triangles.begin() + 12, s.triangles.begin() + 24);
+    obj.triangles.clear();
+    ply.triangles.clear();
+    for (std::size_t i = 0; i < 12; ++i) {
+        obj.triangles.push_back(s.triangles[i]);
+        ply.triangles.push_back(s.triangles[12 + i]);
+    }
     CHECK(corners(obj).size() == 8);
     CHECK(corners(obj) == corners(ply));
     for (const glm::dvec3& p : corners(obj))

@@ -317,9 +317,9 @@ TEST_CASE("mitsuba export: the PLY files hold the scene's triangles, winding and
     CHECK(wp::read_file_text(dir / (name + ".xml")) == exported.xml);
 
     // The triangles of each material in the scene's order: what each file must hold.
-    std::map<std::uint32_t, std::vector<const wp::Triangle*>> by_material;
+    std::map<std::uint32_t, std::vector<wp::Triangle>> by_material;
     for (const wp::Triangle& t : scene.triangles)
-        by_material[t.material].push_back(&t);
+        by_material[t.material].push_back(t);
     std::size_t triangles_written = 0;
     for (const wp::MitsubaMesh& mesh : exported.meshes) {
         const fs::path path = dir / mesh.file_name;
@@ -333,7 +333,7 @@ TEST_CASE("mitsuba export: the PLY files hold the scene's triangles, winding and
         CHECK(read.has_normals() == mesh.has_normals);
         bool any_smooth = false;
         for (std::size_t f = 0; f < expected.size(); ++f) {
-            const wp::Triangle& t = *expected[f];
+            const wp::Triangle& t = expected[f];
             any_smooth = any_smooth || t.has_normals;
             const std::array<std::uint32_t, 3> corners = {
                 std::uint32_t(3 * f), std::uint32_t(3 * f + 1), std::uint32_t(3 * f + 2)};

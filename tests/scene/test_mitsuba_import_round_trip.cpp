@@ -73,16 +73,16 @@ void check_round_trip(const std::string& json) {
     CHECK(a.filter_stddev == b.filter_stddev);
 
     // The triangles in the export's order: by material, then as they were.
-    std::map<std::uint32_t, std::vector<const wp::Triangle*>> groups;
+    std::map<std::uint32_t, std::vector<wp::Triangle>> groups;
     for (const wp::Triangle& t : original.triangles)
-        groups[t.material].push_back(&t);
-    std::vector<const wp::Triangle*> expected;
+        groups[t.material].push_back(t);
+    std::vector<wp::Triangle> expected;
     for (const auto& [material, triangles] : groups)
         expected.insert(expected.end(), triangles.begin(), triangles.end());
     REQUIRE(read.triangles.size() == expected.size());
     std::map<std::uint32_t, std::uint32_t> material_of; // original -> read
     for (std::size_t i = 0; i < expected.size(); ++i) {
-        const wp::Triangle &r = read.triangles[i], &o = *expected[i];
+        const wp::Triangle &r = read.triangles[i], &o = expected[i];
         for (std::size_t k = 0; k < 3; ++k)
             CHECK(as_float(r.v[k]) == as_float(o.v[k]));
         CHECK(r.has_normals == o.has_normals);

@@ -53,9 +53,12 @@ inline Scene hexroom(int size) {
 inline Scene transformed(Scene scene, double s, glm::dvec3 offset = glm::dvec3(0.0)) {
     scene.camera.eye = s * scene.camera.eye + offset;
     scene.camera.look_at = s * scene.camera.look_at + offset;
-    for (Triangle& t : scene.triangles)
+    for (std::size_t i = 0; i < scene.triangles.size(); ++i) {
+        Triangle t = scene.triangles[i];
         for (glm::dvec3& v : t.v)
             v = s * v + offset;
+        scene.triangles.set(i, t);
+    }
     for (Sphere& sp : scene.spheres) {
         sp.center = s * sp.center + offset;
         sp.radius *= s;

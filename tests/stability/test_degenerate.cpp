@@ -68,7 +68,9 @@ TEST_CASE("degenerate input: a NaN coordinate cannot be written in JSON, and a s
     // Built in code, validate_scene names the field; rendered anyway (the
     // integrator trusts its caller), the film's guard keeps the image finite.
     Scene scene = load_scene(stress_path("degenerate-zero-area"));
-    scene.triangles[0].v[1].y = std::nan("");
+    Triangle broken = scene.triangles[0];
+    broken.v[1].y = std::nan("");
+    scene.triangles.set(0, broken);
     try {
         validate_scene(scene);
         FAIL("validate_scene accepted a NaN vertex");

@@ -121,10 +121,12 @@ TEST_CASE("tiny light: side 1e-3 matches a 2 cm light of the same power at twice
     make_mirrors_diffuse(tiny);
     const double side = 0.02, light_z = 4.99;
     for (std::size_t i = 0; i < small.triangles.size(); ++i)
-        if (small.materials[small.triangles[i].material].is_emissive())
-            for (glm::dvec3& v : small.triangles[i].v)
+        if (Triangle t = small.triangles[i]; small.materials[t.material].is_emissive()) {
+            for (glm::dvec3& v : t.v)
                 v = glm::dvec3(5.0 + (v.x > 5.0 ? 0.5 : -0.5) * side,
                                (v.y > 0.0 ? 0.5 : -0.5) * side, light_z);
+            small.triangles.set(i, t);
+        }
     for (Material& m : small.materials)
         if (m.is_emissive())
             m.emission = glm::dvec3(400.0 / (side * side));

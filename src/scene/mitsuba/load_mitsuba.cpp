@@ -283,7 +283,7 @@ class SceneAssembler {
         Parameters p(group);
         p.finish();
         const std::string name = group.id.empty() ? "at " + group.where.text() : group.id;
-        std::vector<Triangle> outside = std::move(scene_.triangles);
+        TriangleList outside = std::move(scene_.triangles);
         scene_.triangles.clear();
         const std::size_t spheres = scene_.spheres.size();
         for (const auto& child : group.children) {

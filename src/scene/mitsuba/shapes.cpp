@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include <glm/geometric.hpp>
 
@@ -175,37 +176,25 @@ void add_mesh_file(Parameters& p, const Object& shape, std::uint32_t material, S
     const bool reverse = flip != options.transform.flips_orientation();
     for (const std::string& w : mesh.warnings)
         scene.warnings.push_back(shape.where.text() + ": " + w);
-    // Room for the whole mesh at once: grown by push_back, a 10^6-triangle
-    // mesh's 208-byte triangles were copied and their pages faulted in again
-    // at every doubling (17 % of a 10^6-triangle PLY load's samples in perf).
-    // Still at least doubling, so that a scene of many small meshes is not
-    // copied once a mesh.
-    const std::size_t needed = scene.triangles.size() + mesh.triangles.size();
-    if (needed > scene.triangles.capacity())
-        scene.triangles.reserve(std::max(needed, 2 * scene.triangles.capacity()));
-    for (const auto& [a, b, c] : mesh.triangles) {
-        Triangle t{{mesh.positions[a], mesh.positions[b], mesh.positions[c]}, material};
-        if (mesh.has_normals()) {
-            t.has_normals = true;
-            t.normals = {mesh.normals[a], mesh.normals[b], mesh.normals[c]};
-        }
-        if (!mesh.uvs.empty()) {
-            t.has_uvs = true;
-            t.uvs = {mesh.uvs[a], mesh.uvs[b], mesh.uvs[c]};
-            if (shape.type == "obj" && !flip_tex_coords)
-                for (glm::dvec2& uv : t.uvs)
-                    uv.y = 1.0 - uv.y;
-        }
-        if (reverse) {
-            std::swap(t.v[1], t.v[2]);
-            std::swap(t.normals[1], t.normals[2]);
-            std::swap(t.uvs[1], t.uvs[2]);
-        }
-        if (flip && t.has_normals)
-            for (glm::dvec3& n : t.normals)
-                n = -n;
-        scene.triangles.push_back(t);
-    }
+    // The mesh is kept indexed (scene/triangle_list.hpp); its triangles are
+    // what they were when they were stored whole: the flips apply to each
+    // vertex's texture coordinates and normal, the reversal to each triple.
+    if (shape.type == "obj" && !flip_tex_coords)
+        for (glm::dvec2& uv : mesh.uvs)
+            uv.y = 1.0 - uv.y;
+    if (reverse)
+        for (auto& corners : mesh.triangles)
+            std::swap(corners[1], corners[2]);
+    if (flip)
+        for (glm::dvec3& n : mesh.normals)
+            n = -n;
+    IndexedTriangles indexed;
+    indexed.positions = std::move(mesh.positions);
+    indexed.normals = std::move(mesh.normals);
+    indexed.uvs = std::move(mesh.uvs);
+    indexed.corners = std::move(mesh.triangles);
+    indexed.material = material;
+    scene.triangles.append(std::move(indexed));
 }
 
 // Mitsuba's sphere is its center and radius, then to_world: a uniform scale,
