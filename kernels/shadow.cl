@@ -3,6 +3,7 @@
  * WP_MIRROR_NEE, mirror_shadow (launched after it) tests the two-leg rays
  * through planar mirrors of the mirror queue (kernels/mirror_light.h). */
 #include "mirror_light.h"
+#include "shadow_order.h"
 #include "stage.h"
 #include "traverse.h"
 
@@ -12,7 +13,7 @@ __kernel void shadow(WP_STAGE_PARAMETERS) {
     if (!WP_TRACE_SURPLUS_ITEMS && !queued)
         return;
     WP_SCENE_VIEW(scene);
-    wp_uint slot = queued ? shadow_queue[index] : 0u;
+    wp_uint slot = queued ? (launch.sorted ? shadow_order : shadow_queue)[index] : 0u;
 
     /* Scalar loads and a per-component update keep vector instructions out
      * of the stage, so that it vectorises (traverse.h). The direction's w is
