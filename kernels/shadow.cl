@@ -14,13 +14,16 @@ __kernel void shadow(WP_STAGE_PARAMETERS) {
         return;
     WP_SCENE_VIEW(scene);
     wp_uint slot = queued ? (launch.sorted ? shadow_order : shadow_queue)[index] : 0u;
+    /* Sorted (shadow_order.h), the rays are copies in the queue's order. */
+    __global const float4* origins = launch.sorted ? shadow_order_origin : shadow_origin;
+    __global const float4* directions = launch.sorted ? shadow_order_direction : shadow_direction;
+    wp_uint ray = launch.sorted ? (queued ? index : 0u) : slot;
 
     /* Scalar loads and a per-component update keep vector instructions out
      * of the stage, so that it vectorises (traverse.h). The direction's w is
      * the segment's length. */
-    int blocked =
-        wp_shadow_occluded(&scene, wp_load_xyz(shadow_origin, slot),
-                           wp_load_xyz(shadow_direction, slot), wp_load_w(shadow_direction, slot));
+    int blocked = wp_shadow_occluded(&scene, wp_load_xyz(origins, ray),
+                                     wp_load_xyz(directions, ray), wp_load_w(directions, ray));
     if (queued && !blocked) {
         __global float* sum = (__global float*)(radiance + slot);
         __global const float* add = (__global const float*)(shadow_contribution + slot);

@@ -14,12 +14,16 @@
  *   shadow_order_scan     one work-item: the counts become the prefix sums,
  *                         where each key's range starts;
  *   shadow_order_scatter  each slot written at its key's cursor in
- *                         shadow_order.
+ *                         shadow_order, and its ray's origin and direction
+ *                         at the same place of shadow_order_origin and
+ *                         _direction.
  * The host zeroes shadow_key_counts before the first; shadow then takes its
- * slots from shadow_order (WpLaunch.sorted). Within a key the order is
- * whichever work-item came first. No answer depends on the order: each
- * queued slot is traced once and adds to its own radiance, so the image is
- * the same bit for bit. */
+ * slots from shadow_order and its rays from the sorted copies, read in
+ * order (WpLaunch.sorted). The copies matter: read through the sorted slots,
+ * the rays' own buffers are gathered from all over, and at 10^6 triangles
+ * those cache misses cost more than the order saves (docs/performance.md). Within a key the order
+ * is whichever work-item came first. No answer depends on the order: each queued slot is traced
+ * once and adds to its own radiance, so the image is the same bit for bit. */
 #ifndef WP_SHADOW_ORDER_H
 #define WP_SHADOW_ORDER_H
 
@@ -87,7 +91,11 @@ __kernel void shadow_order_scatter(WP_STAGE_PARAMETERS) {
     wp_uint index = get_global_id(0);
     if (index >= launch.count)
         return;
-    shadow_order[atomic_inc(&shadow_key_counts[shadow_key[index]])] = shadow_queue[index];
+    wp_uint slot = shadow_queue[index];
+    wp_uint place = atomic_inc(&shadow_key_counts[shadow_key[index]]);
+    shadow_order[place] = slot;
+    shadow_order_origin[place] = shadow_origin[slot];
+    shadow_order_direction[place] = shadow_direction[slot];
 }
 
 #endif /* WP_USE_BVH */

@@ -524,8 +524,9 @@ typedef struct {
  *               same queue sorted by material kind (shade_sort.cl).
  *   shadow      count shadow rays (mirror_shadow: count two-leg rays of the
  *               mirror queue, shadow_queue + pool_size). With `sorted`, the
- *               slots come from shadow_order, the queue sorted by origin
- *               (shadow_order.h).
+ *               slots come from shadow_order, the queue sorted by origin,
+ *               and their rays from shadow_order_origin and _direction, in
+ *               the same order (shadow_order.h).
  *   accumulate  count finished paths. */
 typedef struct {
     wp_uint count;
@@ -597,8 +598,11 @@ typedef struct {
     /* the ray queue sorted by what was hit, and its counts per key (kernels/shade_sort.cl) */     \
     X(shade_order, wp_uint, 1, 0, 0)                                                               \
     X(shade_key_counts, wp_uint, 0, 0, 2u * WP_SHADE_KEY_COUNT)                                    \
-    /* the shadow queue sorted by origin, each entry's key, the counts per key (shadow_order.h) */ \
+    /* the shadow queue sorted by origin (shadow_order.h): its slots, their rays in that order, */ \
+    /* each queue entry's key, the counts per key */                                               \
     X(shadow_order, wp_uint, 1, 0, 0)                                                              \
+    X(shadow_order_origin, wp_float4, 1, 0, 0)                                                     \
+    X(shadow_order_direction, wp_float4, 1, 0, 0)                                                  \
     X(shadow_key, wp_uint, 1, 0, 0)                                                                \
     X(shadow_key_counts, wp_uint, 0, 0, WP_SHADOW_KEY_COUNT)                                       \
     /* the film of the current batch of iterations, per pixel (kernels/accumulate.cl) */           \

@@ -2,11 +2,13 @@
 // shadow_order_count, shadow_order_scan and shadow_order_scatter against a
 // host reference of the key (a double-precision Morton code of the origin's
 // cell in the root's box) and of the counting sort: every queued slot once in
-// shadow_order, keys in ascending order, nothing written past the queue;
+// shadow_order, keys in ascending order, each slot's ray copied to its place,
+// nothing written past the queue;
 // queues of odd lengths, one ray, none, and origins outside the box.
 #include "support/kernel_test_util.hpp"
 
 #include <algorithm>
+#include <cstring>
 #include <random>
 #include <vector>
 
@@ -82,8 +84,20 @@ std::vector<cl_uint> shuffled_slots(cl_uint seed) {
 
 // Sorts the first `length` entries of `queue` as the integrator does: the
 // counts zeroed, then the three launches.
-std::vector<cl_uint> run_sort(const std::vector<cl_float4>& origins,
-                              const std::vector<cl_uint>& queue, cl_uint length) {
+struct Sorted {
+    std::vector<cl_uint> order;               // shadow_order
+    std::vector<cl_float4> origin, direction; // the rays' copies in that order
+};
+
+// Each slot's direction: (slot, -slot, 2 slot, length slot + 0.5), to tell
+// the copies apart.
+cl_float4 slot_direction(cl_uint slot) {
+    const float f = float(slot);
+    return float4(f, -f, 2.0f * f, f + 0.5f);
+}
+
+Sorted run_sort(const std::vector<cl_float4>& origins, const std::vector<cl_uint>& queue,
+                cl_uint length) {
     WpFrame frame{};
     frame.pool_size = kPool;
     WpLaunch arguments{};
@@ -91,17 +105,24 @@ std::vector<cl_uint> run_sort(const std::vector<cl_float4>& origins,
     DeviceBuffers buffers = stage_buffers(kPool, 1);
     buffers.bvh_nodes = upload(std::vector<WpBvhNode>{root_node()});
     buffers.shadow_origin = upload(origins);
+    std::vector<cl_float4> directions;
+    for (cl_uint slot = 0; slot < kPool; ++slot)
+        directions.push_back(slot_direction(slot));
+    buffers.shadow_direction = upload(directions);
     buffers.shadow_queue = upload(queue);
     buffers.shadow_key_counts = upload(std::vector<cl_uint>(WP_SHADOW_KEY_COUNT, 0u));
     buffers.shadow_order = upload(std::vector<cl_uint>(kPool, kSentinel));
     run_stage("shadow_order_count", frame, arguments, buffers, length, kOptions);
     run_stage("shadow_order_scan", frame, arguments, buffers, 1, kOptions);
     run_stage("shadow_order_scatter", frame, arguments, buffers, length, kOptions);
-    return download<cl_uint>(buffers.shadow_order, kPool);
+    return {download<cl_uint>(buffers.shadow_order, kPool),
+            download<cl_float4>(buffers.shadow_order_origin, kPool),
+            download<cl_float4>(buffers.shadow_order_direction, kPool)};
 }
 
 void check_sorted(const std::vector<cl_float4>& origins, const std::vector<cl_uint>& queued,
-                  const std::vector<cl_uint>& order) {
+                  const Sorted& sorted) {
+    const std::vector<cl_uint>& order = sorted.order;
     const std::size_t n = queued.size();
     std::vector<cl_uint> got(order.begin(), order.begin() + std::ptrdiff_t(n));
     std::vector<cl_uint> want = queued;
@@ -113,6 +134,13 @@ void check_sorted(const std::vector<cl_float4>& origins, const std::vector<cl_ui
         REQUIRE(order[i] < kPool);
         REQUIRE(order[i - 1] < kPool);
         CHECK(reference_key(origins[order[i - 1]]) <= reference_key(origins[order[i]]));
+    }
+    for (std::size_t i = 0; i < n; ++i) { // each place holds its slot's ray
+        INFO("place " << i);
+        REQUIRE(order[i] < kPool);
+        CHECK(std::memcmp(&sorted.origin[i], &origins[order[i]], sizeof(cl_float4)) == 0);
+        const cl_float4 d = slot_direction(order[i]);
+        CHECK(std::memcmp(&sorted.direction[i], &d, sizeof(cl_float4)) == 0);
     }
     for (std::size_t i = n; i < kPool; ++i)
         CHECK(order[i] == kSentinel); // nothing past the queue
