@@ -3,7 +3,6 @@
  * WP_MIRROR_NEE, mirror_shadow (launched after it) tests the two-leg rays
  * through planar mirrors of the mirror queue (kernels/mirror_light.h). */
 #include "mirror_light.h"
-#include "shadow_order.h"
 #include "stage.h"
 #include "traverse.h"
 
@@ -13,17 +12,14 @@ __kernel void shadow(WP_STAGE_PARAMETERS) {
     if (!WP_TRACE_SURPLUS_ITEMS && !queued)
         return;
     WP_SCENE_VIEW(scene);
-    wp_uint slot = queued ? (launch.sorted ? shadow_order : shadow_queue)[index] : 0u;
-    /* Sorted (shadow_order.h), the rays are copies in the queue's order. */
-    __global const float4* origins = launch.sorted ? shadow_order_origin : shadow_origin;
-    __global const float4* directions = launch.sorted ? shadow_order_direction : shadow_direction;
-    wp_uint ray = launch.sorted ? (queued ? index : 0u) : slot;
+    wp_uint slot = queued ? shadow_queue[index] : 0u;
 
     /* Scalar loads and a per-component update keep vector instructions out
      * of the stage, so that it vectorises (traverse.h). The direction's w is
      * the segment's length. */
-    int blocked = wp_shadow_occluded(&scene, wp_load_xyz(origins, ray),
-                                     wp_load_xyz(directions, ray), wp_load_w(directions, ray));
+    int blocked =
+        wp_shadow_occluded(&scene, wp_load_xyz(shadow_origin, slot),
+                           wp_load_xyz(shadow_direction, slot), wp_load_w(shadow_direction, slot));
     if (queued && !blocked) {
         __global float* sum = (__global float*)(radiance + slot);
         __global const float* add = (__global const float*)(shadow_contribution + slot);

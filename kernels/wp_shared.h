@@ -151,12 +151,6 @@ enum { WP_MATERIALS(WP_MATERIAL_ENUMERATOR) WP_MATERIAL_KIND_COUNT };
 #define WP_SHADE_KEY_MISS ((wp_uint)WP_MATERIAL_KIND_COUNT)
 #define WP_SHADE_KEY_COUNT (WP_MATERIAL_KIND_COUNT + 1)
 
-/* The keys the shadow queue is sorted by before the stage traces it through
- * the hierarchy (kernels/shadow_order.h): the Morton code of the origin's
- * cell, WP_SHADOW_ORDER_AXIS_BITS bits an axis. */
-#define WP_SHADOW_ORDER_AXIS_BITS 4u
-#define WP_SHADOW_KEY_COUNT (1u << (3u * WP_SHADOW_ORDER_AXIS_BITS))
-
 /* The largest work-group the host launches (src/render/wavefront.cpp): shade
  * compacts its queue pushes through local arrays of this many entries. */
 #define WP_MAX_WORK_GROUP_SIZE 256u
@@ -523,17 +517,13 @@ typedef struct {
  *               With `sorted`, shade takes its slots from shade_order, the
  *               same queue sorted by material kind (shade_sort.cl).
  *   shadow      count shadow rays (mirror_shadow: count two-leg rays of the
- *               mirror queue, shadow_queue + pool_size). With `sorted`, the
- *               slots come from shadow_order, the queue sorted by origin,
- *               and their rays from shadow_order_origin and _direction, in
- *               the same order (shadow_order.h).
+ *               mirror queue, shadow_queue + pool_size).
  *   accumulate  count finished paths. */
 typedef struct {
     wp_uint count;
     wp_uint ray_queue; /* 0 or 1: WP_COUNTER_QUEUE_A or WP_COUNTER_QUEUE_B */
     wp_uint from_finished;
-    wp_uint sorted; /* shade: take the slots from shade_order, not the ray queue;
-                       shadow: from shadow_order, not the shadow queue */
+    wp_uint sorted; /* shade: take the slots from shade_order, not the ray queue */
 } WpLaunch;
 
 /* Every device buffer, declared once. The stage kernels' parameter lists
@@ -598,13 +588,6 @@ typedef struct {
     /* the ray queue sorted by what was hit, and its counts per key (kernels/shade_sort.cl) */     \
     X(shade_order, wp_uint, 1, 0, 0)                                                               \
     X(shade_key_counts, wp_uint, 0, 0, 2u * WP_SHADE_KEY_COUNT)                                    \
-    /* the shadow queue sorted by origin (shadow_order.h): its slots, their rays in that order, */ \
-    /* each queue entry's key, the counts per key */                                               \
-    X(shadow_order, wp_uint, 1, 0, 0)                                                              \
-    X(shadow_order_origin, wp_float4, 1, 0, 0)                                                     \
-    X(shadow_order_direction, wp_float4, 1, 0, 0)                                                  \
-    X(shadow_key, wp_uint, 1, 0, 0)                                                                \
-    X(shadow_key_counts, wp_uint, 0, 0, WP_SHADOW_KEY_COUNT)                                       \
     /* the film of the current batch of iterations, per pixel (kernels/accumulate.cl) */           \
     X(film_sum, wp_float4, 0, 1, 0)                                                                \
     X(film_sum_squares, wp_float4, 0, 1, 0)                                                        \

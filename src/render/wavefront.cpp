@@ -212,12 +212,6 @@ WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const PreparedSc
         kernels_[i] = cl::Kernel(program_.program, std::string(kStageKernelNames[i]).c_str());
     if (plan_.sorted_shading)
         shade_sort_count_kernel_ = cl::Kernel(program_.program, "shade_sort_count");
-    shadow_order_ = compiled.bvh;
-    if (shadow_order_) {
-        const char* names[] = {"shadow_order_count", "shadow_order_scan", "shadow_order_scatter"};
-        for (std::size_t i = 0; i < shadow_order_kernels_.size(); ++i)
-            shadow_order_kernels_[i] = cl::Kernel(program_.program, names[i]);
-    }
 
     frame_.camera = scene.camera;
     frame_.width = static_cast<wp_uint>(width);
@@ -249,9 +243,6 @@ WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const PreparedSc
         bind_buffers(mirror_shadow_kernel_, buffers_);
     if (plan_.sorted_shading)
         bind_buffers(shade_sort_count_kernel_, buffers_);
-    for (cl::Kernel& kernel : shadow_order_kernels_)
-        if (shadow_order_)
-            bind_buffers(kernel, buffers_);
 }
 
 std::string WavefrontIntegrator::launch_summary() const {
@@ -273,7 +264,7 @@ void WavefrontIntegrator::clear_film() {
 }
 
 void WavefrontIntegrator::launch(Stage stage, const WpLaunch& arguments, std::uint32_t items,
-                                 cl::Kernel* other, bool count_items) {
+                                 cl::Kernel* other) {
     if (items == 0)
         return;
     cl::Kernel& kernel = other ? *other : kernels_[static_cast<std::size_t>(stage)];
@@ -281,7 +272,7 @@ void WavefrontIntegrator::launch(Stage stage, const WpLaunch& arguments, std::ui
     kernel.setArg(kLaunchArgument, arguments);
     std::size_t group = group_size_;
     std::size_t global = (items + group - 1) / group * group;
-    cl::Event* event = profiler_ ? profiler_->begin(stage, count_items ? items : 0u) : nullptr;
+    cl::Event* event = profiler_ ? profiler_->begin(stage, items) : nullptr;
     device_.queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global),
                                        cl::NDRange(group), nullptr, event);
 }
@@ -456,8 +447,7 @@ void WavefrontIntegrator::trace_bounces(Film& film,
             break; // every slot has finished all its samples
 
         if (!fused) { // the bounce kernel traced its shadow rays already
-            sort_shadow_queue(shadows);
-            launch(Stage::Shadow, make_launch(shadows, in, false, shadow_order_), shadows);
+            launch(Stage::Shadow, make_launch(shadows, in), shadows);
             if (const std::uint32_t mirrored = counts[WP_COUNTER_MIRROR_SHADOW_RAYS];
                 mirrored > 0) {
                 // Two-leg rays through planar mirrors (kernels/mirror_light.h),
@@ -505,17 +495,6 @@ void WavefrontIntegrator::sort_for_shade(cl_uint queue, std::uint32_t bound) {
                                      zeros.data());
     launch(Stage::ShadeSort, make_launch(0, queue), bound, &shade_sort_count_kernel_);
     launch(Stage::ShadeSort, make_launch(0, queue), bound);
-}
-
-void WavefrontIntegrator::sort_shadow_queue(std::uint32_t count) {
-    if (!shadow_order_ || count == 0)
-        return;
-    device_.queue.enqueueFillBuffer(buffers_.shadow_key_counts, cl_uint{0}, 0,
-                                    sizeof(cl_uint) * WP_SHADOW_KEY_COUNT);
-    const WpLaunch arguments = make_launch(count, 0);
-    launch(Stage::Shadow, arguments, count, &shadow_order_kernels_[0], false);
-    launch(Stage::Shadow, arguments, 1, &shadow_order_kernels_[1], false);
-    launch(Stage::Shadow, arguments, count, &shadow_order_kernels_[2], false);
 }
 
 void WavefrontIntegrator::trace_waves(std::uint32_t count, Film& film,
@@ -591,8 +570,7 @@ double WavefrontIntegrator::time_intersect(const std::vector<cl_float4>& origins
     device_.queue.enqueueWriteBuffer(buffers_.counters, CL_TRUE,
                                      sizeof(cl_uint) * WP_COUNTER_QUEUE_A, sizeof(cl_uint),
                                      count.data());
-    return time_launches([&] { launch(Stage::Intersect, make_launch(0, WP_COUNTER_QUEUE_A), n); },
-                         repetitions);
+    return time_launches(Stage::Intersect, make_launch(0, WP_COUNTER_QUEUE_A), n, repetitions);
 }
 
 double WavefrontIntegrator::time_shadow(const std::vector<cl_float4>& origins,
@@ -600,22 +578,16 @@ double WavefrontIntegrator::time_shadow(const std::vector<cl_float4>& origins,
     load_rays(buffers_.shadow_origin, buffers_.shadow_direction, buffers_.shadow_queue, origins,
               directions);
     const auto n = static_cast<cl_uint>(origins.size());
-    // As a render traces them: sorted first (the sort's launches are the
-    // shadow stage's too, so their time counts).
-    return time_launches(
-        [&] {
-            sort_shadow_queue(n);
-            launch(Stage::Shadow, make_launch(n, 0, false, shadow_order_), n);
-        },
-        repetitions);
+    return time_launches(Stage::Shadow, make_launch(n, 0), n, repetitions);
 }
 
-double WavefrontIntegrator::time_launches(const std::function<void()>& run, int repetitions) {
+double WavefrontIntegrator::time_launches(Stage stage, const WpLaunch& arguments,
+                                          std::uint32_t items, int repetitions) {
     Profiler local;
     Profiler* saved = profiler_;
     profiler_ = &local;
     for (int r = 0; r < repetitions; ++r)
-        run();
+        launch(stage, arguments, items);
     device_.queue.finish();
     local.resolve_completed();
     profiler_ = saved;

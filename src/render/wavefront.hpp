@@ -143,23 +143,17 @@ class WavefrontIntegrator {
     // Sorts ray queue `queue` (at most `bound` rays) by material into
     // shade_order (kernels/shade_sort.cl): zeroes the counts, two launches.
     void sort_for_shade(cl_uint queue, std::uint32_t bound);
-    // Sorts the first `count` entries of the shadow queue by the origins'
-    // cells into shadow_order (kernels/shadow_order.h): zeroes the counts,
-    // three launches, whose time the profile counts as the shadow stage's
-    // (their items not: the rays are the shadow launch's).
-    void sort_shadow_queue(std::uint32_t count);
     // The wave plan: megakernel launches of `count` samples' tasks, no
     // per-bounce sync.
     void trace_waves(std::uint32_t count, Film& film,
                      const std::function<void(double)>& on_progress);
     // Launches `stage` over `items` work-items (rounded up to whole groups).
-    // `other`: a kernel that is not the stage's, profiled as the stage;
-    // `count_items` false: its time counts, its items not (work for the
-    // stage's rays, such as their sort, that is no more rays).
+    // `other`: a kernel that is not the stage's, profiled as the stage.
     void launch(Stage stage, const WpLaunch& arguments, std::uint32_t items,
-                cl::Kernel* other = nullptr, bool count_items = true);
-    // Device seconds of the launches that `repetitions` calls of `run` make.
-    double time_launches(const std::function<void()>& run, int repetitions);
+                cl::Kernel* other = nullptr);
+    // Device seconds of `repetitions` launches of one stage.
+    double time_launches(Stage stage, const WpLaunch& arguments, std::uint32_t items,
+                         int repetitions);
     void load_rays(const cl::Buffer& origin_buffer, const cl::Buffer& direction_buffer,
                    const cl::Buffer& queue, const std::vector<cl_float4>& origins,
                    const std::vector<cl_float4>& directions);
@@ -182,10 +176,6 @@ class WavefrontIntegrator {
     bool mirror_shadows_ = false;
     cl::Kernel mirror_shadow_kernel_;
     cl::Kernel shade_sort_count_kernel_; // the sort's first launch (with sorted_shading)
-    // Kernels built with WP_USE_BVH: the shadow queue is sorted by origin
-    // before the shadow stage traces it (kernels/shadow_order.h).
-    bool shadow_order_ = false;
-    std::array<cl::Kernel, 3> shadow_order_kernels_; // count, scan, scatter
     Profiler* profiler_ = nullptr;
 
     std::array<cl::Kernel, kStageKernelNames.size()> kernels_; // by Stage

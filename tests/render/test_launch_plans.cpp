@@ -107,9 +107,6 @@ std::vector<Variant> variants() {
     o.general_kernels = true;
     out.push_back({"report, solid angle, general kernels", o});
     o = {};
-    o.traversal = Traversal::Hierarchy; // the stages plan sorts its shadow queue by origin
-    out.push_back({"through the hierarchy", o});
-    o = {};
     o.max_depth = 2;
     out.push_back({"max depth 2 (capped paths)", o});
     o = {};
