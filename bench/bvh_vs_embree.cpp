@@ -196,6 +196,200 @@ Rays camera_rays(const DeviceScene& ds, std::uint32_t seed) {
     return r;
 }
 
+// ---- Shadow rays reordered for locality (--shadow-orders) ------------------
+//
+// Issue #35's third any-hit attempt: whether tracing a shadow queue in an
+// order where consecutive rays start near each other (so that they walk the
+// same nodes and leaves while those are in the caches) pays for a sort
+// before the shadow launch. Tried here on the host first, where it costs
+// minutes to find out; the rays' answers do not depend on their order.
+
+// Spreads the low 10 bits of v to every third bit (bit i to bit 3 i).
+std::uint32_t spread_bits(std::uint32_t v) {
+    v &= 0x3ffu;
+    v = (v | (v << 16)) & 0x030000ffu;
+    v = (v | (v << 8)) & 0x0300f00fu;
+    v = (v | (v << 4)) & 0x030c30c3u;
+    v = (v | (v << 2)) & 0x09249249u;
+    return v;
+}
+
+// The rays in `order` (ray indices), named name-label.
+Rays permuted(const Rays& rays, const std::vector<std::uint32_t>& order, const std::string& label) {
+    Rays r{rays.name + "-" + label, {}, {}, rays.candidates};
+    r.origins.reserve(order.size());
+    r.directions.reserve(order.size());
+    for (std::uint32_t i : order) {
+        r.origins.push_back(rays.origins[i]);
+        r.directions.push_back(rays.directions[i]);
+    }
+    return r;
+}
+
+// The origins' box, which the Morton codes below divide into cells.
+Box origin_box(const Rays& rays) {
+    Box box;
+    for (const cl_float4& o : rays.origins) {
+        box.lo = glm::min(box.lo, v3(o));
+        box.hi = glm::max(box.hi, v3(o));
+    }
+    return box;
+}
+
+// A host order, by std::sort on one thread: "origin", a 30-bit Morton code
+// of the origin in the origins' box (10 bits an axis); "octant", the
+// direction's octant (3 bits) above a 27-bit Morton code of the origin (9
+// bits an axis); "shuffled", a random order (what a queue loses of its
+// order once paths end and restart at random, for comparison). Ties keep
+// the rays' order.
+std::vector<std::uint32_t> host_order(const Rays& rays, const std::string& order,
+                                      double& sort_seconds) {
+    const std::size_t n = rays.origins.size();
+    const Box box = origin_box(rays);
+    const glm::vec3 extent = glm::max(box.hi - box.lo, glm::vec3(1e-30f));
+    const double start = now();
+    std::vector<std::uint32_t> index(n);
+    if (order == "shuffled") {
+        for (std::uint32_t i = 0; i < n; ++i)
+            index[i] = i;
+        std::shuffle(index.begin(), index.end(), std::mt19937(4));
+    } else {
+        std::vector<std::uint64_t> keyed(n); // key above, ray index below
+        const bool octant = order == "octant";
+        const float cells = octant ? 511.0f : 1023.0f;
+        for (std::size_t i = 0; i < n; ++i) {
+            const glm::vec3 q = (v3(rays.origins[i]) - box.lo) / extent * cells;
+            std::uint32_t key = spread_bits(std::uint32_t(q.x)) |
+                                spread_bits(std::uint32_t(q.y)) << 1 |
+                                spread_bits(std::uint32_t(q.z)) << 2;
+            if (octant) {
+                const cl_float4& d = rays.directions[i];
+                key |= std::uint32_t((d.s[0] < 0.0f) | (d.s[1] < 0.0f) << 1 | (d.s[2] < 0.0f) << 2)
+                       << 27;
+            }
+            keyed[i] = std::uint64_t(key) << 32 | i;
+        }
+        std::sort(keyed.begin(), keyed.end());
+        for (std::size_t i = 0; i < n; ++i)
+            index[i] = std::uint32_t(keyed[i] & 0xffffffffu);
+    }
+    sort_seconds = now() - start;
+    return index;
+}
+
+// The order a sort before the shadow launch could make on the device: a
+// counting sort of the rays by a Morton code of the origin with
+// `axis_bits` bits an axis, in three launches (count each cell, prefix
+// sums over the cells by one work-item, each ray written at its cell's
+// cursor). Within a cell the order is whichever work-item came first.
+// A prototype in the bench alone, to measure what the sort costs on the
+// device and what its order is worth to the traversal.
+const char* kOrderSource = R"CLC(
+static uint wp_spread_bits(uint v) {
+    v &= 0x3ffu;
+    v = (v | (v << 16)) & 0x030000ffu;
+    v = (v | (v << 8)) & 0x0300f00fu;
+    v = (v | (v << 4)) & 0x030c30c3u;
+    v = (v | (v << 2)) & 0x09249249u;
+    return v;
+}
+
+__kernel void order_count(uint count, __global const float4* origins, float4 low, float4 scale,
+                          uint axis_cells, __global uint* keys, __global uint* counts) {
+    uint i = get_global_id(0);
+    if (i >= count)
+        return;
+    float4 q = (origins[i] - low) * scale;
+    uint x = min((uint)max(q.x, 0.0f), axis_cells - 1u);
+    uint y = min((uint)max(q.y, 0.0f), axis_cells - 1u);
+    uint z = min((uint)max(q.z, 0.0f), axis_cells - 1u);
+    uint key = wp_spread_bits(x) | wp_spread_bits(y) << 1 | wp_spread_bits(z) << 2;
+    keys[i] = key;
+    atomic_inc(&counts[key]);
+}
+
+__kernel void order_scan(uint key_count, __global uint* counts) {
+    if (get_global_id(0) != 0u)
+        return;
+    uint sum = 0u;
+    for (uint k = 0u; k < key_count; ++k) {
+        uint c = counts[k];
+        counts[k] = sum;
+        sum += c;
+    }
+}
+
+__kernel void order_scatter(uint count, __global const uint* keys, __global uint* cursors,
+                            __global uint* order) {
+    uint i = get_global_id(0);
+    if (i >= count)
+        return;
+    order[atomic_inc(&cursors[keys[i]])] = i;
+}
+)CLC";
+
+struct DeviceOrder {
+    DeviceContext& device;
+    cl::Kernel count, scan, scatter;
+
+    explicit DeviceOrder(DeviceContext& d) : device(d) {
+        BuiltProgram built =
+            build_program(device.context, device.info.device, kOrderSource, "bench_order.cl", "");
+        count = cl::Kernel(built.program, "order_count");
+        scan = cl::Kernel(built.program, "order_scan");
+        scatter = cl::Kernel(built.program, "order_scatter");
+    }
+
+    // The rays' order by cells of `axis_bits` bits an axis; *seconds: the
+    // best of `repetitions` sorts (zeroing, three launches, finish), the
+    // origins already on the device as in a render.
+    std::vector<std::uint32_t> run(const Rays& rays, int axis_bits, int repetitions,
+                                   double& seconds) {
+        const std::size_t n = rays.origins.size();
+        const std::size_t keys = std::size_t(1) << (3 * axis_bits);
+        const float cells = float(1u << axis_bits);
+        const Box box = origin_box(rays);
+        const glm::vec3 scale = cells / glm::max(box.hi - box.lo, glm::vec3(1e-30f));
+        cl::Buffer origins(device.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                           sizeof(cl_float4) * std::max<std::size_t>(n, 1),
+                           const_cast<cl_float4*>(rays.origins.data()));
+        cl::Buffer key_of(device.context, CL_MEM_READ_WRITE,
+                          sizeof(cl_uint) * std::max<std::size_t>(n, 1));
+        cl::Buffer counts(device.context, CL_MEM_READ_WRITE, sizeof(cl_uint) * keys);
+        cl::Buffer order(device.context, CL_MEM_READ_WRITE,
+                         sizeof(cl_uint) * std::max<std::size_t>(n, 1));
+        count.setArg(0, cl_uint(n));
+        count.setArg(1, origins);
+        count.setArg(2, f4(box.lo));
+        count.setArg(3, f4(scale));
+        count.setArg(4, cl_uint(1u << axis_bits));
+        count.setArg(5, key_of);
+        count.setArg(6, counts);
+        scan.setArg(0, cl_uint(keys));
+        scan.setArg(1, counts);
+        scatter.setArg(0, cl_uint(n));
+        scatter.setArg(1, key_of);
+        scatter.setArg(2, counts);
+        scatter.setArg(3, order);
+        const cl::NDRange items((n + 63) / 64 * 64);
+        seconds = 1e30;
+        for (int r = 0; r < repetitions; ++r) {
+            device.queue.finish();
+            const double start = now();
+            device.queue.enqueueFillBuffer(counts, cl_uint(0), 0, sizeof(cl_uint) * keys);
+            device.queue.enqueueNDRangeKernel(count, cl::NullRange, items, cl::NDRange(64));
+            device.queue.enqueueNDRangeKernel(scan, cl::NullRange, cl::NDRange(1), cl::NDRange(1));
+            device.queue.enqueueNDRangeKernel(scatter, cl::NullRange, items, cl::NDRange(64));
+            device.queue.finish();
+            seconds = std::min(seconds, now() - start);
+        }
+        std::vector<std::uint32_t> out(n);
+        if (n > 0)
+            device.queue.enqueueReadBuffer(order, CL_TRUE, 0, sizeof(cl_uint) * n, out.data());
+        return out;
+    }
+};
+
 // ---- Embree ---------------------------------------------------------------
 
 struct EmbreeMemory {
@@ -656,8 +850,9 @@ int summarise(const json& results, const std::string& svg_path) {
             m(1, "wavepath_mrays"), m(1, "embree_high_16_mrays"), m(2, "wavepath_mrays"),
             m(2, "embree_high_16_mrays"), m(3, "wavepath_mrays"), m(3, "embree_high_1_mrays"),
             m(3, "embree_high_16_mrays"), m(4, "wavepath_mrays"), m(4, "embree_high_16_mrays"),
-            r["traced"].size() > 5 ? std::to_string(m(5, "wavepath_mrays")).substr(0, 5).c_str()
-                                   : "(no culling)",
+            r["traced"].size() > 5 && r["traced"][5]["rays"] == "light-all"
+                ? std::to_string(m(5, "wavepath_mrays")).substr(0, 5).c_str()
+                : "(no culling)",
             r["memory"]["wavepath_bytes_per_triangle"].get<double>(),
             r["memory"]["embree_medium_bytes_per_triangle"].get<double>(),
             r["memory"]["embree_high_bytes_per_triangle"].get<double>());
@@ -719,6 +914,15 @@ int main(int argc, char** argv) {
         ->check(CLI::ExistingFile);
     app.add_option("--json", json_path, "Write every figure here");
     app.add_option("--svg", svg_path, "Write the Mrays/s plot here");
+    std::vector<std::string> shadow_orders;
+    app.add_option("--shadow-orders", shadow_orders,
+                   "Also trace both shadow ray sets reordered on the host: origin (Morton "
+                   "code of the origin), octant (direction octant, then origin), shuffled; "
+                   "or on the device, a counting sort by a 12-, 15- or 18-bit Morton code "
+                   "of the origin: device12, device15, device18")
+        ->delimiter(',')
+        ->check(
+            CLI::IsMember({"origin", "octant", "shuffled", "device12", "device15", "device18"}));
     std::vector<std::string> merge;
     app.add_option("--merge", merge,
                    "Measure nothing: print the table (and write --svg) of the best figure of "
@@ -739,6 +943,7 @@ int main(int argc, char** argv) {
                 device.info.name.c_str(), device.info.driver_version.c_str(), RTC_VERSION_MAJOR,
                 RTC_VERSION_MINOR, RTC_VERSION_PATCH, threads, uptime().c_str());
     json results = json::array();
+    DeviceOrder device_order(device);
 
     const bool as_is = !scene_path.empty();
     if (as_is)
@@ -892,6 +1097,27 @@ int main(int argc, char** argv) {
         trace(light, true, "light", integrator, checker);
         if (culling)
             trace(light, true, "light-all", all_faces, all_faces_checker);
+        for (const std::string& order : shadow_orders) {
+            for (const Rays* rays : {&sets[0], &light}) {
+                double sort_seconds = 0.0;
+                std::vector<std::uint32_t> index;
+                const bool on_device = order.starts_with("device");
+                if (on_device)
+                    index = device_order.run(*rays, std::stoi(order.substr(6)) / 3, repetitions,
+                                             sort_seconds);
+                else
+                    index = host_order(*rays, order, sort_seconds);
+                const Rays sorted = permuted(*rays, index, order);
+                std::printf("order %s: %s rays sorted in %.4f s (%s)\n", order.c_str(),
+                            rays->name.c_str(), sort_seconds,
+                            on_device ? "on the device" : "host, one thread");
+                if (rays == &light)
+                    trace(sorted, true, sorted.name, integrator, checker);
+                else
+                    trace(sorted, true, sorted.name, all_faces, all_faces_checker);
+                traced.back()[on_device ? "device_sort_s" : "host_sort_s"] = sort_seconds;
+            }
+        }
         r["traced"] = traced;
         r["load_end"] = uptime();
         r["max_rss_mib"] = max_rss_mib();
