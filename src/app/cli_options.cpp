@@ -119,11 +119,12 @@ void add_integrator_options(CLI::App& command, IntegratorOptions& options) {
         ->check(CLI::Range(1u, cli_limits::max_depth))
         ->each([&options](const std::string&) { options.roulette_depth_given = true; });
     add_choice(command, "--roulette", options.roulette_rule,
-               {RouletteRule::Throughput, RouletteRule::Mitsuba},
-               "Russian roulette's survival probability: 'throughput' (min(1, max(throughput))) "
-               "or 'mitsuba' (Mitsuba 3's min(0.95, max(throughput) eta^2), eta^2 the squared "
-               "indices of refraction the path crossed; docs/performance.md, \"Shading and "
-               "roulette\")");
+               {RouletteRule::Auto, RouletteRule::Throughput, RouletteRule::Mitsuba},
+               "Russian roulette's survival probability: 'throughput' (min(1, max(throughput))), "
+               "'mitsuba' (Mitsuba 3's min(0.95, max(throughput) eta^2), eta^2 the squared "
+               "indices of refraction the path crossed), or 'auto': Mitsuba's where the scene "
+               "has a dielectric or roughdielectric, throughput elsewhere (docs/performance.md, "
+               "\"Shading and roulette\")");
     command
         .add_option_function<std::string>(
             "--path-types",

@@ -28,6 +28,8 @@ std::string to_string(MisStrategy strategy) {
 
 std::string to_string(RouletteRule rule) {
     switch (rule) {
+    case RouletteRule::Auto:
+        return "auto";
     case RouletteRule::Throughput:
         return "throughput";
     case RouletteRule::Mitsuba:
@@ -190,7 +192,7 @@ std::string describe_estimator(const IntegratorOptions& options) {
         text += "+mis-" + to_string(options.mis);
     if (options.roulette_depth != IntegratorOptions{}.roulette_depth)
         text += "+roulette-from-" + std::to_string(options.roulette_depth);
-    if (options.roulette_rule != RouletteRule::Throughput)
+    if (options.roulette_rule == RouletteRule::Mitsuba)
         text += "+roulette-" + to_string(options.roulette_rule);
     if (options.path_types != kAllPathTypes)
         text += "+paths=" + describe_path_types(options.path_types);

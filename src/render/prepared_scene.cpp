@@ -36,7 +36,18 @@ PreparedScene prepare(const Scene& scene, const IntegratorOptions& options, Tria
 // Mitsuba counts them, and so does --max-depth with a Mitsuba file: a number
 // that overrides the file's means what the file's means. Its -1 (no limit)
 // is wavepath's default, the safety cap. rr_depth is roulette_depth.
+// The roulette's rule, unless given, is Mitsuba's where something refracts:
+// there a path's radiance is divided by eta^2 as it enters glass, and the
+// throughput rule ends such paths for it (docs/performance.md, "Shading and
+// roulette"); elsewhere the two rules differ only past throughput 0.95.
 IntegratorOptions with_scene_settings(IntegratorOptions options, const Scene& scene) {
+    if (options.roulette_rule == RouletteRule::Auto) {
+        bool refracts = false;
+        for (const Material& material : scene.materials)
+            refracts = refracts || material.kind == MaterialKind::Dielectric ||
+                       material.kind == MaterialKind::RoughDielectric;
+        options.roulette_rule = refracts ? RouletteRule::Mitsuba : RouletteRule::Throughput;
+    }
     if (scene.hide_emitters)
         options.path_types &= ~(1u << WP_PATH_TYPE_CAMERA);
     if (scene.mitsuba_depths && options.max_depth_given)
