@@ -249,7 +249,8 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
     wp_surface_at(&scene, primitive, ray_origin[slot].xyz, direction, t, &surface);
     WpMaterial material = materials[surface.material];
 #if WP_HAS_TEXTURES
-    wp_apply_textures(&scene, surface.uv, &material);
+    if (wp_material_textured(&material))
+        wp_apply_textures(&scene, wp_surface_uv(&scene, primitive, &surface), &material);
 #endif
 #if WP_AOV
     if (path_depth[slot] == 0u) /* the camera ray's first hit */
