@@ -5,7 +5,7 @@
  * formula, so a texture decoded by the table renders bit for bit as one
  * decoded by the formula did: a lookup instead of a pow (about a tenth of
  * the showcase's shade time went to the pow, docs/performance.md, "The
- * showcase's shade, profiled and cut"). The values lie within 4 ulps of the
+ * showcase's shade, profiled and cut"). The values lie within 5 ulps of the
  * correctly rounded curve; tests/kernels/test_textures.cpp checks both, the
  * device formula entry by entry and the double-precision curve.
  */
