@@ -44,7 +44,7 @@ static inline void wp_envmap_patch(__global const WpEmitter* e, float3 d, int* i
                                    float* ay) {
     float3 l = (float3)(dot(e->to_local[0].xyz, d), dot(e->to_local[1].xyz, d),
                         dot(e->to_local[2].xyz, d));
-    float u = atan2(l.x, -l.z) * (0.5f / WP_PI);
+    float u = wp_atan2(l.x, -l.z) * (0.5f / WP_PI); /* atan2's, without its library call */
     u -= floor(u); /* [-1/2, 1/2) to [0, 1); a NaN stays a NaN, caught below */
     float v = acos(clamp(l.y, -1.0f, 1.0f)) * (1.0f / WP_PI);
     int w = (int)e->width, h = (int)e->height;
