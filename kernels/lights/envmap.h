@@ -129,17 +129,26 @@ static inline float wp_envmap_pdf(__global const float* environment_cdf,
 }
 
 /* The first of n cumulative entries that exceeds u (n - 1 if none does:
- * rounding may leave u at or above the last, 1). */
+ * rounding may leave u at or above the last, 1). A binary search narrows it
+ * to at most WP_ENVMAP_SEARCH_SPAN entries, which are then counted: since
+ * the entries never decrease, the answer is low plus how many of
+ * [low, high) are at most u, a loop without a branch on the data that the
+ * compiler vectorises (the binary search's last, unpredictable steps were
+ * most of its 8 % of the showcase's shade, docs/performance.md). */
+#define WP_ENVMAP_SEARCH_SPAN 32u
 static inline wp_uint wp_envmap_search(__global const float* cdf, wp_uint n, float u) {
     wp_uint low = 0u, high = n - 1u;
-    while (low < high) {
+    while (high - low > WP_ENVMAP_SEARCH_SPAN) {
         wp_uint mid = (low + high) / 2u;
         if (cdf[mid] > u)
             high = mid;
         else
             low = mid + 1u;
     }
-    return low;
+    wp_uint at_most_u = 0u;
+    for (wp_uint k = low; k < high; ++k)
+        at_most_u += cdf[k] <= u ? 1u : 0u;
+    return low + at_most_u;
 }
 
 /* Picks a direction by the tables from the numbers (u, v) in [0, 1): *d the

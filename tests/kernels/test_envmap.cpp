@@ -39,6 +39,14 @@ __kernel void evaluate(__global const WpEmitter* emitter, __global const uint* t
     out[i] = (float4)(wp_envmap_radiance(texels, emitter, d), wp_envmap_pdf(cdf, emitter, d));
 }
 
+__kernel void search(__global const float* cdf, __global const uint* sizes,
+                     __global const float* numbers, uint count, __global uint* out) {
+    uint i = get_global_id(0);
+    if (i >= count)
+        return;
+    out[i] = wp_envmap_search(cdf + 256u * i, sizes[i], numbers[i]);
+}
+
 __kernel void sample(__global const WpEmitter* emitter, __global const uint* texels,
                      __global const float* cdf, uint count, __global const float2* numbers,
                      __global float4* out, __global float4* radiance_out) {
@@ -223,6 +231,63 @@ TEST_CASE("envmap on the device matches the double-precision reference", "[kerne
         }
     }
     CHECK(compared > directions.size() * 99 / 100);
+}
+
+TEST_CASE("envmap search: the first cumulative entry past u, as a binary search finds it",
+          "[kernels][envmap]") {
+    // Tables of 1 to 256 entries ending in 1, with runs of equal entries
+    // (patches of probability 0), searched for numbers drawn at random, at
+    // entries exactly and just beside them; the reference is the plain
+    // binary search the kernel's narrowing and counting replaced.
+    std::mt19937 rng(20261207);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    std::vector<float> tables;
+    std::vector<cl_uint> sizes;
+    std::vector<float> numbers;
+    for (int t = 0; t < 4000; ++t) {
+        const cl_uint n = 1u + static_cast<cl_uint>(rng() % 256u);
+        std::vector<float> cdf(256, 1.0f);
+        float sum = 0.0f;
+        std::vector<float> weights(n);
+        for (float& w : weights) {
+            w = rng() % 4u == 0u ? 0.0f : unit(rng);
+            sum += w;
+        }
+        float running = 0.0f;
+        for (cl_uint k = 0; k < n; ++k) {
+            running += weights[k];
+            cdf[k] = sum > 0.0f ? running / sum : 1.0f;
+        }
+        cdf[n - 1] = 1.0f;
+        const float entry = cdf[rng() % n];
+        const float choices[] = {
+            unit(rng), entry,         std::nextafter(entry, 0.0f), std::nextafter(entry, 2.0f),
+            0.0f,      0x1.fffffep-1f};
+        tables.insert(tables.end(), cdf.begin(), cdf.end());
+        sizes.push_back(n);
+        numbers.push_back(choices[rng() % 6u]);
+    }
+    const auto count = static_cast<cl_uint>(sizes.size());
+    cl::Kernel kernel(program(kEnvmapSource, "envmap_test.cl"), "search");
+    const cl::Buffer cdf = upload(tables), sizes_buffer = upload(sizes),
+                     numbers_buffer = upload(numbers), out = upload(std::vector<cl_uint>(count));
+    set_args(kernel, cdf, sizes_buffer, numbers_buffer, count, out);
+    launch(kernel, count);
+    const std::vector<cl_uint> got = download<cl_uint>(out, count);
+    std::size_t differ = 0;
+    for (cl_uint i = 0; i < count; ++i) {
+        const float* table = tables.data() + 256u * i;
+        cl_uint low = 0, high = sizes[i] - 1u;
+        while (low < high) {
+            const cl_uint mid = (low + high) / 2u;
+            if (table[mid] > numbers[i])
+                high = mid;
+            else
+                low = mid + 1u;
+        }
+        differ += got[i] != low;
+    }
+    CHECK(differ == 0);
 }
 
 TEST_CASE("envmap sampling on the device follows its density (chi-square)",
