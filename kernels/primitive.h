@@ -219,8 +219,8 @@ static inline wp_uint wp_primitive_material(const WpSceneView* scene, wp_uint pr
 /* The texture coordinates of surface s on `primitive`. A triangle's are in
  * s->uv already (wp_surface_at); a sphere's are computed here from the
  * normal, only for the hits whose material is textured: their atan2 and acos
- * on every sphere hit were about 9 % of the showcase's shade, which textures
- * no sphere (docs/performance.md, "The showcase's shade, profiled and cut"). */
+ * on every sphere hit were about 3.5 % of the showcase's shade, which
+ * textures no sphere (docs/performance.md, "The showcase's shade, profiled and cut"). */
 static inline float2 wp_surface_uv(const WpSceneView* scene, wp_uint primitive,
                                    const WpSurface* s) {
 #if WP_HAS_SPHERES

@@ -49,7 +49,7 @@ static inline void wp_sincos_2pi(float u, float* sine, float* cosine) {
     *cosine = (k == 1 || k == 2) ? -cos_k : cos_k;
 }
 
-/* atan2(y, x) without a library call (PoCL's atan2 was 10 % of the
+/* atan2(y, x) without a library call (PoCL's atan2 was 5 % of the
  * showcase's shade, where the envmap turns every escaping ray's direction
  * into map coordinates): the angle's tangent t = |y| / |x| reduced to
  * |t'| <= tan(pi/8) by atan t = pi/4 + atan((t - 1)/(t + 1)) or

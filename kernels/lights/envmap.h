@@ -155,8 +155,8 @@ static inline wp_uint wp_envmap_search(__global const float* cdf, wp_uint n, flo
  * unit world direction, *pdf its solid-angle density (wp_envmap_pdf's), and
  * *radiance the map's radiance along it (wp_envmap_radiance's), blended in
  * the patch the numbers chose at the place they chose: the column weight is
- * the sample's own s, and no atan2 of *d is needed (it was 10 % of the
- * showcase's shade). Up to rounding it is the lookup of *d; a direction
+ * the sample's own s, and no atan2 of *d is needed (it was about 9 % of
+ * the showcase's shade). Up to rounding it is the lookup of *d; a direction
  * within rounding of a patch's edge may read the neighbour's side of the
  * same (continuous) blend. */
 static inline void wp_envmap_sample(__global const wp_uint* texels,
