@@ -7,6 +7,7 @@
     python3 bench/peers.py error --reference REF.exr [--scene S] [--peers cycles,mitsuba]
                                  [--spp 16,64,256,1024] [--rounds 2]
                                  [--modes two-threads,one-core] [--wp-variant="--sampler sobol"]
+                                 [--baseline COMMIT | --baseline-binary PATH]
     python3 bench/peers.py reference --scene S --size 256 --reference-spp 4096 --out REF.exr
                                      [--reference-renderer mitsuba|wavepath]
     python3 bench/peers.py suite [--size 256] [--spp 16,64] [--rounds 2] [--reference-spp 1024]
@@ -23,8 +24,9 @@ wavepath_bench_bvh --scene (built with -DWAVEPATH_BUILD_BENCH=ON; skipped,
 saying so, when it is not there).
 error: MSE, relMSE, time, samples/s, efficiency 1/(MSE t) and the time to
 relMSE 0.05 of wavepath (its default and each --wp-variant) and its peers
-(default: Blender Cycles and Mitsuba 3 on the hexroom, Mitsuba 3 elsewhere),
-against a long reference, on 2 threads and pinned to one core.
+(default: Blender Cycles and Mitsuba 3 on the hexroom, Mitsuba 3 elsewhere)
+and (with --baseline) an earlier wavepath build, against a long reference,
+on 2 threads and pinned to one core.
 reference: that long reference, by Mitsuba 3 through export-mitsuba (in
 passes of --reference-pass-spp, averaged) or by wavepath.
 suite: issue #34's set in one command: error mode (two threads; samples/s
@@ -383,6 +385,9 @@ def run_error(args, workdir):
     for variant in args.wp_variant:
         renderers.append(peers_renderers.Wavepath(args.wavepath, shlex.split(variant),
                                                   f"wavepath {variant}", args.scene))
+    baseline = peers_renderers.baseline_binary(args, workdir)
+    if baseline:
+        renderers.append(peers_renderers.Wavepath(baseline[0], [], f"wavepath {baseline[1]}", args.scene))
     renderers += peer_renderers(args, workdir, "error")
 
     out = Path(args.out_dir)
@@ -662,8 +667,9 @@ def main():
     group.add_argument("--spp-single", "--throughput-spp", type=int, default=64, dest="spp_single",
                        help="samples per pixel of each throughput render (default: 64)")
     group.add_argument("--threads", type=int, default=2, help="threads of every renderer (default: 2)")
-    group.add_argument("--baseline", help="an earlier wavepath commit: built in a git worktree under /tmp")
-    group.add_argument("--baseline-binary", help="an earlier wavepath binary")
+    group.add_argument("--baseline", help="an earlier wavepath commit: built in a git worktree "
+                       "under /tmp (throughput and error modes)")
+    group.add_argument("--baseline-binary", help="an earlier wavepath binary (throughput and error modes)")
     group.add_argument("--embree-bench", default=str(REPOSITORY / "build" / "bench" / "wavepath_bench_bvh"),
                        help="the tracing benchmark against Embree (default: build/bench/wavepath_bench_bvh)")
     group = parser.add_argument_group("error")

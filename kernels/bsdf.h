@@ -87,6 +87,20 @@ static inline float wp_bsdf_pdf(const WpMaterial* m, float3 wo, float3 wi,
 
 /* Whether the program has a glossy kind (the glossy column of WP_MATERIALS):
  * a constant for #if. */
+/* pi f and (into *pdf) the density of wi together, as next-event estimation
+ * needs them: the kinds whose one evaluation yields both (roughdielectric,
+ * roughplastic) evaluate once instead of twice; every other kind is
+ * wp_bsdf_eval_pi and wp_bsdf_pdf. The same floats as the two calls. */
+static inline float3 wp_bsdf_eval_pi_pdf(const WpMaterial* m, float3 wo, float3 wi,
+                                         const WpShadingPoint* p, float* pdf) {
+    if (WP_HAS_ROUGHPLASTIC && m->kind == WP_MATERIAL_ROUGHPLASTIC)
+        return wp_roughplastic_eval_pi_pdf(m, wo, wi, p, pdf);
+    if (WP_HAS_ROUGHDIELECTRIC && m->kind == WP_MATERIAL_ROUGHDIELECTRIC)
+        return wp_roughdielectric_eval_pi_pdf(m, wo, wi, p, pdf);
+    *pdf = wp_bsdf_pdf(m, wo, wi, p);
+    return wp_bsdf_eval_pi(m, wo, wi, p);
+}
+
 #define WP_GLOSSY_TERM(KIND, Name, name, value, bsdf, glossy) WP_IF(glossy)(|| WP_HAS_##KIND)
 #define WP_HAS_GLOSSY (0 WP_MATERIALS(WP_GLOSSY_TERM))
 

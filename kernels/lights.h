@@ -303,11 +303,13 @@ static inline int wp_sample_emitter(const WpSceneView* scene, __global const WpE
 #if WP_HAS_ENVMAP_LIGHT
         if (kind == WP_EMITTER_ENVMAP) {
             float direction_pdf;
-            wp_envmap_sample(scene->environment_cdf, e, u, v, &wi, &direction_pdf);
+            float3 radiance;
+            wp_envmap_sample(scene->texels, scene->environment_cdf, e, u, v, &wi, &direction_pdf,
+                             &radiance);
             if (!(direction_pdf > 0.0f))
                 return 0;
             pdf = e->pick * direction_pdf;
-            arriving = wp_envmap_radiance(scene->texels, e, wi) * (1.0f / pdf);
+            arriving = radiance * (1.0f / pdf);
             out->weigh_always = 1;
         }
 #endif

@@ -107,7 +107,8 @@ typedef struct {
      * with its ray_intersect): a triangle's interpolated vertex (u, v), or
      * without them its barycentrics (b1, b2); a sphere's
      * (phi / 2 pi, theta / pi) about its centre, phi from +x towards +y in
-     * [0, 2 pi), theta from +z. */
+     * [0, 2 pi), theta from +z. Read them through wp_surface_uv: a sphere's
+     * are left 0 here and computed there, only where a texture needs them. */
     float2 uv;
 #endif
 #if WP_HAS_ANISOTROPY
@@ -214,6 +215,24 @@ static inline wp_uint wp_primitive_material(const WpSceneView* scene, wp_uint pr
     return wp_triangle_material(&triangle);
 }
 
+#if WP_HAS_TEXTURES
+/* The texture coordinates of surface s on `primitive`. A triangle's are in
+ * s->uv already (wp_surface_at); a sphere's are computed here from the
+ * normal, only for the hits whose material is textured: their atan2 and acos
+ * on every sphere hit were about 3.5 % of the showcase's shade, which
+ * textures no sphere (docs/performance.md, "The showcase's shade, profiled and cut"). */
+static inline float2 wp_surface_uv(const WpSceneView* scene, wp_uint primitive,
+                                   const WpSurface* s) {
+#if WP_HAS_SPHERES
+    if (wp_primitive_kind(scene, primitive) == WP_PRIMITIVE_SPHERE)
+        return wp_sphere_uv(s->normal);
+#else
+    (void)scene, (void)primitive;
+#endif
+    return s->uv;
+}
+#endif
+
 /* The surface of `primitive` where the ray origin + t direction hit it. The
  * hit point is reprojected onto the surface, so that its error scales with
  * the surface's coordinates, not with t. */
@@ -231,7 +250,7 @@ static inline void wp_surface_at(const WpSceneView* scene, wp_uint primitive, fl
         s.material = sphere.material;
         s.inside_solid = dot(direction, s.normal) >= 0.0f;
 #if WP_HAS_TEXTURES
-        s.uv = wp_sphere_uv(s.normal);
+        s.uv = (float2)(0.0f); /* wp_surface_uv's to compute, where a texture asks */
 #endif
 #if WP_HAS_ANISOTROPY
         s.dp_du = wp_sphere_dp_du(s.normal);

@@ -49,6 +49,31 @@ static inline void wp_sincos_2pi(float u, float* sine, float* cosine) {
     *cosine = (k == 1 || k == 2) ? -cos_k : cos_k;
 }
 
+/* atan2(y, x) without a library call (PoCL's atan2 was 5 % of the
+ * showcase's shade, where the envmap turns every escaping ray's direction
+ * into map coordinates): the angle's tangent t = |y| / |x| reduced to
+ * |t'| <= tan(pi/8) by atan t = pi/4 + atan((t - 1)/(t + 1)) or
+ * pi/2 - atan(1/t), then Moshier's polynomial for float (Cephes' atanf),
+ * then the quadrant by selects. Within 3.5 ulps of the double-precision
+ * atan2 (tests/kernels/test_sampling.cpp), and as atan2 at the axes and the
+ * signed zeros: (+-0, +0) give +-0, (+-0, -0) give +-pi; a NaN gives NaN. */
+static inline float wp_atan2(float y, float x) {
+    float ax = fabs(x), ay = fabs(y);
+    float t = ay / ax; /* +inf on the y axis; 0 / 0 at the origin, fixed below */
+    int steep = t > 2.414213562373095f, middle = !steep && t > 0.4142135623730950f;
+    float base = steep ? 0.5f * WP_PI : middle ? 0.25f * WP_PI : 0.0f;
+    float r = steep ? -1.0f / t : middle ? (t - 1.0f) / (t + 1.0f) : t;
+    float z = r * r;
+    float angle =
+        base + ((((8.05374449538e-2f * z - 1.38776856032e-1f) * z + 1.99777106478e-1f) * z -
+                 3.33329491539e-1f) *
+                    z * r +
+                r);
+    angle = ax == 0.0f && ay == 0.0f ? 0.0f : angle;
+    angle = signbit(x) ? WP_PI - angle : angle;
+    return copysign(angle, y);
+}
+
 /* Cosine-weighted direction on the hemisphere around unit n: pdf cos(theta)/pi.
  * With it the Lambertian estimate's cos/pdf cancels to pi, so the throughput
  * just takes the reflectance. */

@@ -85,15 +85,20 @@ static inline void wp_shade_next_event(const WpSceneView* scene, const WpMateria
     if (!wp_sample_lights(scene, surface->position, origin, origin_behind,
                           wp_bsdf_transmits(material), point->n, u_pick, u, v, &light))
         return;
-    float3 contribution = beta * wp_bsdf_eval_pi(material, wo, light.direction, point) *
-                          light.irradiance * (1.0f / WP_PI);
 #if WP_HAS_WEIGHED_VERTICES || WP_HAS_ENVIRONMENT
     /* Where BSDF samples' hits on lights count (wp_bsdf_weighs_light) every
      * light sample is weighed; the environment is weighed at every non-delta
-     * vertex whatever the strategy, as the ray that escapes is. */
+     * vertex whatever the strategy, as the ray that escapes is. The BSDF's
+     * density comes with its value (a rough BSDF evaluates once). */
+    float bsdf_pdf;
+    float3 contribution = beta *
+                          wp_bsdf_eval_pi_pdf(material, wo, light.direction, point, &bsdf_pdf) *
+                          light.irradiance * (1.0f / WP_PI);
     if (wp_bsdf_weighs_light(material) || light.weigh_always)
-        contribution *=
-            wp_mis_light_sample(light.pdf, wp_bsdf_pdf(material, wo, light.direction, point));
+        contribution *= wp_mis_light_sample(light.pdf, bsdf_pdf);
+#else
+    float3 contribution = beta * wp_bsdf_eval_pi(material, wo, light.direction, point) *
+                          light.irradiance * (1.0f / WP_PI);
 #endif
     if (wp_is_black(contribution))
         return;
@@ -249,7 +254,8 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
     wp_surface_at(&scene, primitive, ray_origin[slot].xyz, direction, t, &surface);
     WpMaterial material = materials[surface.material];
 #if WP_HAS_TEXTURES
-    wp_apply_textures(&scene, surface.uv, &material);
+    if (wp_material_textured(&material))
+        wp_apply_textures(&scene, wp_surface_uv(&scene, primitive, &surface), &material);
 #endif
 #if WP_AOV
     if (path_depth[slot] == 0u) /* the camera ray's first hit */

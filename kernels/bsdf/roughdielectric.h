@@ -144,21 +144,26 @@ static inline void wp_roughdielectric_sample(const WpMaterial* m, float3 wo,
     *out = s;
 }
 
+/* pi f and (into *pdf) the density of wi, from one evaluation
+ * (wp_bsdf_eval_pi_pdf). */
+static inline float3 wp_roughdielectric_eval_pi_pdf(const WpMaterial* m, float3 wo, float3 wi,
+                                                    const WpShadingPoint* p, float* pdf) {
+    float3 f_pi;
+    wp_roughdielectric_eval_local(m, -wp_bsdf_to_local(m, p, wo), wp_bsdf_to_local(m, p, wi),
+                                  wp_dielectric_eta(m, p), &f_pi, pdf);
+    return f_pi;
+}
+
 static inline float3 wp_roughdielectric_eval_pi(const WpMaterial* m, float3 wo, float3 wi,
                                                 const WpShadingPoint* p) {
-    float3 f_pi;
     float pdf;
-    wp_roughdielectric_eval_local(m, -wp_bsdf_to_local(m, p, wo), wp_bsdf_to_local(m, p, wi),
-                                  wp_dielectric_eta(m, p), &f_pi, &pdf);
-    return f_pi;
+    return wp_roughdielectric_eval_pi_pdf(m, wo, wi, p, &pdf);
 }
 
 static inline float wp_roughdielectric_pdf(const WpMaterial* m, float3 wo, float3 wi,
                                            const WpShadingPoint* p) {
-    float3 f_pi;
     float pdf;
-    wp_roughdielectric_eval_local(m, -wp_bsdf_to_local(m, p, wo), wp_bsdf_to_local(m, p, wi),
-                                  wp_dielectric_eta(m, p), &f_pi, &pdf);
+    wp_roughdielectric_eval_pi_pdf(m, wo, wi, p, &pdf);
     return pdf;
 }
 

@@ -122,19 +122,25 @@ static inline void wp_roughplastic_sample(const WpMaterial* m, float3 wo, const 
     *out = s;
 }
 
+/* pi f and (into *pdf) the density of wi, from one evaluation
+ * (wp_bsdf_eval_pi_pdf). */
+static inline float3 wp_roughplastic_eval_pi_pdf(const WpMaterial* m, float3 wo, float3 wi,
+                                                 const WpShadingPoint* p, float* pdf) {
+    float3 f_pi;
+    wp_roughplastic_eval_local(m, -wp_to_local(wo, p->n), wp_to_local(wi, p->n), &f_pi, pdf);
+    return f_pi;
+}
+
 static inline float3 wp_roughplastic_eval_pi(const WpMaterial* m, float3 wo, float3 wi,
                                              const WpShadingPoint* p) {
-    float3 f_pi;
     float pdf;
-    wp_roughplastic_eval_local(m, -wp_to_local(wo, p->n), wp_to_local(wi, p->n), &f_pi, &pdf);
-    return f_pi;
+    return wp_roughplastic_eval_pi_pdf(m, wo, wi, p, &pdf);
 }
 
 static inline float wp_roughplastic_pdf(const WpMaterial* m, float3 wo, float3 wi,
                                         const WpShadingPoint* p) {
-    float3 f_pi;
     float pdf;
-    wp_roughplastic_eval_local(m, -wp_to_local(wo, p->n), wp_to_local(wi, p->n), &f_pi, &pdf);
+    wp_roughplastic_eval_pi_pdf(m, wo, wi, p, &pdf);
     return pdf;
 }
 

@@ -44,7 +44,7 @@ static inline void wp_envmap_patch(__global const WpEmitter* e, float3 d, int* i
                                    float* ay) {
     float3 l = (float3)(dot(e->to_local[0].xyz, d), dot(e->to_local[1].xyz, d),
                         dot(e->to_local[2].xyz, d));
-    float u = atan2(l.x, -l.z) * (0.5f / WP_PI);
+    float u = wp_atan2(l.x, -l.z) * (0.5f / WP_PI); /* atan2's, without its library call */
     u -= floor(u); /* [-1/2, 1/2) to [0, 1); a NaN stays a NaN, caught below */
     float v = acos(clamp(l.y, -1.0f, 1.0f)) * (1.0f / WP_PI);
     int w = (int)e->width, h = (int)e->height;
@@ -90,10 +90,15 @@ static inline float3 wp_envmap_radiance(__global const wp_uint* texels, __global
 
 /* cos(theta_j) - cos(theta_{j+1}) for the row boundaries theta_j = pi j / rows,
  * as 2 sin(mid) sin(half width): the plain difference of two cosines near 1
- * loses every digit at the poles of a large map. */
+ * loses every digit at the poles of a large map. The angles are fractions of
+ * a turn, so the polynomial wp_sincos_2pi serves (library sin and cos spent
+ * most of their time in an argument reduction PoCL does not inline: 8 % of
+ * the showcase's shade, docs/performance.md). */
 static inline float wp_envmap_cos_span(int j, int rows) {
-    float half_width = 0.5f * WP_PI / (float)rows;
-    return 2.0f * sin(WP_PI * ((float)j + 0.5f) / (float)rows) * sin(half_width);
+    float sin_mid, sin_half_width, unused;
+    wp_sincos_2pi(((float)j + 0.5f) / (float)(2 * rows), &sin_mid, &unused);
+    wp_sincos_2pi(0.25f / (float)rows, &sin_half_width, &unused);
+    return 2.0f * sin_mid * sin_half_width;
 }
 
 /* The probability of patch (i, j) (the product of two table differences). */
@@ -124,24 +129,40 @@ static inline float wp_envmap_pdf(__global const float* environment_cdf,
 }
 
 /* The first of n cumulative entries that exceeds u (n - 1 if none does:
- * rounding may leave u at or above the last, 1). */
+ * rounding may leave u at or above the last, 1). A binary search narrows it
+ * to at most WP_ENVMAP_SEARCH_SPAN entries, which are then counted: since
+ * the entries never decrease, the answer is low plus how many of
+ * [low, high) are at most u, a loop without a branch on the data that the
+ * compiler vectorises (the binary search's last, unpredictable steps were
+ * most of its 8 % of the showcase's shade, docs/performance.md). */
+#define WP_ENVMAP_SEARCH_SPAN 32u
 static inline wp_uint wp_envmap_search(__global const float* cdf, wp_uint n, float u) {
     wp_uint low = 0u, high = n - 1u;
-    while (low < high) {
+    while (high - low > WP_ENVMAP_SEARCH_SPAN) {
         wp_uint mid = (low + high) / 2u;
         if (cdf[mid] > u)
             high = mid;
         else
             low = mid + 1u;
     }
-    return low;
+    wp_uint at_most_u = 0u;
+    for (wp_uint k = low; k < high; ++k)
+        at_most_u += cdf[k] <= u ? 1u : 0u;
+    return low + at_most_u;
 }
 
 /* Picks a direction by the tables from the numbers (u, v) in [0, 1): *d the
- * unit world direction, *pdf its solid-angle density (wp_envmap_pdf's). */
-static inline void wp_envmap_sample(__global const float* environment_cdf,
+ * unit world direction, *pdf its solid-angle density (wp_envmap_pdf's), and
+ * *radiance the map's radiance along it (wp_envmap_radiance's), blended in
+ * the patch the numbers chose at the place they chose: the column weight is
+ * the sample's own s, and no atan2 of *d is needed (it was about 9 % of
+ * the showcase's shade). Up to rounding it is the lookup of *d; a direction
+ * within rounding of a patch's edge may read the neighbour's side of the
+ * same (continuous) blend. */
+static inline void wp_envmap_sample(__global const wp_uint* texels,
+                                    __global const float* environment_cdf,
                                     __global const WpEmitter* e, float u, float v, float3* d,
-                                    float* pdf) {
+                                    float* pdf, float3* radiance) {
     wp_uint w = e->width, rows = e->height - 1u;
     __global const float* marginal = environment_cdf + e->cdf_first;
     wp_uint j = wp_envmap_search(marginal, rows, v);
@@ -152,14 +173,23 @@ static inline void wp_envmap_sample(__global const float* environment_cdf,
     float s = clamp((u - column_low) / (row[i] - column_low), 0.0f, 1.0f);
     float t = clamp((v - row_low) / (marginal[j] - row_low), 0.0f, 1.0f);
     float span = wp_envmap_cos_span((int)j, (int)rows);
-    float cos_theta = cos(WP_PI * (float)j / (float)rows) - t * span;
+    float sin_row, cos_row;
+    wp_sincos_2pi((float)j / (float)(2u * rows), &sin_row, &cos_row);
+    float cos_theta = cos_row - t * span;
     cos_theta = clamp(cos_theta, -1.0f, 1.0f);
     float sin_theta = sqrt(fmax(0.0f, 1.0f - cos_theta * cos_theta));
-    float phi = 2.0f * WP_PI * ((float)i + 0.5f + s) / (float)w;
-    float3 l = (float3)(sin(phi) * sin_theta, cos_theta, -cos(phi) * sin_theta);
+    /* phi / 2 pi, in [0, 1 + 1 / 2w]: a turn past 1 is the same angle. */
+    float sin_phi, cos_phi;
+    wp_sincos_2pi(((float)i + 0.5f + s) / (float)w, &sin_phi, &cos_phi);
+    float3 l = (float3)(sin_phi * sin_theta, cos_theta, -cos_phi * sin_theta);
     *d = normalize(e->to_local[0].xyz * l.x + e->to_local[1].xyz * l.y + e->to_local[2].xyz * l.z);
     float p_row = marginal[j] - row_low, p_column = row[i] - column_low;
     *pdf = p_row * p_column / ((2.0f * WP_PI / (float)w) * span);
+    /* The row weight is theta's place in the row, (theta - theta_j) rows / pi:
+     * the radiance is bilinear in (phi, theta), the sample uniform in cos theta. */
+    float y = acos(cos_theta) * (1.0f / WP_PI) * (float)rows;
+    *radiance =
+        wp_envmap_patch_radiance(texels, e, (int)i, (int)j, s, clamp(y - (float)j, 0.0f, 1.0f));
 }
 
 #endif /* WP_LIGHTS_ENVMAP_H */

@@ -14,9 +14,11 @@
 #ifndef WP_TEXTURES_BITMAP_H
 #define WP_TEXTURES_BITMAP_H
 
+#include "textures/srgb8.h"
 #include "wp_shared.h"
 
-/* sRGB's decoding curve (IEC 61966-2-1). */
+/* sRGB's decoding curve (IEC 61966-2-1); 8-bit texels take it from the
+ * table of its values instead (textures/srgb8.h). */
 static inline float wp_srgb_to_linear(float c) {
     return c <= 0.04045f ? c * (1.0f / 12.92f) : pow((c + 0.055f) * (1.0f / 1.055f), 2.4f);
 }
@@ -52,12 +54,12 @@ static inline float3 wp_bitmap_texel(__global const wp_uint* texels, const WpTex
         return (float3)(as_float(p[0]), as_float(p[1]), as_float(p[2]));
     }
     wp_uint bits = texels[t->first + i];
-    float3 c =
-        (float3)((float)(bits & 255u), (float)((bits >> 8) & 255u), (float)((bits >> 16) & 255u)) *
-        (1.0f / 255.0f);
     if (t->format == WP_TEXELS_RGBA8_SRGB)
-        c = (float3)(wp_srgb_to_linear(c.x), wp_srgb_to_linear(c.y), wp_srgb_to_linear(c.z));
-    return c;
+        return (float3)(wp_srgb8_to_linear[bits & 255u], wp_srgb8_to_linear[(bits >> 8) & 255u],
+                        wp_srgb8_to_linear[(bits >> 16) & 255u]);
+    return (float3)((float)(bits & 255u), (float)((bits >> 8) & 255u),
+                    (float)((bits >> 16) & 255u)) *
+           (1.0f / 255.0f);
 }
 
 static inline float3 wp_bitmap_eval(__global const wp_uint* texels, const WpTexture* t, float2 uv) {

@@ -55,6 +55,13 @@ static inline float wp_texture_eval_float(const WpSceneView* scene, wp_uint inde
     return wp_luminance(wp_texture_lookup(scene->textures, scene->texels, index, uv, 1));
 }
 
+/* Whether any of the material's parameters is textured (wp_apply_textures
+ * has work, and the hit's texture coordinates are needed). */
+static inline int wp_material_textured(const WpMaterial* m) {
+    return (m->reflectance_texture | m->specular_texture | m->transmittance_texture |
+            m->alpha_u_texture | m->alpha_v_texture) != 0u;
+}
+
 /* The material as it is at texture coordinates uv: each textured parameter
  * replaced by its texture's value there. Colours are clamped to [0, 1] and
  * roughness to at least 1e-4, the ranges the loader enforces on constants

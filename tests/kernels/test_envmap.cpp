@@ -39,15 +39,25 @@ __kernel void evaluate(__global const WpEmitter* emitter, __global const uint* t
     out[i] = (float4)(wp_envmap_radiance(texels, emitter, d), wp_envmap_pdf(cdf, emitter, d));
 }
 
-__kernel void sample(__global const WpEmitter* emitter, __global const float* cdf, uint count,
-                     __global const float2* numbers, __global float4* out) {
+__kernel void search(__global const float* cdf, __global const uint* sizes,
+                     __global const float* numbers, uint count, __global uint* out) {
     uint i = get_global_id(0);
     if (i >= count)
         return;
-    float3 d;
+    out[i] = wp_envmap_search(cdf + 256u * i, sizes[i], numbers[i]);
+}
+
+__kernel void sample(__global const WpEmitter* emitter, __global const uint* texels,
+                     __global const float* cdf, uint count, __global const float2* numbers,
+                     __global float4* out, __global float4* radiance_out) {
+    uint i = get_global_id(0);
+    if (i >= count)
+        return;
+    float3 d, radiance;
     float pdf;
-    wp_envmap_sample(cdf, emitter, numbers[i].x, numbers[i].y, &d, &pdf);
+    wp_envmap_sample(texels, cdf, emitter, numbers[i].x, numbers[i].y, &d, &pdf, &radiance);
     out[i] = (float4)(d, pdf);
+    radiance_out[i] = (float4)(radiance, 0.0f);
 }
 )CL";
 
@@ -223,6 +233,63 @@ TEST_CASE("envmap on the device matches the double-precision reference", "[kerne
     CHECK(compared > directions.size() * 99 / 100);
 }
 
+TEST_CASE("envmap search: the first cumulative entry past u, as a binary search finds it",
+          "[kernels][envmap]") {
+    // Tables of 1 to 256 entries ending in 1, with runs of equal entries
+    // (patches of probability 0), searched for numbers drawn at random, at
+    // entries exactly and just beside them; the reference is the plain
+    // binary search the kernel's narrowing and counting replaced.
+    std::mt19937 rng(20261207);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    std::vector<float> tables;
+    std::vector<cl_uint> sizes;
+    std::vector<float> numbers;
+    for (int t = 0; t < 4000; ++t) {
+        const cl_uint n = 1u + static_cast<cl_uint>(rng() % 256u);
+        std::vector<float> cdf(256, 1.0f);
+        float sum = 0.0f;
+        std::vector<float> weights(n);
+        for (float& w : weights) {
+            w = rng() % 4u == 0u ? 0.0f : unit(rng);
+            sum += w;
+        }
+        float running = 0.0f;
+        for (cl_uint k = 0; k < n; ++k) {
+            running += weights[k];
+            cdf[k] = sum > 0.0f ? running / sum : 1.0f;
+        }
+        cdf[n - 1] = 1.0f;
+        const float entry = cdf[rng() % n];
+        const float choices[] = {
+            unit(rng), entry,         std::nextafter(entry, 0.0f), std::nextafter(entry, 2.0f),
+            0.0f,      0x1.fffffep-1f};
+        tables.insert(tables.end(), cdf.begin(), cdf.end());
+        sizes.push_back(n);
+        numbers.push_back(choices[rng() % 6u]);
+    }
+    const auto count = static_cast<cl_uint>(sizes.size());
+    cl::Kernel kernel(program(kEnvmapSource, "envmap_test.cl"), "search");
+    const cl::Buffer cdf = upload(tables), sizes_buffer = upload(sizes),
+                     numbers_buffer = upload(numbers), out = upload(std::vector<cl_uint>(count));
+    set_args(kernel, cdf, sizes_buffer, numbers_buffer, count, out);
+    launch(kernel, count);
+    const std::vector<cl_uint> got = download<cl_uint>(out, count);
+    std::size_t differ = 0;
+    for (cl_uint i = 0; i < count; ++i) {
+        const float* table = tables.data() + 256u * i;
+        cl_uint low = 0, high = sizes[i] - 1u;
+        while (low < high) {
+            const cl_uint mid = (low + high) / 2u;
+            if (table[mid] > numbers[i])
+                high = mid;
+            else
+                low = mid + 1u;
+        }
+        differ += got[i] != low;
+    }
+    CHECK(differ == 0);
+}
+
 TEST_CASE("envmap sampling on the device follows its density (chi-square)",
           "[kernels][envmap][statistical]") {
     // A 9 x 5 map: a smooth gradient, a black row (never sampled), and a
@@ -247,11 +314,15 @@ TEST_CASE("envmap sampling on the device follows its density (chi-square)",
     for (cl_float2& n : numbers)
         n = {{unit(rng), unit(rng)}};
     cl::Kernel kernel(program(kEnvmapSource, "envmap_test.cl"), "sample");
-    const cl::Buffer emitter = upload(flat.emitters), cdf = upload(flat.environment_cdf),
-                     in = upload(numbers), out = upload(std::vector<cl_float4>(count));
-    set_args(kernel, emitter, cdf, static_cast<cl_uint>(count), in, out);
+    const cl::Buffer emitter = upload(flat.emitters), texels_buffer = upload(flat.texels),
+                     cdf = upload(flat.environment_cdf), in = upload(numbers),
+                     out = upload(std::vector<cl_float4>(count)),
+                     radiance_out = upload(std::vector<cl_float4>(count));
+    set_args(kernel, emitter, texels_buffer, cdf, static_cast<cl_uint>(count), in, out,
+             radiance_out);
     launch(kernel, count);
     const std::vector<cl_float4> got = download<cl_float4>(out, count);
+    const std::vector<cl_float4> radiances = download<cl_float4>(radiance_out, count);
 
     // Bins over the world's sphere of directions, (phi, cos theta) in a 24 x 12
     // grid that does not line up with the map's patches; their expected
@@ -266,8 +337,9 @@ TEST_CASE("envmap sampling on the device follows its density (chi-square)",
         return b * bins_phi + a;
     };
     std::vector<double> observed(bins_phi * bins_z, 0.0), expected(observed.size(), 0.0);
-    std::size_t pdf_checked = 0, pdf_bad = 0, not_unit = 0;
-    for (const cl_float4& s : got) {
+    std::size_t pdf_checked = 0, pdf_bad = 0, not_unit = 0, radiance_bad = 0;
+    for (std::size_t n = 0; n < count; ++n) {
+        const cl_float4& s = got[n];
         const glm::dvec3 d(s.s[0], s.s[1], s.s[2]);
         if (std::abs(glm::length(d) - 1.0) > 1e-5)
             ++not_unit;
@@ -277,6 +349,23 @@ TEST_CASE("envmap sampling on the device follows its density (chi-square)",
         double ax, ay;
         const glm::dvec3 local = to_local * glm::normalize(d);
         environment_patch(map.width, map.height, local, &i, &j, &ax, &ay);
+        // The radiance the sample carries (blended in its patch at the
+        // sample's own place, not looked up by direction) is the reference's
+        // along the direction it made, to float rounding: the direction's own
+        // rounding, a few 1e-7 of a texel, moves the blend by that times the
+        // patch's brightest corner where a texel is far brighter than its
+        // neighbour (the sun here).
+        double corner = 0.0;
+        for (std::uint32_t x : {i, (i + 1) % map.width})
+            for (std::uint32_t y : {j, j + 1}) {
+                const glm::dvec3 texel = map.texel(x, y);
+                corner = std::max({corner, texel.x, texel.y, texel.z});
+            }
+        const glm::dvec3 radiance = map.radiance(local);
+        for (int c = 0; c < 3; ++c)
+            if (!(std::abs(radiances[n].s[c] - radiance[c]) <=
+                  1e-4 * std::max(1.0, radiance[c]) + 2e-6 * corner))
+                ++radiance_bad;
         if (std::min(ax, 1.0 - ax) > 1e-3 && std::min(ay, 1.0 - ay) > 1e-3) {
             ++pdf_checked;
             const double pdf = map.pdf(local);
@@ -299,6 +388,8 @@ TEST_CASE("envmap sampling on the device follows its density (chi-square)",
                     total_probability += p;
                 }
     CHECK(not_unit == 0);
+    INFO(radiance_bad << " sampled radiances differ from the reference's along their direction");
+    CHECK(radiance_bad == 0);
     INFO(pdf_bad << " of " << pdf_checked << " sampled densities differ from the reference");
     CHECK(pdf_bad == 0);
     CHECK(pdf_checked > count * 9 / 10);
@@ -362,15 +453,22 @@ TEST_CASE("envmap on the device stays finite at the poles, the seam and extreme 
             numbers.push_back({{u, v}});
     cl::Kernel sample(program(kEnvmapSource, "envmap_test.cl"), "sample");
     const cl::Buffer numbers_buffer = upload(numbers),
-                     samples = upload(std::vector<cl_float4>(numbers.size()));
-    set_args(sample, emitter, cdf, static_cast<cl_uint>(numbers.size()), numbers_buffer, samples);
+                     samples = upload(std::vector<cl_float4>(numbers.size())),
+                     sampled_radiance = upload(std::vector<cl_float4>(numbers.size()));
+    set_args(sample, emitter, texels_buffer, cdf, static_cast<cl_uint>(numbers.size()),
+             numbers_buffer, samples, sampled_radiance);
     launch(sample, numbers.size());
     const std::vector<cl_float4> drawn = download<cl_float4>(samples, numbers.size());
+    const std::vector<cl_float4> radiances = download<cl_float4>(sampled_radiance, numbers.size());
     for (std::size_t n = 0; n < numbers.size(); ++n) {
         INFO("numbers (" << numbers[n].s[0] << ", " << numbers[n].s[1] << ")");
         const glm::dvec3 d(drawn[n].s[0], drawn[n].s[1], drawn[n].s[2]);
         CHECK(std::abs(glm::length(d) - 1.0) < 1e-5);
         CHECK(std::isfinite(drawn[n].s[3]));
         CHECK(drawn[n].s[3] > 0.0f);
+        for (int c = 0; c < 3; ++c) {
+            CHECK(std::isfinite(radiances[n].s[c]));
+            CHECK(radiances[n].s[c] >= 0.0f);
+        }
     }
 }

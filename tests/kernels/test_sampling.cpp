@@ -9,6 +9,8 @@
 #include <array>
 #include <cmath>
 #include <iterator>
+#include <limits>
+#include <random>
 #include <vector>
 
 using namespace wp::test;
@@ -41,6 +43,12 @@ __kernel void sphere_samples(uint seed, uint count, __global float4* out) {
     float u1 = wp_random(seed, WP_KEY(i), 0u, WP_DIM_LIGHT_U);
     float u2 = wp_random(seed, WP_KEY(i), 0u, WP_DIM_LIGHT_V);
     out[i] = (float4)(wp_sample_uniform_sphere(u1, u2), 0.0f);
+}
+
+__kernel void atan2_of(uint count, __global const float2* yx, __global float* out) {
+    uint i = get_global_id(0);
+    if (i >= count) return;
+    out[i] = wp_atan2(yx[i].x, yx[i].y);
 }
 
 __kernel void sincos_2pi(uint count, __global const uint* k, __global float2* out) {
@@ -243,6 +251,58 @@ TEST_CASE("wp_sincos_2pi is within 1.2e-7 of double sin and cos of 2 pi u", "[cl
     CHECK(got[1].s[1] == -1.0f);
     CHECK(got[2].s[0] == -1.0f);
     CHECK(got[2].s[1] == 0.0f);
+}
+
+TEST_CASE("wp_atan2 is within 3.5 ulps of double atan2, and atan2 at the axes and signed zeros",
+          "[cl][sampling]") {
+    // Directions all round the circle at every scale of |y| / |x| (the
+    // reduction's three ranges and their borders), and the special points.
+    std::vector<cl_float2> yx;
+    std::mt19937 rng(20261207);
+    std::uniform_real_distribution<double> angle(-M_PI, M_PI), scale(-30.0, 30.0);
+    for (int n = 0; n < 200000; ++n) {
+        const double a = angle(rng), r = std::exp(scale(rng));
+        yx.push_back({{static_cast<float>(r * std::sin(a)), static_cast<float>(r * std::cos(a))}});
+    }
+    for (float t : {0.41421354f, 0.41421357f, 0.4142136f, 2.4142134f, 2.4142137f, 1.0f})
+        for (float sy : {1.0f, -1.0f})
+            for (float sx : {1.0f, -1.0f})
+                yx.push_back({{sy * t, sx}});
+    const float zero = 0.0f, inf = std::numeric_limits<float>::infinity();
+    const std::vector<cl_float2> special = {{{zero, zero}},   {{-zero, zero}}, {{zero, -zero}},
+                                            {{-zero, -zero}}, {{1.0f, zero}},  {{-1.0f, zero}},
+                                            {{zero, 1.0f}},   {{zero, -1.0f}}, {{-zero, -1.0f}},
+                                            {{1.0f, inf}},    {{1.0f, -inf}},  {{inf, 1.0f}}};
+    yx.insert(yx.end(), special.begin(), special.end());
+    const auto count = static_cast<cl_uint>(yx.size());
+    cl::Kernel kernel(program(kSamplingSource, "sampling_test.cl"), "atan2_of");
+    cl::Buffer in = upload(yx), out = upload(std::vector<float>(count));
+    set_args(kernel, count, in, out);
+    launch(kernel, count);
+    const std::vector<float> got = download<float>(out, count);
+    double worst = 0.0;
+    std::size_t worst_index = 0;
+    for (cl_uint i = 0; i < count; ++i) {
+        const double expected = std::atan2(double(yx[i].s[0]), double(yx[i].s[1]));
+        const float rounded = static_cast<float>(expected);
+        const double ulp =
+            std::max(double(std::nextafter(std::fabs(rounded), 4.0f)) - std::fabs(rounded),
+                     double(std::numeric_limits<float>::denorm_min()));
+        const double ulps = std::fabs(got[i] - expected) / ulp;
+        if (ulps > worst)
+            worst = ulps, worst_index = i;
+    }
+    INFO("worst " << worst << " ulps at (" << yx[worst_index].s[0] << ", " << yx[worst_index].s[1]
+                  << "): " << got[worst_index]);
+    CHECK(worst <= 3.5);
+    // The signed zeros and axes exactly as atan2 (the special points, in order).
+    const std::size_t first = yx.size() - special.size();
+    for (std::size_t k = 0; k < special.size(); ++k) {
+        const float expected = std::atan2(special[k].s[0], special[k].s[1]);
+        INFO("atan2(" << special[k].s[0] << ", " << special[k].s[1] << ")");
+        CHECK(got[first + k] == expected);
+        CHECK(std::signbit(got[first + k]) == std::signbit(expected));
+    }
 }
 
 TEST_CASE("wp_sample_triangle gives uniform points inside the triangle",

@@ -8,6 +8,7 @@
 #include "render/device_scene.hpp"
 #include "scene/texture.hpp"
 #include "support/kernel_test_util.hpp"
+#include "support/vectorizer_remarks.hpp" // test_device_is_pocl
 
 #include <bit>
 #include <cmath>
@@ -247,6 +248,45 @@ TEST_CASE("textures on the device match the double-precision reference", "[kerne
     }
     INFO(compared << " lookups compared, " << skipped << " at a step left out");
     CHECK(compared > which.size() * 99 / 100);
+}
+
+// The 8-bit sRGB decode is a table (kernels/textures/srgb8.h): each entry
+// must be the float the curve's formula gives on the device, so that the
+// table renders as the formula did (bit-identical on PoCL, whose values the
+// table holds), and the curve itself to float rounding, from the double-precision
+// reference of the host's decoding (IEC 61966-2-1).
+TEST_CASE("textures: the 8-bit sRGB table holds the curve's float values", "[kernels][textures]") {
+    const char* const source = R"CL(
+#include "textures/bitmap.h"
+__kernel void srgb8(__global float2* out) {
+    uint k = get_global_id(0);
+    if (k < 256u)
+        out[k] = (float2)(wp_srgb8_to_linear[k], wp_srgb_to_linear((float)k * (1.0f / 255.0f)));
+}
+)CL";
+    cl::Kernel kernel(program(source, "srgb8_test.cl"), "srgb8");
+    cl::Buffer out = upload(std::vector<cl_float2>(256));
+    set_args(kernel, out);
+    launch(kernel, 256);
+    const std::vector<cl_float2> got = download<cl_float2>(out, 256);
+    for (int k = 0; k < 256; ++k) {
+        const float table = got[k].s[0], formula = got[k].s[1];
+        const double c = static_cast<double>(static_cast<float>(k) * (1.0f / 255.0f));
+        const double curve = c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+        const float rounded = static_cast<float>(curve);
+        const double ulp = std::nextafter(rounded, 2.0f) - rounded;
+        INFO("code " << k << ": table " << table << ", formula on the device " << formula
+                     << ", double curve " << curve);
+        // Bit for bit on PoCL, whose pow made the table; another device's pow
+        // may round otherwise, within the few ulps OpenCL allows it.
+        if (test_device_is_pocl())
+            CHECK(table == formula);
+        else
+            CHECK(std::abs(static_cast<double>(table) - formula) <= 16.0 * ulp);
+        CHECK(std::abs(table - curve) <= 5.0 * ulp);
+    }
+    CHECK(got[0].s[0] == 0.0f);
+    CHECK(got[255].s[0] == 1.0f);
 }
 
 TEST_CASE("textures on the device stay finite and in range at extreme coordinates",
