@@ -42,8 +42,9 @@ std::unique_ptr<MultiDeviceRenderer> open_renderer(const RenderCommand& command,
         return open_mpi_renderer(job, scene, command.device, command.integrator, profiling);
 #endif
     const std::vector<DeviceInfo> devices = select_devices(command.device);
-    // Held until every device has uploaded it, and freed with it the
-    // scene's triangles, which nothing after this needs.
+    // Held here until every device has uploaded it (and after, by the
+    // buffers of a device that uses its arrays in place), and freed with it
+    // the scene's triangles, which nothing after this needs.
     const PreparedScene prepared = prepare_scene_releasing_triangles(scene, command.integrator);
     return std::make_unique<MultiDeviceRenderer>(devices, prepared, profiling);
 }

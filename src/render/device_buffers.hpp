@@ -10,6 +10,8 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <memory>
+#include <vector>
 
 #include "cl/cl.hpp"
 #include "render/device_scene.hpp"
@@ -48,12 +50,29 @@ PathBufferBytes path_buffer_bytes(bool aovs = false);
 DeviceBuffers allocate_device_buffers(const cl::Context& context, const DeviceScene& scene,
                                       std::uint64_t slots, std::uint64_t pixels, bool aovs = false);
 
+// The same for a prepared scene's arrays, shared by every device of a render
+// (render/prepared_scene.hpp): on a `device` that shares the host's memory
+// (shares_host_memory) the scene buffers are made over the arrays in place,
+// not copied, and each holds `scene` until OpenCL deletes it, after the last
+// command that reads it; elsewhere they are copied as above. On PoCL's CPU
+// device a copy would be host memory too: a big mesh's arrays twice
+// (docs/meshes.md, "The upload in place").
+DeviceBuffers allocate_device_buffers(const cl::Context& context, const cl::Device& device,
+                                      const std::shared_ptr<const DeviceScene>& scene,
+                                      std::uint64_t slots, std::uint64_t pixels, bool aovs = false);
+
+// Whether a buffer on `device` can use host memory at `data` as its own
+// (CL_MEM_USE_HOST_PTR) without a copy: the device shares the host's memory
+// (CL_DEVICE_HOST_UNIFIED_MEMORY) and `data` meets its base address
+// alignment (CL_DEVICE_MEM_BASE_ADDR_ALIGN), which a DeviceArray's always does.
+bool shares_host_memory(const cl::Device& device, const void* data);
+
 // A read-only buffer holding `data`; OpenCL has no empty buffers, so an empty
 // vector gets a one-element dummy.
 // The data is copied once, by OpenCL, straight from `data` (a padded copy
 // of a big scene's arrays would add its size to the peak host memory).
-template <typename T>
-cl::Buffer upload_buffer(const cl::Context& context, const std::vector<T>& data) {
+template <typename T, typename Allocator>
+cl::Buffer upload_buffer(const cl::Context& context, const std::vector<T, Allocator>& data) {
     T dummy{};
     // CL_MEM_COPY_HOST_PTR only reads the pointer; the C API wants it non-const.
     void* from = data.empty() ? static_cast<void*>(&dummy)

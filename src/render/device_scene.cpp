@@ -172,7 +172,7 @@ class BinaryWriter {
 // `binary`'s node: it pushes the children it hits and pops the nearest.
 class WideWriter {
   public:
-    WideWriter(const std::vector<BinaryNode>& binary, std::vector<WpBvhNode>& out)
+    WideWriter(const std::vector<BinaryNode>& binary, DeviceArray<WpBvhNode>& out)
         : binary_(binary), out_(out) {}
 
     std::uint32_t write(std::uint32_t binary) {
@@ -227,7 +227,7 @@ class WideWriter {
 
   private:
     const std::vector<BinaryNode>& binary_;
-    std::vector<WpBvhNode>& out_;
+    DeviceArray<WpBvhNode>& out_;
 };
 
 // The build options of every hierarchy: the top level's and the groups'.
@@ -248,7 +248,7 @@ BvhBuildOptions hierarchy_options(std::uint32_t split_levels) {
 // one kind.
 void write_wide(const Bvh& bvh, const std::vector<Bounds3f>& boxes,
                 const std::vector<wp_uint>& new_number, wp_uint triangle_count, wp_uint plain_count,
-                std::vector<WpBvhNode>& nodes) {
+                DeviceArray<WpBvhNode>& nodes) {
     std::vector<BinaryNode> binary;
     binary.reserve(bvh.nodes.size());
     BinaryWriter(bvh, boxes, new_number, triangle_count, plain_count, binary).write(0);
@@ -285,9 +285,9 @@ void build_hierarchy(DeviceScene& scene) {
                              [&](std::uint32_t a, std::uint32_t b) { return kind(a) < kind(b); });
 
     std::vector<wp_uint> new_number(bvh.primitives.size());
-    std::vector<WpTriangle> triangles;
-    std::vector<WpSphere> spheres;
-    std::vector<WpInstance> instances;
+    DeviceArray<WpTriangle> triangles;
+    DeviceArray<WpSphere> spheres;
+    DeviceArray<WpInstance> instances;
     std::vector<Bounds3f> instance_boxes;
     triangles.reserve(scene.triangles.size());
     spheres.reserve(scene.spheres.size());
@@ -487,7 +487,7 @@ void flatten_emitters(const Scene& scene, const FloatFrame& frame, double triang
     const double diagonal = glm::length(hi - lo);
     const double radius = 0.5 * diagonal / frame.scale; // scene units, for the power
     std::vector<double> power;
-    std::vector<WpEmitter> emitters;
+    DeviceArray<WpEmitter> emitters;
     for (const Emitter& e : scene.emitters) {
         WpEmitter w{};
         w.kind = static_cast<wp_uint>(e.kind);
@@ -609,7 +609,7 @@ std::atomic<std::uint64_t> hierarchies_built{0};
 
 } // namespace
 
-void set_light_guides(std::vector<WpLight>& lights) {
+void set_light_guides(DeviceArray<WpLight>& lights) {
     const std::size_t count = lights.size();
     std::size_t j = 0;
     for (std::size_t k = 0; k < count; ++k) {

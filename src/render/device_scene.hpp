@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "render/device_array.hpp"
 #include "render/light_pick.hpp"
 #include "scene/bvh.hpp"
 #include "scene/scene.hpp"
@@ -121,24 +122,24 @@ SceneFeatures analyse_features(const Scene& scene,
 // The scene buffers' contents: one member per row of WP_SCENE_BUFFERS
 // (kernels/wp_shared.h), of the same name.
 struct DeviceScene {
-    std::vector<WpTriangle> triangles;
-    std::vector<WpSphere> spheres;
-    std::vector<WpMaterial> materials;
-    std::vector<WpLight> lights;                    // emissive triangles with their area CDF
-    std::vector<WpShadingNormals> triangle_normals; // of the triangles that have them
-    std::vector<WpBvhNode> bvh_nodes;               // empty without a hierarchy
-    std::vector<WpMirrorGroup> mirror_groups;       // planar mirrors (render/planar_mirrors.hpp)
-    std::vector<WpTriangle> mirror_triangles;       // copies of their triangles
-    std::vector<wp_uint> mirror_spheres;            // with lights: the spheres of a mirror material
-    std::vector<WpTriangleUvs> triangle_uvs; // of the triangles that have them (with textures)
-    std::vector<WpTexture> textures;
-    std::vector<wp_uint> texels;             // the bitmaps' (WpTexture.first)
-    std::vector<WpEmitter> emitters;         // point, spot, directional, constant, envmap; the
+    DeviceArray<WpTriangle> triangles;
+    DeviceArray<WpSphere> spheres;
+    DeviceArray<WpMaterial> materials;
+    DeviceArray<WpLight> lights;                    // emissive triangles with their area CDF
+    DeviceArray<WpShadingNormals> triangle_normals; // of the triangles that have them
+    DeviceArray<WpBvhNode> bvh_nodes;               // empty without a hierarchy
+    DeviceArray<WpMirrorGroup> mirror_groups;       // planar mirrors (render/planar_mirrors.hpp)
+    DeviceArray<WpTriangle> mirror_triangles;       // copies of their triangles
+    DeviceArray<wp_uint> mirror_spheres;            // with lights: the spheres of a mirror material
+    DeviceArray<WpTriangleUvs> triangle_uvs; // of the triangles that have them (with textures)
+    DeviceArray<WpTexture> textures;
+    DeviceArray<wp_uint> texels;             // the bitmaps' (WpTexture.first)
+    DeviceArray<WpEmitter> emitters;         // point, spot, directional, constant, envmap; the
                                              // environment (constant or envmap) first
-    std::vector<wp_float> environment_cdf;   // an envmap's sampling tables (lights/envmap.h)
-    std::vector<WpInstance> instances;       // in the top-level hierarchy's leaf order
-    std::vector<WpTriangle> group_triangles; // every shape group's once, in object space
-    std::vector<WpBvhNode> group_bvh_nodes;  // a hierarchy per group (WpInstance.root)
+    DeviceArray<wp_float> environment_cdf;   // an envmap's sampling tables (lights/envmap.h)
+    DeviceArray<WpInstance> instances;       // in the top-level hierarchy's leaf order
+    DeviceArray<WpTriangle> group_triangles; // every shape group's once, in object space
+    DeviceArray<WpBvhNode> group_bvh_nodes;  // a hierarchy per group (WpInstance.root)
     // Host only: each instance's box in the device's world frame, widened
     // for the rounding of its ray's map into object space (device_scene.cpp).
     std::vector<Bounds3f> instance_boxes;
@@ -163,7 +164,7 @@ void check_triangle_indices(std::size_t materials, std::size_t normal_sets);
 
 // Fills each light's guide (WpLight.guide, kernels/wp_shared.h): entry k the
 // first light whose cdf exceeds k / count. Part of flatten_scene.
-void set_light_guides(std::vector<WpLight>& lights);
+void set_light_guides(DeviceArray<WpLight>& lights);
 
 // Converts to float32 and builds the light table (by `pick`: render/light_pick.hpp),
 // and with `hierarchy` the bounding volume hierarchy over triangles, spheres and

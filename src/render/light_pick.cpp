@@ -47,7 +47,7 @@ bool triangle_radiances_differ(const Scene& scene) {
 }
 
 void build_light_pick(const Scene& scene, const std::vector<double>& areas, bool by_power,
-                      std::vector<WpLight>& lights, std::vector<WpMaterial>& materials) {
+                      DeviceArray<WpLight>& lights, DeviceArray<WpMaterial>& materials) {
     auto material_of = [&](const WpLight& light) {
         return scene.triangles[light.triangle].material;
     };

@@ -13,6 +13,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "render/device_array.hpp"
 #include "wp_shared.h"
 
 namespace wp {
@@ -39,6 +40,6 @@ bool triangle_radiances_differ(const Scene& scene);
 // WpFrame.light_area holds, so the general kernels (which read emission.w)
 // render the area pick's bits.
 void build_light_pick(const Scene& scene, const std::vector<double>& areas, bool by_power,
-                      std::vector<WpLight>& lights, std::vector<WpMaterial>& materials);
+                      DeviceArray<WpLight>& lights, DeviceArray<WpMaterial>& materials);
 
 } // namespace wp

@@ -4,9 +4,11 @@
 // scene flattened to float32 with its hierarchy, depend on the scene and
 // the options alone, not on a device. They are made once per render and
 // every device's WavefrontIntegrator uploads the same arrays (a render on N
-// devices builds one hierarchy, not N: docs/multi-device.md). The
-// integrators keep nothing of it after their upload, so the host's copy
-// lives only as long as the caller holds it.
+// devices builds one hierarchy, not N: docs/multi-device.md). A device that
+// shares the host's memory (PoCL's CPU device) makes its scene buffers over
+// the arrays in place, and they hold the arrays as long as they live; a
+// device that copies them keeps nothing, and the host's copy then lives only
+// as long as the caller holds it (render/device_buffers.hpp).
 #pragma once
 
 #include <cstdint>

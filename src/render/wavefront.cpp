@@ -234,8 +234,8 @@ WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const PreparedSc
         options_.depth_rule == DepthRule::PathLength ? options_.max_depth - 1u : options_.max_depth;
     frame_.path_types = options_.path_types;
 
-    buffers_ = allocate_device_buffers(device_.context, scene, pool_size_, pixel_count_,
-                                       options_.aovs != 0);
+    buffers_ = allocate_device_buffers(device_.context, device_.info.device, prepared.device_scene,
+                                       pool_size_, pixel_count_, options_.aovs != 0);
     clear_film();
     for (cl::Kernel& kernel : kernels_)
         bind_buffers(kernel, buffers_);

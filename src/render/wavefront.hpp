@@ -86,8 +86,9 @@ std::string kernel_build_options(const SceneFeatures& features, const Integrator
 
 class WavefrontIntegrator {
   public:
-    // Builds the kernels for `scene` on `device` and uploads its arrays; keeps
-    // nothing of `scene` (render/prepared_scene.hpp).
+    // Builds the kernels for `scene` on `device` and uploads its arrays, in
+    // place where the device shares the host's memory: then its buffers hold
+    // the arrays until they are deleted (render/prepared_scene.hpp).
     WavefrontIntegrator(DeviceContext& device, const PreparedScene& scene);
     // The same for a scene prepared for this device alone.
     WavefrontIntegrator(DeviceContext& device, const Scene& scene, IntegratorOptions options);

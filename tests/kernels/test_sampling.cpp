@@ -416,7 +416,7 @@ TEST_CASE("wp_pick_light returns the first light whose cdf exceeds u", "[cl][sam
     // Areas 1, 0 (a degenerate light, never to be picked), 2.5, 0.5 and 4.
     const double areas[] = {1.0, 0.0, 2.5, 0.5, 4.0};
     const double total = 8.0;
-    std::vector<WpLight> lights;
+    wp::DeviceArray<WpLight> lights;
     double running = 0.0;
     for (std::size_t i = 0; i < std::size(areas); ++i) {
         running += areas[i];
@@ -487,7 +487,7 @@ TEST_CASE("wp_pick_light's guided search finds the binary search's light among 1
     double total = 0.0;
     for (double a : areas)
         total += a;
-    std::vector<WpLight> lights(n);
+    wp::DeviceArray<WpLight> lights(n);
     double running = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
         running += areas[i];

@@ -103,7 +103,8 @@ void add_mitsuba_mesh_whole(const std::string& file, const wp::Transform& to_wor
     }
 }
 
-template <typename T> bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
+template <typename T, typename Allocator>
+bool same_bytes(const std::vector<T, Allocator>& a, const std::vector<T, Allocator>& b) {
     return a.size() == b.size() &&
            (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }

@@ -32,8 +32,9 @@ inline std::size_t round_up(std::size_t items) {
 }
 
 // A read-write buffer holding a copy of `data` (at least one element).
-template <typename T> cl::Buffer upload(const std::vector<T>& data) {
-    std::vector<T> padded = data.empty() ? std::vector<T>(1) : data;
+template <typename T, typename Allocator> cl::Buffer upload(const std::vector<T, Allocator>& data) {
+    std::vector<T> padded =
+        data.empty() ? std::vector<T>(1) : std::vector<T>(data.begin(), data.end());
     return cl::Buffer(device().context, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR,
                       sizeof(T) * padded.size(), padded.data());
 }
