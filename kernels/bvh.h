@@ -78,44 +78,6 @@ static inline int4 wp_hit_child_boxes(__global const WpBvhNode* n, const WpBoxRa
     return (enter <= exit) & (vload4(0, n->count) != (uint4)(WP_BVH_EMPTY));
 }
 
-/* A hint that the 64-byte line at `address` is wanted soon. OpenCL's own
- * prefetch() compiles to nothing on PoCL 3.1 (no prefetch instruction in the
- * kernel's code), Clang's builtin to the CPU's prefetch instruction. Only
- * where the kernel is compiled for a CPU: for other targets the builtin
- * becomes an llvm.prefetch call that some cannot run (Oclgrind, which
- * compiles for SPIR, stops on it as an undefined function); there nothing. */
-#if defined(__clang__) && (defined(__x86_64__) || defined(__aarch64__))
-#define WP_PREFETCH_LINE(address) __builtin_prefetch((__global const char*)(address))
-#else
-#define WP_PREFETCH_LINE(address) ((void)(address))
-#endif
-
-/* Prefetches a pushed child's first lines: a node's two, or a leaf of
- * triangles' corners (its first group's three lines, and the second group's
- * where it has one); a leaf of other primitives is left alone. A pushed child
- * is popped only after its nearer siblings' subtrees, time enough for its
- * lines to arrive. */
-static inline void wp_bvh_prefetch_child(__global const WpBvhNode* nodes,
-                                         __global const WpTriangleGroup* groups, wp_uint child,
-                                         wp_uint count) {
-    if (count == 0u) {
-        __global const char* node = (__global const char*)&nodes[child];
-        WP_PREFETCH_LINE(node);
-        WP_PREFETCH_LINE(node + 64);
-    } else if (count & WP_BVH_TRIANGLE_LEAF) {
-        __global const char* leaf = (__global const char*)&groups[child];
-        WP_PREFETCH_LINE(leaf);
-        WP_PREFETCH_LINE(leaf + 64);
-        WP_PREFETCH_LINE(leaf + 128);
-        if ((count & ~WP_BVH_TRIANGLE_LEAF) > 4u) {
-            /* The second group's corners, bytes 160 to 303. */
-            WP_PREFETCH_LINE(leaf + 160);
-            WP_PREFETCH_LINE(leaf + 224);
-            WP_PREFETCH_LINE(leaf + 303);
-        }
-    }
-}
-
 /* A child waiting on the stack: a node (count 0) or a leaf, and where the ray
  * enters its box. */
 typedef struct {
@@ -124,12 +86,9 @@ typedef struct {
     float enter;
 } WpBvhEntry;
 
-/* Pushes the children of node n (of `nodes`, whose leaves of triangles index
- * `groups`) that the ray meets before `closest`, farthest first, so that the
- * nearest is on top, and prefetches them. */
-static inline void wp_bvh_push_children(__global const WpBvhNode* nodes,
-                                        __global const WpTriangleGroup* groups,
-                                        __global const WpBvhNode* n, const WpBoxRay* box_ray,
+/* Pushes the children of node n that the ray meets before `closest`,
+ * farthest first, so that the nearest is on top. */
+static inline void wp_bvh_push_children(__global const WpBvhNode* n, const WpBoxRay* box_ray,
                                         float closest, WpBvhEntry* stack, int* top) {
     float4 enter4;
     int4 hit4 = wp_hit_child_boxes(n, box_ray, closest, &enter4);
@@ -153,7 +112,6 @@ static inline void wp_bvh_push_children(__global const WpBvhNode* nodes,
         stack[j].child = n->child[i];
         stack[j].count = n->count[i];
         stack[j].enter = enter;
-        wp_bvh_prefetch_child(nodes, groups, n->child[i], n->count[i]);
     }
 }
 
@@ -190,8 +148,7 @@ static inline wp_uint wp_bvh_trace(const WpSceneView* scene, float3 origin, floa
     current.enter = 0.0f;
     for (;;) {
         if (current.count == 0u) {
-            wp_bvh_push_children(scene->bvh_nodes, scene->leaf_triangles,
-                                 &scene->bvh_nodes[current.child], &box_ray, closest, stack, &top);
+            wp_bvh_push_children(&scene->bvh_nodes[current.child], &box_ray, closest, stack, &top);
         } else if (current.count & WP_BVH_TRIANGLE_LEAF) {
             /* A leaf of triangles: four at a time (triangle4.h). */
             wp_uint found =

@@ -29,12 +29,25 @@
 
 #include "bvh.h"
 
+/* A hint that the 64-byte line at `address` is wanted soon. OpenCL's own
+ * prefetch() compiles to nothing on PoCL 3.1 (no prefetch instruction in the
+ * kernel's code), Clang's builtin to the CPU's prefetch instruction. Only
+ * where the kernel is compiled for a CPU: for other targets the builtin
+ * becomes an llvm.prefetch call that some cannot run (Oclgrind, which
+ * compiles for SPIR, stops on it as an undefined function); there nothing. */
+#if defined(__clang__) && (defined(__x86_64__) || defined(__aarch64__))
+#define WP_PREFETCH_LINE(address) __builtin_prefetch((__global const char*)(address))
+#else
+#define WP_PREFETCH_LINE(address) ((void)(address))
+#endif
+
 /* Pushes the children of node n (of `nodes`, whose leaves of triangles index
  * `groups`) whose boxes the ray meets at 0 <= t <= t_max, in node order.
  * Every child is written at the top and kept only if hit: straight-line code,
  * four stores (a missed child's write lands one past the top, which the stack
- * has room for). Then each kept child's first lines are prefetched
- * (wp_bvh_prefetch_child, bvh.h). */
+ * has room for). Then each kept child's first lines are prefetched: a node's
+ * two, or a leaf of triangles' first three (the corners of its first group
+ * of four); a leaf of other primitives is left alone. */
 static inline void wp_bvh_push_hit_children(__global const WpBvhNode* nodes,
                                             __global const WpTriangleGroup* groups,
                                             __global const WpBvhNode* n, const WpBoxRay* ray,
@@ -56,8 +69,24 @@ static inline void wp_bvh_push_hit_children(__global const WpBvhNode* nodes,
     counts[at] = n->count[3];
     at -= hit.s3;
     *top = at;
-    for (int i = first; i < at; ++i)
-        wp_bvh_prefetch_child(nodes, groups, children[i], counts[i]);
+    for (int i = first; i < at; ++i) {
+        if (counts[i] == 0u) {
+            __global const char* node = (__global const char*)&nodes[children[i]];
+            WP_PREFETCH_LINE(node);
+            WP_PREFETCH_LINE(node + 64);
+        } else if (counts[i] & WP_BVH_TRIANGLE_LEAF) {
+            __global const char* leaf = (__global const char*)&groups[children[i]];
+            WP_PREFETCH_LINE(leaf);
+            WP_PREFETCH_LINE(leaf + 64);
+            WP_PREFETCH_LINE(leaf + 128);
+            if ((counts[i] & ~WP_BVH_TRIANGLE_LEAF) > 4u) {
+                /* The second group's corners, bytes 160 to 303. */
+                WP_PREFETCH_LINE(leaf + 160);
+                WP_PREFETCH_LINE(leaf + 224);
+                WP_PREFETCH_LINE(leaf + 303);
+            }
+        }
+    }
 }
 
 /* Takes the next child off the stack into *child and *count; 0 when the

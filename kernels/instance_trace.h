@@ -26,8 +26,7 @@ static inline wp_uint wp_instance_trace(const WpSceneView* scene, wp_uint instan
     current.enter = 0.0f;
     for (;;) {
         if (current.count == 0u) {
-            wp_bvh_push_children(scene->group_bvh_nodes, scene->group_leaf_triangles,
-                                 &scene->group_bvh_nodes[current.child], &box_ray, closest, stack,
+            wp_bvh_push_children(&scene->group_bvh_nodes[current.child], &box_ray, closest, stack,
                                  &top);
         } else {
             wp_uint found =
