@@ -79,12 +79,6 @@ static inline void wp_bvh_push_hit_children(__global const WpBvhNode* nodes,
             WP_PREFETCH_LINE(leaf);
             WP_PREFETCH_LINE(leaf + 64);
             WP_PREFETCH_LINE(leaf + 128);
-            if ((counts[i] & ~WP_BVH_TRIANGLE_LEAF) > 4u) {
-                /* The second group's corners, bytes 160 to 303. */
-                WP_PREFETCH_LINE(leaf + 160);
-                WP_PREFETCH_LINE(leaf + 224);
-                WP_PREFETCH_LINE(leaf + 303);
-            }
         }
     }
 }
