@@ -1006,8 +1006,7 @@ int main(int argc, char** argv) {
         const std::size_t wp_bytes =
             ds.triangles.size() * sizeof(WpTriangle) + ds.spheres.size() * sizeof(WpSphere) +
             ds.materials.size() * sizeof(WpMaterial) + ds.lights.size() * sizeof(WpLight) +
-            ds.bvh_nodes.size() * sizeof(WpBvhNode) +
-            ds.leaf_triangles.size() * sizeof(WpTriangleGroup);
+            ds.bvh_nodes.size() * sizeof(WpBvhNode);
         std::map<std::string, EmbreeScene> scenes;
         scenes["medium"] = build_embree(embree, memory, ds, RTC_BUILD_QUALITY_MEDIUM);
         scenes["high"] = build_embree(embree, memory, ds, RTC_BUILD_QUALITY_HIGH);

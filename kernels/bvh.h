@@ -149,11 +149,10 @@ static inline wp_uint wp_bvh_trace(const WpSceneView* scene, float3 origin, floa
     for (;;) {
         if (current.count == 0u) {
             wp_bvh_push_children(&scene->bvh_nodes[current.child], &box_ray, closest, stack, &top);
-        } else if (current.count & WP_BVH_TRIANGLE_LEAF) {
+        } else if (current.child + current.count <= scene->triangle_count) {
             /* A leaf of triangles: four at a time (triangle4.h). */
-            wp_uint found =
-                wp_leaf_triangles(scene->leaf_triangles, current.child,
-                                  current.count & ~WP_BVH_TRIANGLE_LEAF, &sheared, 0, &closest);
+            wp_uint found = wp_leaf_triangles(scene->triangles, current.child, current.count,
+                                              &sheared, 0, &closest);
             if (found != WP_NO_HIT)
                 hit = found;
         } else {

@@ -41,18 +41,18 @@
 #define WP_PREFETCH_LINE(address) ((void)(address))
 #endif
 
-/* Pushes the children of node n (of `nodes`, whose leaves of triangles index
- * `groups`) whose boxes the ray meets at 0 <= t <= t_max, in node order.
- * Every child is written at the top and kept only if hit: straight-line code,
- * four stores (a missed child's write lands one past the top, which the stack
- * has room for). Then each kept child's first lines are prefetched: a node's
- * two, or a leaf of triangles' first three (the corners of its first group
- * of four); a leaf of other primitives is left alone. */
+/* Pushes the children of node n (of `nodes`, whose leaves index `triangles`
+ * up to triangle_end and other primitives past it) whose boxes the ray meets
+ * at 0 <= t <= t_max, in node order. Every child is written at the top and
+ * kept only if hit: straight-line code, four stores (a missed child's write
+ * lands one past the top, which the stack has room for). Then each kept
+ * child's first lines are prefetched: a node's two, or a leaf's first three
+ * (its first four triangles); a leaf of other primitives is left alone. */
 static inline void wp_bvh_push_hit_children(__global const WpBvhNode* nodes,
-                                            __global const WpTriangleGroup* groups,
-                                            __global const WpBvhNode* n, const WpBoxRay* ray,
-                                            float t_max, wp_uint* children, wp_uint* counts,
-                                            int* top) {
+                                            __global const WpTriangle* triangles,
+                                            wp_uint triangle_end, __global const WpBvhNode* n,
+                                            const WpBoxRay* ray, float t_max, wp_uint* children,
+                                            wp_uint* counts, int* top) {
     float4 enter;
     int4 hit = wp_hit_child_boxes(n, ray, t_max, &enter);
     int first = *top, at = first;
@@ -74,8 +74,8 @@ static inline void wp_bvh_push_hit_children(__global const WpBvhNode* nodes,
             __global const char* node = (__global const char*)&nodes[children[i]];
             WP_PREFETCH_LINE(node);
             WP_PREFETCH_LINE(node + 64);
-        } else if (counts[i] & WP_BVH_TRIANGLE_LEAF) {
-            __global const char* leaf = (__global const char*)&groups[children[i]];
+        } else if (children[i] + counts[i] <= triangle_end) {
+            __global const char* leaf = (__global const char*)&triangles[children[i]];
             WP_PREFETCH_LINE(leaf);
             WP_PREFETCH_LINE(leaf + 64);
             WP_PREFETCH_LINE(leaf + 128);
@@ -113,11 +113,11 @@ static inline int wp_instance_occluded(const WpSceneView* scene, wp_uint instanc
     wp_uint child = m->root, count = 0u;
     for (;;) {
         if (count == 0u) {
-            wp_bvh_push_hit_children(scene->group_bvh_nodes, scene->group_leaf_triangles,
+            wp_bvh_push_hit_children(scene->group_bvh_nodes, scene->group_triangles, 0xffffffffu,
                                      &scene->group_bvh_nodes[child], &box_ray, t_max, children,
                                      counts, &top);
-        } else if (wp_leaf_triangles_occluded(scene->group_leaf_triangles, child,
-                                              count & ~WP_BVH_TRIANGLE_LEAF, &sheared, t_max)) {
+        } else if (wp_leaf_triangles_occluded(scene->group_triangles, child, count, &sheared,
+                                              t_max)) {
             return 1;
         }
         if (!wp_bvh_pop_child(children, counts, &top, &child, &count))
@@ -138,12 +138,11 @@ static inline int wp_bvh_occluded(const WpSceneView* scene, float3 origin, float
     wp_uint child = 0u, count = 0u; /* the root */
     for (;;) {
         if (count == 0u) {
-            wp_bvh_push_hit_children(scene->bvh_nodes, scene->leaf_triangles,
+            wp_bvh_push_hit_children(scene->bvh_nodes, scene->triangles, scene->triangle_count,
                                      &scene->bvh_nodes[child], &box_ray, t_max, children, counts,
                                      &top);
-        } else if (count & WP_BVH_TRIANGLE_LEAF) {
-            if (wp_leaf_triangles_occluded(scene->leaf_triangles, child,
-                                           count & ~WP_BVH_TRIANGLE_LEAF, &sheared, t_max))
+        } else if (child + count <= scene->triangle_count) {
+            if (wp_leaf_triangles_occluded(scene->triangles, child, count, &sheared, t_max))
                 return 1;
         } else {
             for (wp_uint k = 0; k < count; ++k) {

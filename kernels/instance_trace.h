@@ -29,9 +29,8 @@ static inline wp_uint wp_instance_trace(const WpSceneView* scene, wp_uint instan
             wp_bvh_push_children(&scene->group_bvh_nodes[current.child], &box_ray, closest, stack,
                                  &top);
         } else {
-            wp_uint found =
-                wp_leaf_triangles(scene->group_leaf_triangles, current.child,
-                                  current.count & ~WP_BVH_TRIANGLE_LEAF, &sheared, 0, &closest);
+            wp_uint found = wp_leaf_triangles(scene->group_triangles, current.child, current.count,
+                                              &sheared, 0, &closest);
             if (found != WP_NO_HIT)
                 hit = found;
         }

@@ -15,12 +15,6 @@
  * loop accepts, with the same t (the same T / det) and the same outcome of
  * exact ties (where t rounds so that a later triangle at the same t still
  * passes, the later one, as in the loop).
- *
- * The hierarchy stores its leaves' triangles for this test, four to a group
- * with each corner coordinate of the four as one float4 (WpTriangleGroup,
- * wp_shared.h): the group loads as nine float4s, where the triangles
- * themselves (WpTriangle, which shading reads by number) would take twelve
- * and a transpose (docs/performance.md, "SoA leaves").
  */
 #ifndef WP_TRIANGLE4_H
 #define WP_TRIANGLE4_H
@@ -98,35 +92,41 @@ static inline int4 wp_triangle4_test(const WpShearedRay* ray, float4 p0x, float4
     return inside & in_box & in_range;
 }
 
-/* wp_triangle4_test on the four triangles of a group (WpTriangleGroup): nine
- * aligned float4 loads, one corner coordinate of all four lanes each, and no
- * transpose. Lanes that copy a leaf's last triangle give its answer again. */
-static inline int4 wp_triangle4_group_test(__global const WpTriangleGroup* group,
-                                           const WpShearedRay* ray, float t_max, float4* T,
-                                           float4* det) {
-    return wp_triangle4_test(ray, vload4(0, group->x0), vload4(0, group->y0), vload4(0, group->z0),
-                             vload4(0, group->x1), vload4(0, group->y1), vload4(0, group->z1),
-                             vload4(0, group->x2), vload4(0, group->y2), vload4(0, group->z2),
-                             t_max, T, det);
+/* wp_triangle4_test on the four triangles group .. group + 3 of a leaf whose
+ * last triangle is `last`: lanes past the leaf's end test its last triangle
+ * again and are dropped from the result (0 in their lane). */
+static inline int4 wp_triangle4_group_test(__global const WpTriangle* triangles, wp_uint group,
+                                           wp_uint last, const WpShearedRay* ray, float t_max,
+                                           float4* T, float4* det) {
+    __global const WpTriangle* t0 = &triangles[group];
+    __global const WpTriangle* t1 = &triangles[min(group + 1u, last)];
+    __global const WpTriangle* t2 = &triangles[min(group + 2u, last)];
+    __global const WpTriangle* t3 = &triangles[min(group + 3u, last)];
+    float4 a0 = t0->v0, a1 = t1->v0, a2 = t2->v0, a3 = t3->v0;
+    float4 b0 = t0->v1, b1 = t1->v1, b2 = t2->v1, b3 = t3->v1;
+    float4 c0 = t0->v2, c1 = t1->v2, c2 = t2->v2, c3 = t3->v2;
+    int4 found =
+        wp_triangle4_test(ray, (float4)(a0.x, a1.x, a2.x, a3.x), (float4)(a0.y, a1.y, a2.y, a3.y),
+                          (float4)(a0.z, a1.z, a2.z, a3.z), (float4)(b0.x, b1.x, b2.x, b3.x),
+                          (float4)(b0.y, b1.y, b2.y, b3.y), (float4)(b0.z, b1.z, b2.z, b3.z),
+                          (float4)(c0.x, c1.x, c2.x, c3.x), (float4)(c0.y, c1.y, c2.y, c3.y),
+                          (float4)(c0.z, c1.z, c2.z, c3.z), t_max, T, det);
+    wp_uint lanes = min(last - group + 1u, 4u);
+    return found & ((int4)(0, 1, 2, 3) < (int4)((int)lanes));
 }
 
-/* The number of groups of a leaf of `count` triangles. */
-static inline wp_uint wp_triangle_group_count(wp_uint count) {
-    return (count + 3u) / 4u;
-}
-
-/* The triangles of the leaf of `count` triangles whose groups start at
- * groups[first] hit by the ray at 0 < t < *closest: returns the closest one's
- * number (with any_hit, the first one in order) and lowers *closest to its t,
- * or returns WP_NO_HIT and leaves *closest as it is. */
-static inline wp_uint wp_leaf_triangles(__global const WpTriangleGroup* groups, wp_uint first,
+/* The triangles first .. first + count - 1 of `triangles` hit by the ray at
+ * 0 < t < *closest: returns the closest one (with any_hit, the first one in
+ * order) and lowers *closest to its t, or returns WP_NO_HIT and leaves
+ * *closest as it is. */
+static inline wp_uint wp_leaf_triangles(__global const WpTriangle* triangles, wp_uint first,
                                         wp_uint count, const WpShearedRay* ray, int any_hit,
                                         float* closest) {
     wp_uint hit = WP_NO_HIT;
-    wp_uint end = first + wp_triangle_group_count(count);
-    for (wp_uint g = first; g < end; ++g) {
+    wp_uint last = first + count - 1u;
+    for (wp_uint group = first; group <= last; group += 4u) {
         float4 T, det;
-        int4 found = wp_triangle4_group_test(&groups[g], ray, *closest, &T, &det);
+        int4 found = wp_triangle4_group_test(triangles, group, last, ray, *closest, &T, &det);
         if (!any(found))
             continue;
         float Ts[4], dets[4];
@@ -136,12 +136,10 @@ static inline wp_uint wp_leaf_triangles(__global const WpTriangleGroup* groups, 
         vstore4(found, 0, founds);
         for (int k = 0; k < 4; ++k) {
             /* The scalar loop's test of this triangle against the bound as it
-             * stands by now: a candidate that is no longer in range fails. (A
-             * copy of the leaf's last triangle may pass again: the same
-             * number, the same t.) */
+             * stands by now: a candidate that is no longer in range fails. */
             if (founds[k] && wp_triangle_in_range(Ts[k], dets[k], *closest)) {
                 *closest = Ts[k] / dets[k];
-                hit = groups[g].primitive[k];
+                hit = group + (wp_uint)k;
                 if (any_hit)
                     return hit;
             }
@@ -150,17 +148,16 @@ static inline wp_uint wp_leaf_triangles(__global const WpTriangleGroup* groups, 
     return hit;
 }
 
-/* 1 if any of the leaf's triangles (as for wp_leaf_triangles) lies on the ray
- * at 0 < t < t_max. The bound never shrinks here, so a lane that the
- * four-lane test accepts is a hit as it stands: no lane is looked at on its
- * own, no t is divided out. The same answer as wp_leaf_triangles with
- * any_hit. */
-static inline int wp_leaf_triangles_occluded(__global const WpTriangleGroup* groups, wp_uint first,
+/* 1 if any of the triangles first .. first + count - 1 lies on the ray at
+ * 0 < t < t_max. The bound never shrinks here, so a lane that the four-lane
+ * test accepts is a hit as it stands: no lane is looked at on its own, no t
+ * is divided out. The same answer as wp_leaf_triangles with any_hit. */
+static inline int wp_leaf_triangles_occluded(__global const WpTriangle* triangles, wp_uint first,
                                              wp_uint count, const WpShearedRay* ray, float t_max) {
-    wp_uint end = first + wp_triangle_group_count(count);
-    for (wp_uint g = first; g < end; ++g) {
+    wp_uint last = first + count - 1u;
+    for (wp_uint group = first; group <= last; group += 4u) {
         float4 T, det;
-        if (any(wp_triangle4_group_test(&groups[g], ray, t_max, &T, &det)))
+        if (any(wp_triangle4_group_test(triangles, group, last, ray, t_max, &T, &det)))
             return 1;
     }
     return 0;

@@ -386,9 +386,8 @@ typedef struct {
  * lower_x[i] .. upper_x[i] and so on (an array per coordinate, so the four box
  * tests are independent scalar code), and count[i] says what it is: 0, the
  * node bvh_nodes[child[i]]; n > 0, a leaf of the primitives child[i] ..
- * child[i] + n - 1 (all spheres or all instances: primitives are stored in
- * leaf order); n | WP_BVH_TRIANGLE_LEAF, a leaf of n triangles (below);
- * WP_BVH_EMPTY, no child. nodes[0] is the root. Every box holds
+ * child[i] + n - 1 (all triangles or all spheres: primitives are stored in
+ * leaf order); WP_BVH_EMPTY, no child. nodes[0] is the root. Every box holds
  * the primitives below it with room for the intersection tests' rounding. */
 typedef struct {
     wp_float lower_x[4], upper_x[4];
@@ -399,28 +398,6 @@ typedef struct {
 } WpBvhNode;
 
 #define WP_BVH_EMPTY 0xffffffffu
-
-/* count[i] of a leaf of triangles carries this bit over its triangle count n:
- * child[i] is then not a primitive number but the first of the leaf's
- * ceil(n / 4) groups in leaf_triangles (group_leaf_triangles for a shape
- * group's hierarchy), laid out for the four-lane test (WpTriangleGroup). */
-#define WP_BVH_TRIANGLE_LEAF 0x80000000u
-
-/* Four of a leaf's triangles laid out for the four-lane test
- * (kernels/triangle4.h), structure of arrays: lane i is the triangle with
- * corners (x0[i], y0[i], z0[i]), (x1[i], ...), (x2[i], ...), the same floats
- * as its WpTriangle's, and primitive[i] its number in triangles (or
- * group_triangles), which shading reads. A leaf whose count is not a multiple
- * of four fills its last group's lanes with copies of its last triangle
- * (number included), which the test finds or misses with it. The corners
- * come first: the test reads 144 bytes, three 64-byte lines, and the numbers
- * only on a hit. 160 bytes. */
-typedef struct {
-    wp_float x0[4], y0[4], z0[4];
-    wp_float x1[4], y1[4], z1[4];
-    wp_float x2[4], y2[4], z2[4];
-    wp_uint primitive[4];
-} WpTriangleGroup;
 
 /* An instance of a shape group (Mitsuba's shapegroup and instance,
  * kernels/instance.h): the group's triangles, stored once in object space in
@@ -578,10 +555,7 @@ typedef struct {
     X(environment_cdf, wp_float)   /* an envmap's sampling tables (kernels/lights/envmap.h) */     \
     X(instances, WpInstance)       /* with WP_HAS_INSTANCES; a dummy without */                    \
     X(group_triangles, WpTriangle) /* the shape groups' triangles, in object space */              \
-    X(group_bvh_nodes, WpBvhNode)  /* their hierarchies, one per group */                          \
-    /* the hierarchies' leaves of triangles, four to a group (WP_BVH_TRIANGLE_LEAF): */            \
-    X(leaf_triangles, WpTriangleGroup)       /* bvh_nodes' */                                      \
-    X(group_leaf_triangles, WpTriangleGroup) /* group_bvh_nodes' */
+    X(group_bvh_nodes, WpBvhNode)  /* their hierarchies, one per group */
 
 #define WP_PATH_BUFFERS(X)                                                                         \
     /* path state, one entry per slot (structure of arrays) */                                     \

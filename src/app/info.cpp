@@ -35,9 +35,7 @@ namespace {
 void print_geometry_memory(const DeviceScene& scene) {
     const std::size_t primitive_bytes =
         scene.triangles.size() * sizeof(WpTriangle) + scene.spheres.size() * sizeof(WpSphere);
-    // The hierarchy's nodes and its leaves' copies of the triangles' corners.
-    const std::size_t hierarchy_bytes = scene.bvh_nodes.size() * sizeof(WpBvhNode) +
-                                        scene.leaf_triangles.size() * sizeof(WpTriangleGroup);
+    const std::size_t hierarchy_bytes = scene.bvh_nodes.size() * sizeof(WpBvhNode);
     if (!scene.bvh_nodes.empty()) {
         const BvhStats& b = scene.bvh_stats;
         std::printf("hierarchy: %u nodes (%u leaves, at most %u primitives), depth %u, SAH cost "
@@ -53,8 +51,7 @@ void print_geometry_memory(const DeviceScene& scene) {
     if (!scene.instances.empty()) {
         // Each group's triangles and hierarchy once, and a record per instance.
         const std::size_t group_bytes = scene.group_triangles.size() * sizeof(WpTriangle) +
-                                        scene.group_bvh_nodes.size() * sizeof(WpBvhNode) +
-                                        scene.group_leaf_triangles.size() * sizeof(WpTriangleGroup);
+                                        scene.group_bvh_nodes.size() * sizeof(WpBvhNode);
         const std::size_t instance_bytes = scene.instances.size() * sizeof(WpInstance);
         const std::uint64_t placed = scene.instanced_triangles;
         std::printf("instances on the device: %.1f MB shape groups (%zu triangles, %zu nodes) + "

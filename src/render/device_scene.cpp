@@ -257,42 +257,6 @@ void write_wide(const Bvh& bvh, const std::vector<Bounds3f>& boxes,
         throw std::logic_error("BVH too deep for the traversal stack");
 }
 
-// The leaves of triangles among nodes[first_node ..] (those whose primitives
-// are numbered below triangle_end) laid out for the four-lane test: their
-// triangles' corners appended to `groups` four to a group, the last group of
-// a leaf filled with copies of its last triangle (WpTriangleGroup,
-// kernels/wp_shared.h), and each such leaf pointed at its first group, its
-// count flagged WP_BVH_TRIANGLE_LEAF. The triangles stay as they are for
-// shading, which finds a hit by the number its lane carries.
-void group_leaf_triangles(std::vector<WpBvhNode>& nodes, std::size_t first_node,
-                          const std::vector<WpTriangle>& triangles, wp_uint triangle_end,
-                          std::vector<WpTriangleGroup>& groups) {
-    for (std::size_t at = first_node; at < nodes.size(); ++at) {
-        WpBvhNode& n = nodes[at];
-        for (int i = 0; i < 4; ++i) {
-            const wp_uint first = n.child[i], count = n.count[i];
-            if (count == 0 || count == WP_BVH_EMPTY || first >= triangle_end)
-                continue;
-            if (count & WP_BVH_TRIANGLE_LEAF)
-                throw std::logic_error("BVH leaf too large to flag as one of triangles");
-            n.child[i] = static_cast<wp_uint>(groups.size());
-            n.count[i] = count | WP_BVH_TRIANGLE_LEAF;
-            for (wp_uint k = 0; k < count; k += 4) {
-                WpTriangleGroup g{};
-                for (wp_uint lane = 0; lane < 4; ++lane) {
-                    const wp_uint p = first + std::min(k + lane, count - 1);
-                    const WpTriangle& t = triangles[p];
-                    g.x0[lane] = t.v0.s[0], g.y0[lane] = t.v0.s[1], g.z0[lane] = t.v0.s[2];
-                    g.x1[lane] = t.v1.s[0], g.y1[lane] = t.v1.s[1], g.z1[lane] = t.v1.s[2];
-                    g.x2[lane] = t.v2.s[0], g.y2[lane] = t.v2.s[1], g.z2[lane] = t.v2.s[2];
-                    g.primitive[lane] = p;
-                }
-                groups.push_back(g);
-            }
-        }
-    }
-}
-
 // The hierarchy over every primitive, with the primitives put in its leaf
 // order and every primitive number (the lights') renumbered to match. Each
 // instance's first_primitive holds its group's triangle count on entry and
@@ -358,7 +322,6 @@ void build_hierarchy(DeviceScene& scene) {
             e.sphere = new_number[triangle_count + e.sphere] - triangle_count;
 
     write_wide(bvh, boxes, new_number, triangle_count, plain_count, scene.bvh_nodes);
-    group_leaf_triangles(scene.bvh_nodes, 0, scene.triangles, triangle_count, scene.leaf_triangles);
     scene.bvh_stats = bvh.stats;
 }
 
@@ -440,9 +403,6 @@ void flatten_instances(const Scene& scene, const FloatFrame& frame, bool uvs, De
         }
         g.root = static_cast<wp_uint>(out.group_bvh_nodes.size());
         write_wide(bvh, {}, new_number, g.count, g.count, out.group_bvh_nodes); // triangles only
-        group_leaf_triangles(out.group_bvh_nodes, g.root, out.group_triangles,
-                             static_cast<wp_uint>(out.group_triangles.size()),
-                             out.group_leaf_triangles);
         groups.push_back(g);
     }
 

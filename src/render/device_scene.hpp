@@ -139,10 +139,6 @@ struct DeviceScene {
     std::vector<WpInstance> instances;       // in the top-level hierarchy's leaf order
     std::vector<WpTriangle> group_triangles; // every shape group's once, in object space
     std::vector<WpBvhNode> group_bvh_nodes;  // a hierarchy per group (WpInstance.root)
-    // The hierarchies' leaves of triangles for the four-lane test: copies of
-    // their corners, four to a group (WP_BVH_TRIANGLE_LEAF).
-    std::vector<WpTriangleGroup> leaf_triangles;
-    std::vector<WpTriangleGroup> group_leaf_triangles;
     // Host only: each instance's box in the device's world frame, widened
     // for the rounding of its ray's map into object space (device_scene.cpp).
     std::vector<Bounds3f> instance_boxes;

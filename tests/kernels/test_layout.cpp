@@ -27,9 +27,7 @@ namespace {
     X(WpTexture)                                                                                   \
     X(WpMaterial)                                                                                  \
     X(WpLight)                                                                                     \
-    X(WpEmitter)                                                                                   \
-    X(WpMirrorGroup) X(WpBvhNode) X(WpTriangleGroup) X(WpInstance) X(WpCamera) X(WpFrame)          \
-        X(WpLaunch)
+    X(WpEmitter) X(WpMirrorGroup) X(WpBvhNode) X(WpInstance) X(WpCamera) X(WpFrame) X(WpLaunch)
 
 #define WP_LAYOUT_FIELDS(X)                                                                        \
     X(WpTriangle, v0)                                                                              \
@@ -88,16 +86,6 @@ namespace {
     X(WpBvhNode, upper_z)                                                                          \
     X(WpBvhNode, child)                                                                            \
     X(WpBvhNode, count)                                                                            \
-    X(WpTriangleGroup, x0)                                                                         \
-    X(WpTriangleGroup, y0)                                                                         \
-    X(WpTriangleGroup, z0)                                                                         \
-    X(WpTriangleGroup, x1)                                                                         \
-    X(WpTriangleGroup, y1)                                                                         \
-    X(WpTriangleGroup, z1)                                                                         \
-    X(WpTriangleGroup, x2)                                                                         \
-    X(WpTriangleGroup, y2)                                                                         \
-    X(WpTriangleGroup, z2)                                                                         \
-    X(WpTriangleGroup, primitive)                                                                  \
     X(WpLight, triangle)                                                                           \
     X(WpLight, cdf)                                                                                \
     X(WpLight, guide)                                                                              \

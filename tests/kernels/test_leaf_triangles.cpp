@@ -1,6 +1,5 @@
-// A hierarchy leaf's triangles tested four at a time (kernels/triangle4.h,
-// on the leaf's copies of them four to a group, WpTriangleGroup) against
-// testing them one at a time in order (wp_triangle_test with a
+// A hierarchy leaf's triangles tested four at a time (kernels/triangle4.h)
+// against testing them one at a time in order (wp_triangle_test with a
 // shrinking bound, the loop the four-lane test replaced), both run by one
 // kernel on the same rays and leaves: the closest hit must be the same
 // triangle at the same t bit for bit, and any-hit the same (first) triangle.
@@ -14,7 +13,6 @@
 // finds a first hit.
 #include "support/kernel_test_util.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -29,10 +27,9 @@ const char* kLeafSource = R"CLC(
 #include "triangle4.h"
 
 /* Ray i: origin xyz with bound w, direction xyz; its leaf is
- * triangles[leaves[i].x .. leaves[i].x + leaves[i].y - 1], grouped from
- * groups[leaves[i].z] on. */
-__kernel void leaf(__global const WpTriangle* triangles, __global const WpTriangleGroup* groups,
-                   __global const uint4* leaves, wp_uint count, __global const float4* origins,
+ * triangles[leaves[i].x .. leaves[i].x + leaves[i].y - 1]. */
+__kernel void leaf(__global const WpTriangle* triangles, __global const uint2* leaves,
+                   wp_uint count, __global const float4* origins,
                    __global const float4* directions, __global wp_uint* hits_out,
                    __global float* t_out) {
     wp_uint i = get_global_id(0);
@@ -40,7 +37,7 @@ __kernel void leaf(__global const WpTriangle* triangles, __global const WpTriang
         return;
     float3 o = origins[i].xyz, d = directions[i].xyz;
     float t_max = origins[i].w;
-    wp_uint first = leaves[i].x, n = leaves[i].y, first_group = leaves[i].z;
+    wp_uint first = leaves[i].x, n = leaves[i].y;
     WpShearedRay ray = wp_shear_ray(o, d);
 
     /* One at a time, in order: the closest hit and the first hit. */
@@ -58,13 +55,13 @@ __kernel void leaf(__global const WpTriangle* triangles, __global const WpTriang
             first_hit = k;
     }
     float four_closest = t_max, four_any = t_max;
-    wp_uint four_hit = wp_leaf_triangles(groups, first_group, n, &ray, 0, &four_closest);
-    wp_uint four_first = wp_leaf_triangles(groups, first_group, n, &ray, 1, &four_any);
+    wp_uint four_hit = wp_leaf_triangles(triangles, first, n, &ray, 0, &four_closest);
+    wp_uint four_first = wp_leaf_triangles(triangles, first, n, &ray, 1, &four_any);
     hits_out[5 * i + 0] = hit;
     hits_out[5 * i + 1] = four_hit;
     hits_out[5 * i + 2] = first_hit;
     hits_out[5 * i + 3] = four_first;
-    hits_out[5 * i + 4] = wp_leaf_triangles_occluded(groups, first_group, n, &ray, t_max);
+    hits_out[5 * i + 4] = wp_leaf_triangles_occluded(triangles, first, n, &ray, t_max);
     t_out[2 * i + 0] = closest;
     t_out[2 * i + 1] = four_closest;
 }
@@ -109,10 +106,9 @@ TEST_CASE("leaf triangles: four at a time give the one-at-a-time test's hits bit
     };
 
     std::vector<WpTriangle> triangles;
-    std::vector<bool> degenerate;        // per triangle: no plane to measure against
-    std::vector<bool> grazing;           // per ray: starts in its target's plane
-    std::vector<WpTriangleGroup> groups; // each leaf's, as the host lays them out
-    std::vector<cl_uint4> leaves;
+    std::vector<bool> degenerate; // per triangle: no plane to measure against
+    std::vector<bool> grazing;    // per ray: starts in its target's plane
+    std::vector<cl_uint2> leaves;
     std::vector<cl_float4> origins, directions;
     const int leaf_count = 2500, rays_per_leaf = 8;
     for (int l = 0; l < leaf_count; ++l) {
@@ -137,21 +133,6 @@ TEST_CASE("leaf triangles: four at a time give the one-at-a-time test's hits bit
             triangles.push_back(WpTriangle{f4(a), f4(b), f4(c)});
             degenerate.push_back(kind == 2 || kind == 3);
         }
-        // The leaf's groups of four (WpTriangleGroup): the last one's lanes
-        // past the leaf's end copy its last triangle.
-        const cl_uint first_group = cl_uint(groups.size());
-        for (cl_uint k = 0; k < n; k += 4) {
-            WpTriangleGroup g{};
-            for (cl_uint lane = 0; lane < 4; ++lane) {
-                const cl_uint p = first + std::min(k + lane, n - 1);
-                const WpTriangle& t = triangles[p];
-                g.x0[lane] = t.v0.s[0], g.y0[lane] = t.v0.s[1], g.z0[lane] = t.v0.s[2];
-                g.x1[lane] = t.v1.s[0], g.y1[lane] = t.v1.s[1], g.z1[lane] = t.v1.s[2];
-                g.x2[lane] = t.v2.s[0], g.y2[lane] = t.v2.s[1], g.z2[lane] = t.v2.s[2];
-                g.primitive[lane] = p;
-            }
-            groups.push_back(g);
-        }
         for (int r = 0; r < rays_per_leaf; ++r) {
             const WpTriangle& aim = triangles[first + cl_uint(rng() % n)];
             double u = unit(rng), v = unit(rng);
@@ -174,7 +155,7 @@ TEST_CASE("leaf triangles: four at a time give the one-at-a-time test's hits bit
             Corner d{target.x - o.x, target.y - o.y, target.z - o.z};
             // Bounds: none, past the target, and short of it.
             float t_max = r % 3 == 0 ? INFINITY : float(r % 3 == 1 ? 1.5 : 0.999);
-            leaves.push_back(cl_uint4{{first, n, first_group, 0}});
+            leaves.push_back(cl_uint2{{first, n}});
             grazing.push_back(r == rays_per_leaf - 1);
             origins.push_back(f4(o, t_max));
             directions.push_back(f4(d));
@@ -183,13 +164,12 @@ TEST_CASE("leaf triangles: four at a time give the one-at-a-time test's hits bit
 
     const std::size_t count = origins.size();
     cl::Kernel kernel(program(kLeafSource, "leaf_triangles.cl"), "leaf");
-    cl::Buffer triangle_buffer = upload(triangles), group_buffer = upload(groups),
-               leaf_buffer = upload(leaves), origin_buffer = upload(origins),
-               direction_buffer = upload(directions);
+    cl::Buffer triangle_buffer = upload(triangles), leaf_buffer = upload(leaves),
+               origin_buffer = upload(origins), direction_buffer = upload(directions);
     cl::Buffer hits = upload(std::vector<cl_uint>(5 * count)),
                ts = upload(std::vector<float>(2 * count));
-    set_args(kernel, triangle_buffer, group_buffer, leaf_buffer, cl_uint(count), origin_buffer,
-             direction_buffer, hits, ts);
+    set_args(kernel, triangle_buffer, leaf_buffer, cl_uint(count), origin_buffer, direction_buffer,
+             hits, ts);
     launch(kernel, count);
     std::vector<cl_uint> hit = download<cl_uint>(hits, 5 * count);
     std::vector<float> t = download<float>(ts, 2 * count);
