@@ -85,8 +85,6 @@ static inline float wp_bsdf_pdf(const WpMaterial* m, float3 wo, float3 wi,
     return wp_diffuse_pdf(m, wo, wi, p);
 }
 
-/* Whether the program has a glossy kind (the glossy column of WP_MATERIALS):
- * a constant for #if. */
 /* pi f and (into *pdf) the density of wi together, as next-event estimation
  * needs them: the kinds whose one evaluation yields both (roughdielectric,
  * roughplastic) evaluate once instead of twice; every other kind is
@@ -101,6 +99,8 @@ static inline float3 wp_bsdf_eval_pi_pdf(const WpMaterial* m, float3 wo, float3 
     return wp_bsdf_eval_pi(m, wo, wi, p);
 }
 
+/* Whether the program has a glossy kind (the glossy column of WP_MATERIALS):
+ * a constant for #if. */
 #define WP_GLOSSY_TERM(KIND, Name, name, value, bsdf, glossy) WP_IF(glossy)(|| WP_HAS_##KIND)
 #define WP_HAS_GLOSSY (0 WP_MATERIALS(WP_GLOSSY_TERM))
 
