@@ -61,32 +61,21 @@ static inline void wp_clip_slab4(float4 lower, float4 upper, float origin, float
     *t_exit = select(*t_exit, leave, leave < *t_exit);
 }
 
-/* The bounds q of one axis of a node's four children, decoded (wp_shared.h,
- * WpBvhNode): origin + q * 2^(exponent - 127). The product is exact, so the
- * sum rounds once, as the host's check of each box rounded it. */
-static inline float4 wp_decode_bounds4(__global const wp_uchar* q, float origin, wp_uint exponent) {
-    return (float4)(origin) + convert_float4(vload4(0, q)) * (float4)(as_float(exponent << 23));
-}
-
 /* The four children of node n whose boxes the ray meets at some
  * 0 <= t <= t_max (-1 in their lane, else 0; never an empty child), and where
  * it enters each. Straight-line code on float4s, one child a lane, with no
- * branch per child: four box tests for the instructions of one, on boxes
- * decoded from the node's 8-bit bounds. */
+ * branch per child: four box tests for the instructions of one. */
 static inline int4 wp_hit_child_boxes(__global const WpBvhNode* n, const WpBoxRay* ray, float t_max,
                                       float4* t_enter) {
     float4 enter = (float4)(0.0f), exit = (float4)(t_max);
-    wp_clip_slab4(wp_decode_bounds4(n->lower_x, n->origin_x, n->exponent_x),
-                  wp_decode_bounds4(n->upper_x, n->origin_x, n->exponent_x), ray->origin.x,
+    wp_clip_slab4(vload4(0, n->lower_x), vload4(0, n->upper_x), ray->origin.x,
                   ray->inverse_direction.x, &enter, &exit);
-    wp_clip_slab4(wp_decode_bounds4(n->lower_y, n->origin_y, n->exponent_y),
-                  wp_decode_bounds4(n->upper_y, n->origin_y, n->exponent_y), ray->origin.y,
+    wp_clip_slab4(vload4(0, n->lower_y), vload4(0, n->upper_y), ray->origin.y,
                   ray->inverse_direction.y, &enter, &exit);
-    wp_clip_slab4(wp_decode_bounds4(n->lower_z, n->origin_z, n->exponent_z),
-                  wp_decode_bounds4(n->upper_z, n->origin_z, n->exponent_z), ray->origin.z,
+    wp_clip_slab4(vload4(0, n->lower_z), vload4(0, n->upper_z), ray->origin.z,
                   ray->inverse_direction.z, &enter, &exit);
     *t_enter = enter;
-    return (enter <= exit) & convert_int4(vload4(0, n->count) != (ushort4)(WP_BVH_EMPTY));
+    return (enter <= exit) & (vload4(0, n->count) != (uint4)(WP_BVH_EMPTY));
 }
 
 /* A child waiting on the stack: a node (count 0) or a leaf, and where the ray

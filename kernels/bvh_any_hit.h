@@ -46,7 +46,7 @@
  * at 0 <= t <= t_max, in node order. Every child is written at the top and
  * kept only if hit: straight-line code, four stores (a missed child's write
  * lands one past the top, which the stack has room for). Then each kept
- * child's first lines are prefetched: a node's one, or a leaf's first three
+ * child's first lines are prefetched: a node's two, or a leaf's first three
  * (its first four triangles); a leaf of other primitives is left alone. */
 static inline void wp_bvh_push_hit_children(__global const WpBvhNode* nodes,
                                             __global const WpTriangle* triangles,
@@ -71,7 +71,9 @@ static inline void wp_bvh_push_hit_children(__global const WpBvhNode* nodes,
     *top = at;
     for (int i = first; i < at; ++i) {
         if (counts[i] == 0u) {
-            WP_PREFETCH_LINE(&nodes[children[i]]); /* a node is one line */
+            __global const char* node = (__global const char*)&nodes[children[i]];
+            WP_PREFETCH_LINE(node);
+            WP_PREFETCH_LINE(node + 64);
         } else if (children[i] + counts[i] <= triangle_end) {
             __global const char* leaf = (__global const char*)&triangles[children[i]];
             WP_PREFETCH_LINE(leaf);

@@ -15,16 +15,12 @@
  * same rounding on every device. This header comes first in every stage. */
 #pragma OPENCL FP_CONTRACT OFF
 typedef uint wp_uint;
-typedef ushort wp_ushort;
-typedef uchar wp_uchar;
 typedef float wp_float;
 typedef float4 wp_float4;
 #else
 #include <CL/cl_platform.h>
 #include <string.h>
 typedef cl_uint wp_uint;
-typedef cl_ushort wp_ushort;
-typedef cl_uchar wp_uchar;
 typedef cl_float wp_float;
 typedef cl_float4 wp_float4;
 #endif
@@ -386,39 +382,22 @@ typedef struct {
 
 /* A node of the bounding volume hierarchy, four children wide: the
  * builder's binary tree (src/scene/bvh.hpp) collapsed two levels into one
- * (src/render/device_scene.cpp), in 64 bytes: one cache line, since the walk
- * through a big scene waits mostly on each node's first load, one node after
- * another (docs/performance.md, "Quantised nodes").
- *
- * The children's boxes are quantised (Ylitie et al. 2017): along axis x the
- * node's own box starts at origin_x and steps by scale 2^(exponent_x - 127)
- * (the float whose exponent bits are exponent_x), and child i spans
- * origin_x + lower_x[i] * scale .. origin_x + upper_x[i] * scale. The 8-bit
- * steps are rounded outward and checked with the kernel's own float
- * arithmetic (src/render/quantised_node.cpp), so each decoded box holds its
- * child's float box: boxes only grow, and the triangle tests still decide
- * every hit. q * scale is exact (8 significant bits times a power of two), so
- * the decode rounds once, in the addition, the same on host and device with
- * or without FMA. An axis whose box is not finite has a NaN origin: its
- * bounds decode to NaN, which the slab test takes as no limit.
- *
- * count[i] says what child i is: 0, the node bvh_nodes[child[i]]; n > 0, a
- * leaf of the primitives child[i] .. child[i] + n - 1 (all triangles or all
- * spheres: primitives are stored in leaf order); WP_BVH_EMPTY, no child.
- * nodes[0] is the root. Every box holds the primitives below it with room for
- * the intersection tests' rounding. */
+ * (src/render/device_scene.cpp), 128 bytes of scalars. Child i's box is
+ * lower_x[i] .. upper_x[i] and so on (an array per coordinate, so the four box
+ * tests are independent scalar code), and count[i] says what it is: 0, the
+ * node bvh_nodes[child[i]]; n > 0, a leaf of the primitives child[i] ..
+ * child[i] + n - 1 (all triangles or all spheres: primitives are stored in
+ * leaf order); WP_BVH_EMPTY, no child. nodes[0] is the root. Every box holds
+ * the primitives below it with room for the intersection tests' rounding. */
 typedef struct {
-    wp_float origin_x, origin_y, origin_z;
-    wp_uchar exponent_x, exponent_y, exponent_z, pad0;
-    wp_uchar lower_x[4], upper_x[4];
-    wp_uchar lower_y[4], upper_y[4];
-    wp_uchar lower_z[4], upper_z[4];
+    wp_float lower_x[4], upper_x[4];
+    wp_float lower_y[4], upper_y[4];
+    wp_float lower_z[4], upper_z[4];
     wp_uint child[4];
-    wp_ushort count[4];
+    wp_uint count[4];
 } WpBvhNode;
 
-/* count[i] of a missing child; a leaf holds at most WP_BVH_EMPTY - 1 primitives. */
-#define WP_BVH_EMPTY 0xffffu
+#define WP_BVH_EMPTY 0xffffffffu
 
 /* An instance of a shape group (Mitsuba's shapegroup and instance,
  * kernels/instance.h): the group's triangles, stored once in object space in

@@ -15,7 +15,6 @@
 #include "render/environment_tables.hpp"
 #include "render/float_range.hpp"
 #include "render/planar_mirrors.hpp"
-#include "render/quantised_node.hpp"
 #include "render/shadow_occluders.hpp"
 #include "scene/instancing.hpp"
 #include "scene/material.hpp"
@@ -166,8 +165,7 @@ class BinaryWriter {
     std::vector<BinaryNode>& out_;
 };
 
-// The binary tree collapsed into four-wide nodes (WpBvhNode, their boxes
-// quantised: render/quantised_node.hpp): a node's
+// The binary tree collapsed into four-wide nodes (WpBvhNode): a node's
 // children are its binary node's children, each inner one replaced by its own
 // two children, so every four-wide level is two binary levels. Returns the
 // most stack entries the kernel's traversal (kernels/bvh.h) can hold below
@@ -196,25 +194,26 @@ class WideWriter {
         }
         const std::size_t at = out_.size();
         out_.emplace_back();
-        Bounds3f boxes[4];
-        for (int i = 0; i < used; ++i)
-            boxes[i] = binary_[slots[i]].bounds;
-        quantise_child_boxes(boxes, used, out_[at]);
         std::uint32_t deepest = 0;
         for (int i = 0; i < 4; ++i) {
+            WpBvhNode& n = out_[at];
             if (i >= used) {
-                out_[at].child[i] = 0;
-                out_[at].count[i] = WP_BVH_EMPTY;
+                n.lower_x[i] = n.lower_y[i] = n.lower_z[i] = 0.0f;
+                n.upper_x[i] = n.upper_y[i] = n.upper_z[i] = 0.0f;
+                n.child[i] = 0;
+                n.count[i] = WP_BVH_EMPTY;
                 continue;
             }
             const BinaryNode& c = binary_[slots[i]];
-            if (c.count >= WP_BVH_EMPTY)
-                throw std::runtime_error("a BVH leaf of " + std::to_string(c.count) +
-                                         " primitives, more than a node can count (" +
-                                         std::to_string(WP_BVH_EMPTY - 1) + ")");
-            out_[at].count[i] = static_cast<wp_ushort>(c.count);
+            n.lower_x[i] = c.bounds.lower.x;
+            n.lower_y[i] = c.bounds.lower.y;
+            n.lower_z[i] = c.bounds.lower.z;
+            n.upper_x[i] = c.bounds.upper.x;
+            n.upper_y[i] = c.bounds.upper.y;
+            n.upper_z[i] = c.bounds.upper.z;
+            n.count[i] = c.count;
             if (c.count > 0) {
-                out_[at].child[i] = c.offset;
+                n.child[i] = c.offset;
             } else {
                 const auto child = static_cast<wp_uint>(out_.size());
                 deepest = std::max(deepest, write(slots[i]));

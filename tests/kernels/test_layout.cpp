@@ -78,13 +78,6 @@ namespace {
     X(WpTexture, filter)                                                                           \
     X(WpTexture, pad0)                                                                             \
     X(WpMaterial, rough_transmittance)                                                             \
-    X(WpBvhNode, origin_x)                                                                         \
-    X(WpBvhNode, origin_y)                                                                         \
-    X(WpBvhNode, origin_z)                                                                         \
-    X(WpBvhNode, exponent_x)                                                                       \
-    X(WpBvhNode, exponent_y)                                                                       \
-    X(WpBvhNode, exponent_z)                                                                       \
-    X(WpBvhNode, pad0)                                                                             \
     X(WpBvhNode, lower_x)                                                                          \
     X(WpBvhNode, upper_x)                                                                          \
     X(WpBvhNode, lower_y)                                                                          \
