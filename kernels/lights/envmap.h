@@ -88,17 +88,19 @@ static inline float3 wp_envmap_radiance(__global const wp_uint* texels, __global
     return wp_envmap_patch_radiance(texels, e, i, j, ax, ay);
 }
 
-/* cos(theta_j) - cos(theta_{j+1}) for the row boundaries theta_j = pi j / rows,
- * as 2 sin(mid) sin(half width): the plain difference of two cosines near 1
- * loses every digit at the poles of a large map. The angles are fractions of
- * a turn, so the polynomial wp_sincos_2pi serves (library sin and cos spent
- * most of their time in an argument reduction PoCL does not inline: 8 % of
- * the showcase's shade, docs/performance.md). */
-static inline float wp_envmap_cos_span(int j, int rows) {
-    float sin_mid, sin_half_width, unused;
-    wp_sincos_2pi(((float)j + 0.5f) / (float)(2 * rows), &sin_mid, &unused);
-    wp_sincos_2pi(0.25f / (float)rows, &sin_half_width, &unused);
-    return 2.0f * sin_mid * sin_half_width;
+/* Row j's geometry, from the host's table after the sampling tables
+ * (src/render/environment_tables.cpp, in double precision): .x is
+ * cos(theta_j) and .y cos(theta_j) - cos(theta_{j+1}) for the row boundaries
+ * theta_j = pi j / rows, the difference as 2 sin(mid) sin(half width) (the
+ * plain difference of two cosines near 1 loses every digit at the poles of a
+ * large map). Read, not computed: two polynomials, their divisions and a
+ * call were 8 % of the showcase's shade (docs/performance.md, "Shade, cut
+ * further"). */
+static inline float2 wp_envmap_row_geometry(__global const float* environment_cdf,
+                                            __global const WpEmitter* e, wp_uint j) {
+    wp_uint rows = e->height - 1u;
+    __global const float* row = environment_cdf + e->cdf_first + rows + rows * e->width + 2u * j;
+    return (float2)(row[0], row[1]);
 }
 
 /* The probability of patch (i, j) (the product of two table differences). */
@@ -114,8 +116,8 @@ static inline float wp_envmap_patch_probability(__global const float* environmen
 /* The solid-angle density of any direction in patch (i, j) (uniform within it). */
 static inline float wp_envmap_patch_pdf(__global const float* environment_cdf,
                                         __global const WpEmitter* e, int i, int j) {
-    int rows = (int)e->height - 1;
-    float solid_angle = (2.0f * WP_PI / (float)e->width) * wp_envmap_cos_span(j, rows);
+    float solid_angle =
+        (2.0f * WP_PI / (float)e->width) * wp_envmap_row_geometry(environment_cdf, e, (wp_uint)j).y;
     return wp_envmap_patch_probability(environment_cdf, e, i, j) / solid_angle;
 }
 
@@ -172,10 +174,9 @@ static inline void wp_envmap_sample(__global const wp_uint* texels,
     float row_low = j > 0u ? marginal[j - 1u] : 0.0f, column_low = i > 0u ? row[i - 1u] : 0.0f;
     float s = clamp((u - column_low) / (row[i] - column_low), 0.0f, 1.0f);
     float t = clamp((v - row_low) / (marginal[j] - row_low), 0.0f, 1.0f);
-    float span = wp_envmap_cos_span((int)j, (int)rows);
-    float sin_row, cos_row;
-    wp_sincos_2pi((float)j / (float)(2u * rows), &sin_row, &cos_row);
-    float cos_theta = cos_row - t * span;
+    float2 geometry = wp_envmap_row_geometry(environment_cdf, e, j);
+    float span = geometry.y;
+    float cos_theta = geometry.x - t * span;
     cos_theta = clamp(cos_theta, -1.0f, 1.0f);
     float sin_theta = sqrt(fmax(0.0f, 1.0f - cos_theta * cos_theta));
     /* phi / 2 pi, in [0, 1 + 1 / 2w]: a turn past 1 is the same angle. */

@@ -147,9 +147,10 @@ TEST_CASE("envmap: a feature switch of its own, first among the emitters", "[emi
     CHECK(flat.emitters[0].kind == WP_EMITTER_ENVMAP); // where an escaping ray looks
     CHECK(flat.emitters[0].width == 32);
     CHECK(flat.emitters[0].height == 16);
-    // Its texels as floats after the textures', its tables: 15 rows of 32.
+    // Its texels as floats after the textures', its tables: 15 rows of 32,
+    // and the rows' two cosines.
     CHECK(flat.texels.size() == texels_before + 3 * 32 * 16);
-    CHECK(flat.environment_cdf.size() == 15 + 15 * 32);
+    CHECK(flat.environment_cdf.size() == 15 + 15 * 32 + 2 * 15);
     CHECK(flat.environment_cdf[14] == 1.0f);
     // A black map emits nothing: left out, as a black point light is.
     scene.emitters.back() =
