@@ -27,7 +27,8 @@
  * tables (the host builds them, src/render/environment_tables.cpp) are
  * cumulative sums at environment_cdf[cdf_first]: first the height - 1 rows'
  * (the marginal), then for each row its width patches' (the conditional),
- * each table ending in 1. A patch's probability is the difference of two
+ * each table ending in 1; after them come each row's two cosines
+ * (wp_envmap_row_geometry). A patch's probability is the difference of two
  * neighbouring entries, in both the sampler and the density, so the two agree
  * to the float even for patches far below the entries' rounding.
  */
