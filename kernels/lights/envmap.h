@@ -47,7 +47,10 @@ static inline void wp_envmap_patch(__global const WpEmitter* e, float3 d, int* i
                         dot(e->to_local[2].xyz, d));
     float u = wp_atan2(l.x, -l.z) * (0.5f / WP_PI); /* atan2's, without its library call */
     u -= floor(u); /* [-1/2, 1/2) to [0, 1); a NaN stays a NaN, caught below */
-    float v = acos(clamp(l.y, -1.0f, 1.0f)) * (1.0f / WP_PI);
+    /* v = acos(l.y) / pi, as an angle from its sine and cosine: wp_atan2 is
+     * inline, where PoCL's acos is a call, and the angle stays accurate at the
+     * poles, where acos loses digits. */
+    float v = wp_atan2(sqrt(l.x * l.x + l.z * l.z), l.y) * (1.0f / WP_PI);
     int w = (int)e->width, h = (int)e->height;
     float x = u * (float)w - 0.5f; /* [-1/2, w - 1/2]: left of column 0 wraps to w - 1 */
     float x_floor = floor(x);
@@ -189,7 +192,7 @@ static inline void wp_envmap_sample(__global const wp_uint* texels,
     *pdf = p_row * p_column / ((2.0f * WP_PI / (float)w) * span);
     /* The row weight is theta's place in the row, (theta - theta_j) rows / pi:
      * the radiance is bilinear in (phi, theta), the sample uniform in cos theta. */
-    float y = acos(cos_theta) * (1.0f / WP_PI) * (float)rows;
+    float y = wp_atan2(sin_theta, cos_theta) * (1.0f / WP_PI) * (float)rows;
     *radiance =
         wp_envmap_patch_radiance(texels, e, (int)i, (int)j, s, clamp(y - (float)j, 0.0f, 1.0f));
 }
