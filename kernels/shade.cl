@@ -137,7 +137,7 @@ static inline float3 wp_shade_environment(__global const WpEmitter* e,
 #endif
 #if WP_HAS_ENVMAP_LIGHT
     if (e->kind == WP_EMITTER_ENVMAP) {
-        /* One patch lookup (its atan2 and acos) serves the radiance and the density. */
+        /* One patch lookup (its two angles) serves the radiance and the density. */
         int i, j;
         float ax, ay;
         wp_envmap_patch(e, direction, &i, &j, &ax, &ay);

@@ -27,7 +27,8 @@
  * tables (the host builds them, src/render/environment_tables.cpp) are
  * cumulative sums at environment_cdf[cdf_first]: first the height - 1 rows'
  * (the marginal), then for each row its width patches' (the conditional),
- * each table ending in 1. A patch's probability is the difference of two
+ * each table ending in 1; after them come each row's two cosines
+ * (wp_envmap_row_geometry). A patch's probability is the difference of two
  * neighbouring entries, in both the sampler and the density, so the two agree
  * to the float even for patches far below the entries' rounding.
  */
@@ -46,7 +47,10 @@ static inline void wp_envmap_patch(__global const WpEmitter* e, float3 d, int* i
                         dot(e->to_local[2].xyz, d));
     float u = wp_atan2(l.x, -l.z) * (0.5f / WP_PI); /* atan2's, without its library call */
     u -= floor(u); /* [-1/2, 1/2) to [0, 1); a NaN stays a NaN, caught below */
-    float v = acos(clamp(l.y, -1.0f, 1.0f)) * (1.0f / WP_PI);
+    /* v = acos(l.y) / pi, as an angle from its sine and cosine: wp_atan2 is
+     * inline, where PoCL's acos is a call, and the angle stays accurate at the
+     * poles, where acos loses digits. */
+    float v = wp_atan2(sqrt(l.x * l.x + l.z * l.z), l.y) * (1.0f / WP_PI);
     int w = (int)e->width, h = (int)e->height;
     float x = u * (float)w - 0.5f; /* [-1/2, w - 1/2]: left of column 0 wraps to w - 1 */
     float x_floor = floor(x);
@@ -88,17 +92,19 @@ static inline float3 wp_envmap_radiance(__global const wp_uint* texels, __global
     return wp_envmap_patch_radiance(texels, e, i, j, ax, ay);
 }
 
-/* cos(theta_j) - cos(theta_{j+1}) for the row boundaries theta_j = pi j / rows,
- * as 2 sin(mid) sin(half width): the plain difference of two cosines near 1
- * loses every digit at the poles of a large map. The angles are fractions of
- * a turn, so the polynomial wp_sincos_2pi serves (library sin and cos spent
- * most of their time in an argument reduction PoCL does not inline: 8 % of
- * the showcase's shade, docs/performance.md). */
-static inline float wp_envmap_cos_span(int j, int rows) {
-    float sin_mid, sin_half_width, unused;
-    wp_sincos_2pi(((float)j + 0.5f) / (float)(2 * rows), &sin_mid, &unused);
-    wp_sincos_2pi(0.25f / (float)rows, &sin_half_width, &unused);
-    return 2.0f * sin_mid * sin_half_width;
+/* Row j's geometry, from the host's table after the sampling tables
+ * (src/render/environment_tables.cpp, in double precision): .x is
+ * cos(theta_j) and .y cos(theta_j) - cos(theta_{j+1}) for the row boundaries
+ * theta_j = pi j / rows, the difference as 2 sin(mid) sin(half width) (the
+ * plain difference of two cosines near 1 loses every digit at the poles of a
+ * large map). Read, not computed: two polynomials, their divisions and a
+ * call were 8 % of the showcase's shade (docs/performance.md, "Shade, cut
+ * further"). */
+static inline float2 wp_envmap_row_geometry(__global const float* environment_cdf,
+                                            __global const WpEmitter* e, wp_uint j) {
+    wp_uint rows = e->height - 1u;
+    __global const float* row = environment_cdf + e->cdf_first + rows + rows * e->width + 2u * j;
+    return (float2)(row[0], row[1]);
 }
 
 /* The probability of patch (i, j) (the product of two table differences). */
@@ -114,8 +120,8 @@ static inline float wp_envmap_patch_probability(__global const float* environmen
 /* The solid-angle density of any direction in patch (i, j) (uniform within it). */
 static inline float wp_envmap_patch_pdf(__global const float* environment_cdf,
                                         __global const WpEmitter* e, int i, int j) {
-    int rows = (int)e->height - 1;
-    float solid_angle = (2.0f * WP_PI / (float)e->width) * wp_envmap_cos_span(j, rows);
+    float solid_angle =
+        (2.0f * WP_PI / (float)e->width) * wp_envmap_row_geometry(environment_cdf, e, (wp_uint)j).y;
     return wp_envmap_patch_probability(environment_cdf, e, i, j) / solid_angle;
 }
 
@@ -172,10 +178,9 @@ static inline void wp_envmap_sample(__global const wp_uint* texels,
     float row_low = j > 0u ? marginal[j - 1u] : 0.0f, column_low = i > 0u ? row[i - 1u] : 0.0f;
     float s = clamp((u - column_low) / (row[i] - column_low), 0.0f, 1.0f);
     float t = clamp((v - row_low) / (marginal[j] - row_low), 0.0f, 1.0f);
-    float span = wp_envmap_cos_span((int)j, (int)rows);
-    float sin_row, cos_row;
-    wp_sincos_2pi((float)j / (float)(2u * rows), &sin_row, &cos_row);
-    float cos_theta = cos_row - t * span;
+    float2 geometry = wp_envmap_row_geometry(environment_cdf, e, j);
+    float span = geometry.y;
+    float cos_theta = geometry.x - t * span;
     cos_theta = clamp(cos_theta, -1.0f, 1.0f);
     float sin_theta = sqrt(fmax(0.0f, 1.0f - cos_theta * cos_theta));
     /* phi / 2 pi, in [0, 1 + 1 / 2w]: a turn past 1 is the same angle. */
@@ -187,7 +192,7 @@ static inline void wp_envmap_sample(__global const wp_uint* texels,
     *pdf = p_row * p_column / ((2.0f * WP_PI / (float)w) * span);
     /* The row weight is theta's place in the row, (theta - theta_j) rows / pi:
      * the radiance is bilinear in (phi, theta), the sample uniform in cos theta. */
-    float y = acos(cos_theta) * (1.0f / WP_PI) * (float)rows;
+    float y = wp_atan2(sin_theta, cos_theta) * (1.0f / WP_PI) * (float)rows;
     *radiance =
         wp_envmap_patch_radiance(texels, e, (int)i, (int)j, s, clamp(y - (float)j, 0.0f, 1.0f));
 }

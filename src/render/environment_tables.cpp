@@ -119,6 +119,14 @@ EnvironmentTables build_environment_tables(const TextureImage& image) {
         return t;
     }
     cumulative(row_weights.data(), rows, t.cdf.data());
+    // Each row's cos(theta_j) and cos(theta_j) - cos(theta_{j+1}), which the
+    // kernels' sample and density read instead of computing them (two
+    // polynomials, their divisions and a call: 8 % of the showcase's shade).
+    t.cdf.reserve(t.cdf.size() + 2 * static_cast<std::size_t>(rows));
+    for (std::uint32_t j = 0; j < rows; ++j) {
+        t.cdf.push_back(static_cast<float>(std::cos(kPi * j / rows)));
+        t.cdf.push_back(static_cast<float>(cos_span(j, rows)));
+    }
     return t;
 }
 

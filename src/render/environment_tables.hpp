@@ -22,7 +22,9 @@ struct EnvironmentTables {
     std::vector<float> rgb; // 3 per texel, rows one after another
     // The sampling tables: height - 1 cumulative row probabilities, then for
     // each row its width cumulative patch probabilities, each table ending
-    // in exactly 1. Empty when the image is black (nothing to sample).
+    // in exactly 1; then for each row j two floats, cos(theta_j) and
+    // cos(theta_j) - cos(theta_{j+1}) (theta_j = pi j / (height - 1)).
+    // Empty when the image is black (nothing to sample).
     std::vector<float> cdf;
     // The integral over the sphere of directions of the channels' mean
     // radiance (before the emitter's scale): what the light's power is

@@ -147,10 +147,20 @@ TEST_CASE("envmap: a feature switch of its own, first among the emitters", "[emi
     CHECK(flat.emitters[0].kind == WP_EMITTER_ENVMAP); // where an escaping ray looks
     CHECK(flat.emitters[0].width == 32);
     CHECK(flat.emitters[0].height == 16);
-    // Its texels as floats after the textures', its tables: 15 rows of 32.
+    // Its texels as floats after the textures', its tables: 15 rows of 32,
+    // and the rows' two cosines.
     CHECK(flat.texels.size() == texels_before + 3 * 32 * 16);
-    CHECK(flat.environment_cdf.size() == 15 + 15 * 32);
+    CHECK(flat.environment_cdf.size() == 15 + 15 * 32 + 2 * 15);
     CHECK(flat.environment_cdf[14] == 1.0f);
+    // Row j's cos(theta_j) and cos(theta_j) - cos(theta_{j+1}), theta_j =
+    // pi j / 15, against the plain cosines in double (exact enough here).
+    const float* geometry = flat.environment_cdf.data() + 15 + 15 * 32;
+    for (int j = 0; j < 15; ++j) {
+        const double cos_j = std::cos(M_PI * j / 15.0), cos_next = std::cos(M_PI * (j + 1) / 15.0);
+        INFO("row " << j);
+        CHECK(std::abs(geometry[2 * j] - cos_j) <= 6e-8);
+        CHECK(std::abs(geometry[2 * j + 1] - (cos_j - cos_next)) <= 1e-7 * (cos_j - cos_next));
+    }
     // A black map emits nothing: left out, as a black point light is.
     scene.emitters.back() =
         envmap(float_image(2, 2, std::vector<glm::dvec3>(4, glm::dvec3(0.0))), glm::dmat3(1.0), 1);
