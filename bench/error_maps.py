@@ -15,7 +15,7 @@ relMSE clipped at its 99th percentile (the image less its worst 1 %), and
 the share of each image's relMSE that its 20 worst pixels carry (fireflies).
 Then the shares of relMSE and MSE by the reference's brightness. With --maps
 it writes, per set, the per-pixel relMSE averaged over the images as a log
-false-colour PNG (1e-4 black, 1e-2 red, 1 yellow, 10 white), and for two or
+false-colour PNG (1e-4 black, 5e-3 red, 0.2 yellow, 10 white), and for two or
 more sets the ratio of the first set's map to each other's, in 4x4 blocks
 (blue: the first set 4x lower, green: equal, red: 4x higher).
 """
