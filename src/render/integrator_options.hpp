@@ -96,9 +96,10 @@ inline constexpr std::uint32_t kAllPathTypes = (1u << WP_PATH_TYPE_COUNT) - 1u;
 // constant emitter): such a scene is open, so paths end by escaping, and
 // roulette from the first bounce saves little work (on the showcase 1.29x
 // the rays without it until bounce 8) while multiplying the rare bright
-// paths of its survivors (1/q on dark surfaces): measured 2.0x the relMSE and
-// 1.7x the MSE per sample there (docs/performance.md, "Why relMSE lags
-// Mitsuba's"). Closed rooms keep 1 (the hexroom and the bunny measured it best).
+// paths of its survivors (1/q on dark surfaces): there roulette from 1 has
+// 2.0x the relMSE and 1.65x the MSE per sample of roulette from 8
+// (docs/performance.md, "Why relMSE lags Mitsuba's"). Closed rooms keep 1:
+// on the hexroom and the bunny later starts measured worse by MSE.
 inline constexpr std::uint32_t kEnvironmentRouletteDepth = 8;
 
 struct IntegratorOptions {
