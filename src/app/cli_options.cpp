@@ -3,6 +3,7 @@
 #include <cmath>
 #include <map>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -113,8 +114,10 @@ void add_integrator_options(CLI::App& command, IntegratorOptions& options) {
     command
         .add_option("--roulette-depth", options.roulette_depth,
                     "The first bounce at which Russian roulette may end a path (1: every "
-                    "bounce); before it every path goes on. Overrides a Mitsuba file's rr_depth, "
-                    "which counts the same")
+                    "bounce); before it every path goes on. Default 1, and " +
+                        std::to_string(kEnvironmentRouletteDepth) +
+                        " in a scene lit by an envmap or constant emitter (docs/performance.md). "
+                        "Overrides a Mitsuba file's rr_depth, which counts the same")
         ->capture_default_str()
         ->check(CLI::Range(1u, cli_limits::max_depth))
         ->each([&options](const std::string&) { options.roulette_depth_given = true; });

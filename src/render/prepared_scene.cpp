@@ -27,6 +27,15 @@ PreparedScene prepare(const Scene& scene, const IntegratorOptions& options, Tria
     return prepared;
 }
 
+// An envmap or a constant emitter: light from every direction a path can
+// escape in (kEnvironmentRouletteDepth, integrator_options.hpp, says why that matters).
+bool lit_by_environment(const Scene& scene) {
+    for (const Emitter& emitter : scene.emitters)
+        if (emitter.kind == EmitterKind::Envmap || emitter.kind == EmitterKind::Constant)
+            return true;
+    return false;
+}
+
 } // namespace
 
 // A Mitsuba scene's path integrator, where the command line did not say
@@ -40,6 +49,8 @@ PreparedScene prepare(const Scene& scene, const IntegratorOptions& options, Tria
 // there a path's radiance is divided by eta^2 as it enters glass, and the
 // throughput rule ends such paths for it (docs/performance.md, "Shading and
 // roulette"); elsewhere the two rules differ only past throughput 0.95.
+// Where roulette starts, unless given or the file's: later in a scene lit by
+// an environment (kEnvironmentRouletteDepth).
 IntegratorOptions with_scene_settings(IntegratorOptions options, const Scene& scene) {
     if (options.roulette_rule == RouletteRule::Auto) {
         bool refracts = false;
@@ -58,6 +69,8 @@ IntegratorOptions with_scene_settings(IntegratorOptions options, const Scene& sc
     }
     if (scene.rr_depth > 0 && !options.roulette_depth_given)
         options.roulette_depth = scene.rr_depth;
+    else if (!options.roulette_depth_given && lit_by_environment(scene))
+        options.roulette_depth = kEnvironmentRouletteDepth;
     return options;
 }
 

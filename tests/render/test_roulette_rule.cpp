@@ -3,7 +3,9 @@
 // environment map and an area light) their images agree in the whole-image
 // mean and in 4x4-pixel block means within 5 combined standard errors, with
 // roulette from the first bounce and from the fifth. The default, 'auto',
-// takes Mitsuba's rule exactly where a scene refracts.
+// takes Mitsuba's rule exactly where a scene refracts. Where roulette starts
+// by default: from bounce 1, and from kEnvironmentRouletteDepth in a scene lit
+// by an environment, whose image is the same (5 sigma again).
 #include <catch2/catch.hpp>
 
 #include <string>
@@ -17,33 +19,103 @@
 using namespace wp;
 using namespace wp::test;
 
-TEST_CASE("roulette rule: Mitsuba's rule and the default estimate the same image",
-          "[render][roulette][statistical]") {
+namespace {
+
+// a and b, renders of one scene by two unbiased estimators, agree: the image
+// means and every 4x4 block's mean within 5 combined standard errors.
+void check_same_image(const Rendered& a, const Rendered& b, const std::string& what) {
+    CHECK(a.stats.nonfinite_samples == 0);
+    CHECK(b.stats.nonfinite_samples == 0);
+    for (int c = 0; c < 3; ++c) {
+        const MeanWithError ma = image_mean(a.film, c), mb = image_mean(b.film, c);
+        INFO(what << ", channel " << c << ": " << ma.mean << " +- " << ma.standard_error
+                  << " against " << mb.mean << " +- " << mb.standard_error);
+        CHECK(sigmas_apart(ma, mb) < 5.0);
+    }
+    const BlockComparison blocks = compare_blocks(a.film, b.film, 4);
+    INFO(what << ": " << blocks.outside << " of " << blocks.blocks
+              << " block means more than 5 sigma apart, the worst " << blocks.worst_where);
+    CHECK(blocks.outside == 0);
+}
+
+Scene small_showcase() {
     Scene scene = load_scene(std::string(WAVEPATH_SOURCE_DIR) + "/scenes/materials/showcase.json");
     scene.camera.width = 24;
     scene.camera.height = 16;
+    return scene;
+}
+
+} // namespace
+
+TEST_CASE("roulette rule: Mitsuba's rule and the default estimate the same image",
+          "[render][roulette][statistical]") {
+    const Scene scene = small_showcase();
     for (const std::uint32_t depth : {1u, 5u}) {
         IntegratorOptions throughput_rule, mitsuba_rule;
         throughput_rule.roulette_depth = mitsuba_rule.roulette_depth = depth;
+        throughput_rule.roulette_depth_given = mitsuba_rule.roulette_depth_given = true;
         throughput_rule.roulette_rule = RouletteRule::Throughput;
         mitsuba_rule.roulette_rule = RouletteRule::Mitsuba;
-        const Rendered a = render(scene, 256, 3, 0, throughput_rule);
-        const Rendered b = render(scene, 256, 4, 0, mitsuba_rule);
-        CHECK(a.stats.nonfinite_samples == 0);
-        CHECK(b.stats.nonfinite_samples == 0);
-        for (int c = 0; c < 3; ++c) {
-            const MeanWithError ma = image_mean(a.film, c), mb = image_mean(b.film, c);
-            INFO("roulette from " << depth << ", channel " << c << ": default " << ma.mean << " +- "
-                                  << ma.standard_error << ", Mitsuba's rule " << mb.mean << " +- "
-                                  << mb.standard_error);
-            CHECK(sigmas_apart(ma, mb) < 5.0);
-        }
-        const BlockComparison blocks = compare_blocks(a.film, b.film, 4);
-        INFO("roulette from " << depth << ": " << blocks.outside << " of " << blocks.blocks
-                              << " block means more than 5 sigma apart, the worst "
-                              << blocks.worst_where);
-        CHECK(blocks.outside == 0);
+        check_same_image(
+            render(scene, 256, 3, 0, throughput_rule), render(scene, 256, 4, 0, mitsuba_rule),
+            "roulette from " + std::to_string(depth) + ", throughput rule against Mitsuba's");
     }
+}
+
+TEST_CASE("roulette depth: the environment's later start estimates the image of roulette from "
+          "bounce 1",
+          "[render][roulette][statistical]") {
+    const Scene scene = small_showcase();
+    IntegratorOptions first_bounce;
+    first_bounce.roulette_depth = 1;
+    first_bounce.roulette_depth_given = true;
+    REQUIRE(with_scene_settings(IntegratorOptions{}, scene).roulette_depth ==
+            kEnvironmentRouletteDepth);
+    check_same_image(
+        render(scene, 256, 5, 0, IntegratorOptions{}), render(scene, 256, 6, 0, first_bounce),
+        "roulette from " + std::to_string(kEnvironmentRouletteDepth) + " against from 1");
+}
+
+TEST_CASE("roulette depth: 1, and kEnvironmentRouletteDepth in a scene lit by an envmap or a "
+          "constant emitter, unless given or a Mitsuba file's rr_depth",
+          "[render][roulette]") {
+    const std::string scenes = std::string(WAVEPATH_SOURCE_DIR) + "/scenes/";
+    const Scene showcase = load_scene(scenes + "materials/showcase.json");
+    const Scene hexroom = load_scene(scenes + "hexroom.json");
+    const IntegratorOptions automatic;
+    REQUIRE(automatic.roulette_depth == 1u);
+    REQUIRE(!automatic.roulette_depth_given);
+    CHECK(with_scene_settings(automatic, showcase).roulette_depth == kEnvironmentRouletteDepth);
+    CHECK(with_scene_settings(automatic, hexroom).roulette_depth == 1u);
+
+    // A constant emitter lights from everywhere too; a point light does not.
+    for (const auto& [kind, expected] :
+         {std::pair{EmitterKind::Constant, kEnvironmentRouletteDepth},
+          std::pair{EmitterKind::Point, 1u}}) {
+        Scene scene = hexroom;
+        Emitter emitter;
+        emitter.kind = kind;
+        scene.emitters.push_back(emitter);
+        INFO("a hexroom with an emitter of kind " << static_cast<int>(kind));
+        CHECK(with_scene_settings(automatic, scene).roulette_depth == expected);
+    }
+
+    IntegratorOptions given;
+    given.roulette_depth = 3;
+    given.roulette_depth_given = true;
+    CHECK(with_scene_settings(given, showcase).roulette_depth == 3u);
+    given.roulette_depth = 1;
+    CHECK(with_scene_settings(given, showcase).roulette_depth == 1u);
+
+    Scene file = showcase; // a Mitsuba file's rr_depth counts as given
+    file.rr_depth = 5;
+    CHECK(with_scene_settings(automatic, file).roulette_depth == 5u);
+
+    // What the kernels are built with: the prepared scene's resolved depth.
+    const PreparedScene prepared = prepare_scene(showcase, automatic);
+    CHECK(kernel_build_options(prepared.features, prepared.options)
+              .find("-D WP_ROULETTE_DEPTH=" + std::to_string(kEnvironmentRouletteDepth)) !=
+          std::string::npos);
 }
 
 TEST_CASE("roulette rule: 'auto' is Mitsuba's where a dielectric or roughdielectric refracts, "
