@@ -1,8 +1,8 @@
 /* Traversal of the bounding volume hierarchy (WP_USE_BVH): the closest hit
  * among the primitives on a ray segment.
  *
- * Depth first with a private stack over four-wide nodes: at a node all four
- * children's boxes are tested at once (float4 code, one child a lane, from
+ * Depth first with a private stack over eight-wide nodes: at a node all eight
+ * children's boxes are tested at once (float8 code, one child a lane, from
  * the bounds stored as arrays of each coordinate), the children hit are
  * pushed farthest first with their entry distances, and the nearest is
  * visited next; popped children that start beyond the closest hit found since
@@ -47,35 +47,36 @@ static inline WpBoxRay wp_box_ray(float3 origin, float3 direction) {
 }
 
 /* Narrows each lane's [*t_enter, *t_exit] to the slab lower < x < upper of
- * one axis, for the four children of a node at once. The comparisons are
+ * one axis, for the eight children of a node at once. The comparisons are
  * written so that a NaN (origin on the slab's plane, the direction parallel
  * to it) changes nothing. */
-static inline void wp_clip_slab4(float4 lower, float4 upper, float origin, float inverse,
-                                 float4* t_enter, float4* t_exit) {
-    float4 near = (lower - origin) * inverse;
-    float4 far = (upper - origin) * inverse;
-    int4 swap = near > far;
-    float4 entry = select(near, far, swap);
-    float4 leave = select(far, near, swap) * WP_BOX_EXIT_SCALE;
+static inline void wp_clip_slab8(float8 lower, float8 upper, float origin, float inverse,
+                                 float8* t_enter, float8* t_exit) {
+    float8 near = (lower - origin) * inverse;
+    float8 far = (upper - origin) * inverse;
+    int8 swap = near > far;
+    float8 entry = select(near, far, swap);
+    float8 leave = select(far, near, swap) * WP_BOX_EXIT_SCALE;
     *t_enter = select(*t_enter, entry, entry > *t_enter);
     *t_exit = select(*t_exit, leave, leave < *t_exit);
 }
 
-/* The four children of node n whose boxes the ray meets at some
+/* The eight children of node n whose boxes the ray meets at some
  * 0 <= t <= t_max (-1 in their lane, else 0; never an empty child), and where
- * it enters each. Straight-line code on float4s, one child a lane, with no
- * branch per child: four box tests for the instructions of one. */
-static inline int4 wp_hit_child_boxes(__global const WpBvhNode* n, const WpBoxRay* ray, float t_max,
-                                      float4* t_enter) {
-    float4 enter = (float4)(0.0f), exit = (float4)(t_max);
-    wp_clip_slab4(vload4(0, n->lower_x), vload4(0, n->upper_x), ray->origin.x,
+ * it enters each. Straight-line code on float8s, one child a lane, with no
+ * branch per child: eight box tests for the instructions of one (one AVX
+ * register a coordinate where the CPU has them). */
+static inline int8 wp_hit_child_boxes(__global const WpBvhNode* n, const WpBoxRay* ray, float t_max,
+                                      float8* t_enter) {
+    float8 enter = (float8)(0.0f), exit = (float8)(t_max);
+    wp_clip_slab8(vload8(0, n->lower_x), vload8(0, n->upper_x), ray->origin.x,
                   ray->inverse_direction.x, &enter, &exit);
-    wp_clip_slab4(vload4(0, n->lower_y), vload4(0, n->upper_y), ray->origin.y,
+    wp_clip_slab8(vload8(0, n->lower_y), vload8(0, n->upper_y), ray->origin.y,
                   ray->inverse_direction.y, &enter, &exit);
-    wp_clip_slab4(vload4(0, n->lower_z), vload4(0, n->upper_z), ray->origin.z,
+    wp_clip_slab8(vload8(0, n->lower_z), vload8(0, n->upper_z), ray->origin.z,
                   ray->inverse_direction.z, &enter, &exit);
     *t_enter = enter;
-    return (enter <= exit) & (vload4(0, n->count) != (uint4)(WP_BVH_EMPTY));
+    return (enter <= exit) & (vload8(0, n->count) != (uint8)(WP_BVH_EMPTY));
 }
 
 /* A child waiting on the stack: a node (count 0) or a leaf, and where the ray
@@ -90,16 +91,16 @@ typedef struct {
  * farthest first, so that the nearest is on top. */
 static inline void wp_bvh_push_children(__global const WpBvhNode* n, const WpBoxRay* box_ray,
                                         float closest, WpBvhEntry* stack, int* top) {
-    float4 enter4;
-    int4 hit4 = wp_hit_child_boxes(n, box_ray, closest, &enter4);
-    if (!any(hit4))
+    float8 enter8;
+    int8 hit8 = wp_hit_child_boxes(n, box_ray, closest, &enter8);
+    if (!any(hit8))
         return;
-    float enters[4];
-    int hits[4];
-    vstore4(enter4, 0, enters);
-    vstore4(hit4, 0, hits);
+    float enters[WP_BVH_WIDTH];
+    int hits[WP_BVH_WIDTH];
+    vstore8(enter8, 0, enters);
+    vstore8(hit8, 0, hits);
     int base = *top;
-    for (int i = 0; i < 4; ++i) {
+    for (int i = 0; i < WP_BVH_WIDTH; ++i) {
         if (!hits[i])
             continue;
         float enter = enters[i];

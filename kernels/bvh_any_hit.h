@@ -44,36 +44,39 @@
 /* Pushes the children of node n (of `nodes`, whose leaves index `triangles`
  * up to triangle_end and other primitives past it) whose boxes the ray meets
  * at 0 <= t <= t_max, in node order. Every child is written at the top and
- * kept only if hit: straight-line code, four stores (a missed child's write
+ * kept only if hit: straight-line code, eight stores (a missed child's write
  * lands one past the top, which the stack has room for). Then each kept
- * child's first lines are prefetched: a node's two, or a leaf's first three
+ * child's first lines are prefetched: a node's four, or a leaf's first three
  * (its first four triangles); a leaf of other primitives is left alone. */
 static inline void wp_bvh_push_hit_children(__global const WpBvhNode* nodes,
                                             __global const WpTriangle* triangles,
                                             wp_uint triangle_end, __global const WpBvhNode* n,
                                             const WpBoxRay* ray, float t_max, wp_uint* children,
                                             wp_uint* counts, int* top) {
-    float4 enter;
-    int4 hit = wp_hit_child_boxes(n, ray, t_max, &enter);
+    float8 enter;
+    int8 hit = wp_hit_child_boxes(n, ray, t_max, &enter);
     int first = *top, at = first;
-    children[at] = n->child[0];
-    counts[at] = n->count[0];
-    at -= hit.s0;
-    children[at] = n->child[1];
-    counts[at] = n->count[1];
-    at -= hit.s1;
-    children[at] = n->child[2];
-    counts[at] = n->count[2];
-    at -= hit.s2;
-    children[at] = n->child[3];
-    counts[at] = n->count[3];
-    at -= hit.s3;
+#define WP_PUSH_IF_HIT(i, lane)                                                                    \
+    children[at] = n->child[i];                                                                    \
+    counts[at] = n->count[i];                                                                      \
+    at -= hit.lane;
+    WP_PUSH_IF_HIT(0, s0)
+    WP_PUSH_IF_HIT(1, s1)
+    WP_PUSH_IF_HIT(2, s2)
+    WP_PUSH_IF_HIT(3, s3)
+    WP_PUSH_IF_HIT(4, s4)
+    WP_PUSH_IF_HIT(5, s5)
+    WP_PUSH_IF_HIT(6, s6)
+    WP_PUSH_IF_HIT(7, s7)
+#undef WP_PUSH_IF_HIT
     *top = at;
     for (int i = first; i < at; ++i) {
         if (counts[i] == 0u) {
             __global const char* node = (__global const char*)&nodes[children[i]];
             WP_PREFETCH_LINE(node);
             WP_PREFETCH_LINE(node + 64);
+            WP_PREFETCH_LINE(node + 128);
+            WP_PREFETCH_LINE(node + 192);
         } else if (children[i] + counts[i] <= triangle_end) {
             __global const char* leaf = (__global const char*)&triangles[children[i]];
             WP_PREFETCH_LINE(leaf);

@@ -380,21 +380,22 @@ typedef struct {
     wp_uint pad0, pad1;
 } WpMirrorGroup;
 
-/* A node of the bounding volume hierarchy, four children wide: the
- * builder's binary tree (src/scene/bvh.hpp) collapsed two levels into one
- * (src/render/device_scene.cpp), 128 bytes of scalars. Child i's box is
- * lower_x[i] .. upper_x[i] and so on (an array per coordinate, so the four box
- * tests are independent scalar code), and count[i] says what it is: 0, the
+/* A node of the bounding volume hierarchy, eight children wide: the
+ * builder's binary tree (src/scene/bvh.hpp) collapsed by surface area
+ * (src/render/wide_bvh.cpp), 256 bytes of scalars. Child i's box is
+ * lower_x[i] .. upper_x[i] and so on (an array per coordinate, so the eight box
+ * tests are one float8 test), and count[i] says what it is: 0, the
  * node bvh_nodes[child[i]]; n > 0, a leaf of the primitives child[i] ..
  * child[i] + n - 1 (all triangles or all spheres: primitives are stored in
  * leaf order); WP_BVH_EMPTY, no child. nodes[0] is the root. Every box holds
  * the primitives below it with room for the intersection tests' rounding. */
+#define WP_BVH_WIDTH 8
 typedef struct {
-    wp_float lower_x[4], upper_x[4];
-    wp_float lower_y[4], upper_y[4];
-    wp_float lower_z[4], upper_z[4];
-    wp_uint child[4];
-    wp_uint count[4];
+    wp_float lower_x[WP_BVH_WIDTH], upper_x[WP_BVH_WIDTH];
+    wp_float lower_y[WP_BVH_WIDTH], upper_y[WP_BVH_WIDTH];
+    wp_float lower_z[WP_BVH_WIDTH], upper_z[WP_BVH_WIDTH];
+    wp_uint child[WP_BVH_WIDTH];
+    wp_uint count[WP_BVH_WIDTH];
 } WpBvhNode;
 
 #define WP_BVH_EMPTY 0xffffffffu
@@ -421,12 +422,13 @@ typedef struct {
     wp_uint mirrored;
 } WpInstance;
 
-/* The traversal stack's entries (kernels/bvh.h); the host checks that no
- * path through the hierarchy needs more. */
-#define WP_BVH_STACK_SIZE 64
+/* The traversal stack's entries (kernels/bvh.h); the host computes the most
+ * that any path through a hierarchy pushes and refuses one that needs more
+ * (src/render/wide_bvh.cpp). An eight-wide node leaves up to seven children
+ * on the stack when the walk goes down to its eighth. */
+#define WP_BVH_STACK_SIZE 128
 
-/* The deepest leaf of the binary tree the host builds: collapsed two levels a
- * node, its deepest path pushes at most 3 x 20 + 4 = 64 entries. */
+/* The deepest leaf of the binary tree the host builds. */
 #define WP_BVH_MAX_DEPTH 41u
 
 /* The pixel reconstruction filters, one row each: X(KIND, Name, name, value,

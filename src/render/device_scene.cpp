@@ -16,6 +16,7 @@
 #include "render/float_range.hpp"
 #include "render/planar_mirrors.hpp"
 #include "render/shadow_occluders.hpp"
+#include "render/wide_bvh.hpp"
 #include "scene/instancing.hpp"
 #include "scene/material.hpp"
 #include "scene/scene_box.hpp"
@@ -87,14 +88,6 @@ Bounds3f widened(const Bounds3f& b) {
     return out;
 }
 
-// A node of the binary tree as the device needs it: `offset` is an inner
-// node's second child (its first follows it) or a leaf's first primitive.
-struct BinaryNode {
-    Bounds3f bounds;
-    wp_uint offset = 0;
-    wp_uint count = 0; // 0 for an inner node
-};
-
 // The builder's tree with primitive numbers in leaf order (DeviceScene's
 // triangles, spheres and instances are permuted so that each leaf's are
 // contiguous), so that a leaf names a range of primitive numbers and needs no
@@ -165,76 +158,11 @@ class BinaryWriter {
     std::vector<BinaryNode>& out_;
 };
 
-// The binary tree collapsed into four-wide nodes (WpBvhNode): a node's
-// children are its binary node's children, each inner one replaced by its own
-// two children, so every four-wide level is two binary levels. Returns the
-// most stack entries the kernel's traversal (kernels/bvh.h) can hold below
-// `binary`'s node: it pushes the children it hits and pops the nearest.
-class WideWriter {
-  public:
-    WideWriter(const std::vector<BinaryNode>& binary, DeviceArray<WpBvhNode>& out)
-        : binary_(binary), out_(out) {}
-
-    std::uint32_t write(std::uint32_t binary) {
-        std::uint32_t slots[4];
-        int used = 0;
-        auto add_grandchildren = [&](std::uint32_t b) {
-            if (binary_[b].count > 0) {
-                slots[used++] = b;
-                return;
-            }
-            slots[used++] = b + 1;
-            slots[used++] = binary_[b].offset;
-        };
-        if (binary_[binary].count > 0) {
-            slots[used++] = binary; // a root that is a leaf
-        } else {
-            add_grandchildren(binary + 1);
-            add_grandchildren(binary_[binary].offset);
-        }
-        const std::size_t at = out_.size();
-        out_.emplace_back();
-        std::uint32_t deepest = 0;
-        for (int i = 0; i < 4; ++i) {
-            WpBvhNode& n = out_[at];
-            if (i >= used) {
-                n.lower_x[i] = n.lower_y[i] = n.lower_z[i] = 0.0f;
-                n.upper_x[i] = n.upper_y[i] = n.upper_z[i] = 0.0f;
-                n.child[i] = 0;
-                n.count[i] = WP_BVH_EMPTY;
-                continue;
-            }
-            const BinaryNode& c = binary_[slots[i]];
-            n.lower_x[i] = c.bounds.lower.x;
-            n.lower_y[i] = c.bounds.lower.y;
-            n.lower_z[i] = c.bounds.lower.z;
-            n.upper_x[i] = c.bounds.upper.x;
-            n.upper_y[i] = c.bounds.upper.y;
-            n.upper_z[i] = c.bounds.upper.z;
-            n.count[i] = c.count;
-            if (c.count > 0) {
-                n.child[i] = c.offset;
-            } else {
-                const auto child = static_cast<wp_uint>(out_.size());
-                deepest = std::max(deepest, write(slots[i]));
-                out_[at].child[i] = child; // out_ may have moved
-            }
-        }
-        // This node's entries, then the nearest popped and its own on top.
-        return std::max<std::uint32_t>(static_cast<std::uint32_t>(used),
-                                       deepest > 0 ? used - 1 + deepest : 0);
-    }
-
-  private:
-    const std::vector<BinaryNode>& binary_;
-    DeviceArray<WpBvhNode>& out_;
-};
-
 // The build options of every hierarchy: the top level's and the groups'.
 BvhBuildOptions hierarchy_options(std::uint32_t split_levels) {
     BvhBuildOptions options;
     options.max_depth = WP_BVH_MAX_DEPTH - split_levels; // mixed leaves' splits add levels
-    // A four-wide node tests four boxes at once: SAH weighs its visit as two
+    // A wide node tests its boxes at once: SAH weighs its visit as two
     // triangle tests, which makes fewer, fuller leaves (docs/performance.md:
     // measured smaller and no slower than the default 1).
     options.traversal_cost = 2.0;
@@ -242,7 +170,7 @@ BvhBuildOptions hierarchy_options(std::uint32_t split_levels) {
     return options;
 }
 
-// The binary tree of `bvh` as four-wide nodes appended to `nodes`; throws if
+// The binary tree of `bvh` as eight-wide nodes appended to `nodes`; throws if
 // a path through it would overflow the traversal stack. `boxes` are the
 // builder's, needed only where a leaf mixes kinds: empty for a hierarchy of
 // one kind.
@@ -252,8 +180,8 @@ void write_wide(const Bvh& bvh, const std::vector<Bounds3f>& boxes,
     std::vector<BinaryNode> binary;
     binary.reserve(bvh.nodes.size());
     BinaryWriter(bvh, boxes, new_number, triangle_count, plain_count, binary).write(0);
-    nodes.reserve(nodes.size() + bvh.nodes.size() / 3 + 1);
-    if (WideWriter(binary, nodes).write(0) > WP_BVH_STACK_SIZE)
+    nodes.reserve(nodes.size() + bvh.nodes.size() / 7 + 1);
+    if (write_wide_nodes(binary, nodes) > WP_BVH_STACK_SIZE)
         throw std::logic_error("BVH too deep for the traversal stack");
 }
 
