@@ -422,11 +422,14 @@ typedef struct {
     wp_uint mirrored;
 } WpInstance;
 
-/* The traversal stack's entries (kernels/bvh.h); the host computes the most
- * that any path through a hierarchy pushes and refuses one that needs more
- * (src/render/wide_bvh.cpp). An eight-wide node leaves up to seven children
- * on the stack when the walk goes down to its eighth. */
-#define WP_BVH_STACK_SIZE 128
+/* The traversal stack's entries (kernels/bvh.h). An eight-wide node leaves
+ * up to seven children on the stack when the walk goes down to its eighth;
+ * the host's collapse keeps nodes narrower where a path would need more than
+ * this (src/render/wide_bvh.cpp), which the binary tree's depth cap below
+ * always allows. 64 entries: the private memory GPUs give each work-item is
+ * small, and 64 measured as fast as 128 on PoCL (docs/performance.md,
+ * "Eight-wide nodes"). */
+#define WP_BVH_STACK_SIZE 64
 
 /* The deepest leaf of the binary tree the host builds. */
 #define WP_BVH_MAX_DEPTH 41u

@@ -171,9 +171,9 @@ BvhBuildOptions hierarchy_options(std::uint32_t split_levels) {
 }
 
 // The binary tree of `bvh` as eight-wide nodes appended to `nodes`; throws if
-// a path through it would overflow the traversal stack. `boxes` are the
-// builder's, needed only where a leaf mixes kinds: empty for a hierarchy of
-// one kind.
+// the collapse broke its promise to keep every path within the traversal
+// stack (wide_bvh.cpp). `boxes` are the builder's, needed only where a leaf
+// mixes kinds: empty for a hierarchy of one kind.
 void write_wide(const Bvh& bvh, const std::vector<Bounds3f>& boxes,
                 const std::vector<wp_uint>& new_number, wp_uint triangle_count, wp_uint plain_count,
                 DeviceArray<WpBvhNode>& nodes) {

@@ -3,11 +3,12 @@
 // primitives. Every primitive is reachable exactly once, every box holds what
 // is below it, no node is wider than eight, a node has room left only when
 // every child is a leaf (the greedy collapse opens inner children while it
-// can), and the stack bound the writer reports is what a walk that hits
-// every box really pushes.
+// can) or the stack needs it narrow, and the stack bound the writer reports is what a walk that
+// hits every box really pushes.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <random>
 #include <vector>
@@ -62,6 +63,7 @@ struct Walk {
     std::uint32_t most_pushed = 0; // the stack's high-water mark, every box hit
     std::uint32_t worst = 0;       // the most any order of visits can push
     std::uint32_t nodes_seen = 0;
+    std::uint32_t narrowed = 0; // nodes with room and an inner child: kept narrow for the stack
 };
 
 // Depth first as the kernels walk, every child hit: push a node's children,
@@ -107,8 +109,8 @@ void walk(const DeviceArray<WpBvhNode>& nodes, std::uint32_t triangle_count, Wal
                 std::reverse(stack.begin() + static_cast<std::ptrdiff_t>(below), stack.end());
             REQUIRE(used <= WP_BVH_WIDTH);
             REQUIRE(used >= (root ? 1 : 2));
-            if (used < WP_BVH_WIDTH)
-                REQUIRE(leaves == used); // room left: nothing more to open
+            if (used < WP_BVH_WIDTH && leaves < used)
+                ++w.narrowed; // room left, yet an inner child not opened
             root = false;
             w.most_pushed = std::max(w.most_pushed, static_cast<std::uint32_t>(stack.size()));
         } else {
@@ -149,6 +151,7 @@ TEST_CASE("bvh collapse: eight-wide nodes reach every primitive once, boxes nest
                     std::all_of(w.reached.begin(), w.reached.end(), [](int r) { return r == 1; }));
                 CHECK(w.most_pushed <= w.worst);
                 CHECK(w.worst <= WP_BVH_STACK_SIZE);
+                CHECK(w.narrowed == 0); // these trees are far from the stack's limit
             }
         }
     }
@@ -219,4 +222,81 @@ TEST_CASE("bvh collapse: the widest inner child is opened first; the stack bound
         CHECK(w.worst == bound);
     }
     CHECK(bound == 19);
+}
+
+TEST_CASE("bvh collapse: a lopsided tree is kept within the stack by narrower nodes", "[bvh]") {
+    // A spine of `levels` inner nodes; beside each, a complete subtree of
+    // eight unit-like leaves so large that the greedy collapse opens it before
+    // the spine. Collapsed without regard to the stack, every wide node would
+    // hold seven of those leaves and the spine's next node, so a walk down
+    // the spine could leave 7 a level waiting: 7 x 16 = 112 entries, past
+    // WP_BVH_STACK_SIZE.
+    constexpr int levels = 16;
+    std::vector<BinaryNode> binary;
+    std::uint32_t next_primitive = 0;
+    auto leaf = [&](glm::vec3 lower, glm::vec3 upper) {
+        const auto at = static_cast<std::uint32_t>(binary.size());
+        binary.emplace_back();
+        binary[at].bounds.extend(lower);
+        binary[at].bounds.extend(upper);
+        binary[at].offset = next_primitive++;
+        binary[at].count = 1;
+        return at;
+    };
+    // Inner node over the children made by first() and second().
+    auto inner = [&](auto first, auto second) {
+        const auto at = static_cast<std::uint32_t>(binary.size());
+        binary.emplace_back();
+        const std::uint32_t a = first();
+        const std::uint32_t b = second();
+        REQUIRE(a == at + 1);
+        binary[at].bounds = binary[a].bounds;
+        binary[at].bounds.extend(binary[b].bounds);
+        binary[at].offset = b;
+        return at;
+    };
+    // Leaves first .. first + count - 1 of a side subtree of scale s: boxes of
+    // side s at x = 2 s (j + 1).
+    auto side = [&](auto& self, float s, int first, int count) -> std::uint32_t {
+        if (count == 1)
+            return leaf({2 * s * float(first + 1), 0, 0}, {2 * s * float(first + 1) + s, s, s});
+        const int half = count / 2;
+        return inner([&] { return self(self, s, first, half); },
+                     [&] { return self(self, s, first + half, count - half); });
+    };
+    // The spine below level i: level i's side subtree (scale 10^(levels - i))
+    // is larger than everything deeper (at most 17 x 10^(levels - i - 1) long).
+    auto spine = [&](auto& self, int i) -> std::uint32_t {
+        if (i == levels)
+            return leaf({0, 0, 0}, {1, 1, 1});
+        const float s = std::pow(10.0f, float(levels - i));
+        return inner([&] { return side(side, s, 0, 8); }, [&] { return self(self, i + 1); });
+    };
+    REQUIRE(spine(spine, 0) == 0);
+
+    DeviceArray<WpBvhNode> nodes;
+    const std::uint32_t bound = write_wide_nodes(binary, nodes);
+    CHECK(bound <= WP_BVH_STACK_SIZE);
+    // At the top, where the stack has room, the collapse is the plain greedy
+    // one: six of the side subtree's leaves, its last pair and the spine.
+    const WpBvhNode& root = nodes[0];
+    int root_leaves = 0;
+    for (int i = 0; i < WP_BVH_WIDTH; ++i)
+        root_leaves += root.count[i] != WP_BVH_EMPTY && root.count[i] > 0;
+    CHECK(root.count[WP_BVH_WIDTH - 1] != WP_BVH_EMPTY); // full
+    CHECK(root_leaves == 6);
+
+    std::vector<Bounds3f> boxes(next_primitive);
+    for (const BinaryNode& b : binary)
+        if (b.count > 0)
+            boxes[b.offset] = b.bounds;
+    for (bool first_child_first : {false, true}) {
+        Walk w;
+        w.reached.assign(next_primitive, 0);
+        walk(nodes, next_primitive, w, boxes, first_child_first);
+        CHECK(std::all_of(w.reached.begin(), w.reached.end(), [](int r) { return r == 1; }));
+        CHECK(w.nodes_seen == nodes.size());
+        CHECK(w.worst == bound);
+        CHECK(w.narrowed > 0); // deeper down the stack did bind
+    }
 }
