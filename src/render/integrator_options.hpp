@@ -36,6 +36,9 @@ enum class RouletteRule {
     Throughput, // min(1, max(throughput))
     Mitsuba,    // Mitsuba 3's: min(0.95, max(throughput) eta^2), eta^2 the squared
                 // relative indices of refraction the path crossed
+    Sqrt,       // Blender Cycles': min(1, sqrt(max(throughput))): gentler on paths
+                // whose throughput has fallen, which carry a dark pixel's light
+    Relative,   // min(1, max(throughput) / max(throughput after the first bounce))
 };
 
 // How a light sample and a BSDF sample that could find the same light are
