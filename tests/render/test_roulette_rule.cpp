@@ -76,8 +76,8 @@ TEST_CASE("roulette rule: Cycles' rule and the relative rule estimate the throug
         for (const RouletteRule rule : {RouletteRule::Sqrt, RouletteRule::Relative}) {
             IntegratorOptions other;
             other.roulette_rule = rule;
-            check_same_image(render(scene, 512, 7, 0, throughput_rule),
-                             render(scene, 512, 8, 0, other),
+            check_same_image(render(scene, 256, 7, 0, throughput_rule),
+                             render(scene, 256, 8, 0, other),
                              name + ": the throughput rule against " + to_string(rule));
         }
     }
