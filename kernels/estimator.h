@@ -87,9 +87,22 @@
  *     generated). A refraction into glass divides the radiance a path carries
  *     by eta^2 (bsdf/dielectric.h); this rule does not count that against
  *     the path's chance to go on, and the cap ends even bright paths now and
- *     then. Only this rule compiles the eta^2 bookkeeping (shade.cl). */
+ *     then. Only this rule compiles the eta^2 bookkeeping (shade.cl).
+ *   WP_ROULETTE_SQRT (2): Blender Cycles', min(1, sqrt(max(throughput))).
+ *     A path whose throughput has fallen to t survives with sqrt(t) > t and
+ *     carries sqrt(t) on: roulette ends it later, and its survivors' weights
+ *     stay nearer 1.
+ *   WP_ROULETTE_RELATIVE (3): min(1, max(throughput) / max(throughput after
+ *     the first bounce)), carried in throughput.w. A pixel's value scales
+ *     with its first surface's reflectance as its paths' throughputs do, so
+ *     relative to the pixel a path has lost nothing at its first bounce: the
+ *     roulette weighs what later bounces take (a green wall's first bounce
+ *     keeps 0.45 of the throughput, and under the throughput rule ended 55 %
+ *     of its paths there, whatever its pixel's indirect light). */
 #define WP_ROULETTE_THROUGHPUT 0
 #define WP_ROULETTE_MITSUBA 1
+#define WP_ROULETTE_SQRT 2
+#define WP_ROULETTE_RELATIVE 3
 #ifndef WP_ROULETTE_RULE
 #define WP_ROULETTE_RULE WP_ROULETTE_THROUGHPUT
 #endif

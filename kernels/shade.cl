@@ -29,7 +29,9 @@
  *     from bounce WP_ROULETTE_DEPTH on (estimator.h), before it always survive.
  *     With WP_ROULETTE_RULE == WP_ROULETTE_MITSUBA the probability is
  *     Mitsuba 3's, min(0.95, max(throughput) eta^2), eta^2 carried in
- *     throughput.w.
+ *     throughput.w; with WP_ROULETTE_SQRT Cycles', min(1, sqrt(max(throughput)));
+ *     with WP_ROULETTE_RELATIVE the throughput over the first bounce's, which
+ *     throughput.w carries instead.
  *     Past frame.max_depth bounces a path is cut and counted; the cap is a
  *     guard against endless mirror corridors, not part of the estimator.
  *     With WP_PATH_LENGTH (Mitsuba's max_depth, estimator.h) it is part of
@@ -179,8 +181,12 @@ static inline int wp_shade_roulette(const WpMaterial* material, const WpBsdfSamp
     *beta *= scattered->weight;
 #if WP_ROULETTE_RULE == WP_ROULETTE_MITSUBA
     *eta_squared *= scattered->eta * scattered->eta;
-#else
+#elif WP_ROULETTE_RULE != WP_ROULETTE_RELATIVE
     (void)eta_squared;
+#endif
+#if WP_ROULETTE_RULE == WP_ROULETTE_RELATIVE
+    if (random->depth == 0u) /* the first bounce's throughput: what the rest is relative to */
+        *eta_squared = wp_max_component(*beta);
 #endif
     if (random->depth + 1u < WP_ROULETTE_DEPTH) { /* every path survives its first bounces */
         *survival = 1.0f;
@@ -188,6 +194,11 @@ static inline int wp_shade_roulette(const WpMaterial* material, const WpBsdfSamp
     }
 #if WP_ROULETTE_RULE == WP_ROULETTE_MITSUBA
     *survival = fmin(0.95f, wp_max_component(*beta) * *eta_squared);
+#elif WP_ROULETTE_RULE == WP_ROULETTE_SQRT
+    *survival = fmin(1.0f, sqrt(wp_max_component(*beta)));
+#elif WP_ROULETTE_RULE == WP_ROULETTE_RELATIVE
+    /* 0 where the first bounce carried nothing on (then neither does beta) */
+    *survival = *eta_squared > 0.0f ? fmin(1.0f, wp_max_component(*beta) / *eta_squared) : 0.0f;
 #else
     *survival = fmin(1.0f, wp_max_component(*beta));
 #endif

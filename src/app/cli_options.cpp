@@ -122,11 +122,14 @@ void add_integrator_options(CLI::App& command, IntegratorOptions& options) {
         ->check(CLI::Range(1u, cli_limits::max_depth))
         ->each([&options](const std::string&) { options.roulette_depth_given = true; });
     add_choice(command, "--roulette", options.roulette_rule,
-               {RouletteRule::Auto, RouletteRule::Throughput, RouletteRule::Mitsuba},
+               {RouletteRule::Auto, RouletteRule::Throughput, RouletteRule::Mitsuba,
+                RouletteRule::Sqrt, RouletteRule::Relative},
                "Russian roulette's survival probability: 'throughput' (min(1, max(throughput))), "
                "'mitsuba' (Mitsuba 3's min(0.95, max(throughput) eta^2), eta^2 the squared "
-               "indices of refraction the path crossed), or 'auto': Mitsuba's where the scene "
-               "has a dielectric or roughdielectric, throughput elsewhere (docs/performance.md, "
+               "indices of refraction the path crossed), 'sqrt' (Blender Cycles' min(1, "
+               "sqrt(max(throughput)))), 'relative' (min(1, max(throughput) / max(throughput "
+               "after the first bounce))), or 'auto': Mitsuba's where the scene has a "
+               "dielectric or roughdielectric, throughput elsewhere (docs/performance.md, "
                "\"Shading and roulette\")");
     command
         .add_option_function<std::string>(

@@ -34,6 +34,10 @@ std::string to_string(RouletteRule rule) {
         return "throughput";
     case RouletteRule::Mitsuba:
         return "mitsuba";
+    case RouletteRule::Sqrt:
+        return "sqrt";
+    case RouletteRule::Relative:
+        return "relative";
     }
     return "?";
 }
@@ -192,7 +196,9 @@ std::string describe_estimator(const IntegratorOptions& options) {
         text += "+mis-" + to_string(options.mis);
     if (options.roulette_depth != IntegratorOptions{}.roulette_depth)
         text += "+roulette-from-" + std::to_string(options.roulette_depth);
-    if (options.roulette_rule == RouletteRule::Mitsuba)
+    if (options.roulette_rule == RouletteRule::Mitsuba ||
+        options.roulette_rule == RouletteRule::Sqrt ||
+        options.roulette_rule == RouletteRule::Relative)
         text += "+roulette-" + to_string(options.roulette_rule);
     if (options.path_types != kAllPathTypes)
         text += "+paths=" + describe_path_types(options.path_types);

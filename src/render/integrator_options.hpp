@@ -36,6 +36,9 @@ enum class RouletteRule {
     Throughput, // min(1, max(throughput))
     Mitsuba,    // Mitsuba 3's: min(0.95, max(throughput) eta^2), eta^2 the squared
                 // relative indices of refraction the path crossed
+    Sqrt,       // Blender Cycles': min(1, sqrt(max(throughput))): gentler on paths
+                // whose throughput has fallen, which carry a dark pixel's light
+    Relative,   // min(1, max(throughput) / max(throughput after the first bounce))
 };
 
 // How a light sample and a BSDF sample that could find the same light are
@@ -146,8 +149,9 @@ struct IntegratorOptions {
     // by an environment starts it at kEnvironmentRouletteDepth instead
     // (with_scene_settings).
     std::uint32_t roulette_depth = 1;
-    // How the roulette weighs a path (--roulette). Mitsuba's rule compiles
-    // the kernels with WP_ROULETTE_RULE=1; the throughput rule adds no option.
+    // How the roulette weighs a path (--roulette). Mitsuba's, Cycles' and the
+    // relative rule compile the kernels with WP_ROULETTE_RULE=1, 2 and 3; the
+    // throughput rule adds no option.
     RouletteRule roulette_rule = RouletteRule::Auto;
     // The path types whose light the render adds, a set of 1 << WP_PATH_TYPE_*
     // (kernels/path_type.h). Anything but all of them compiles the kernels

@@ -626,6 +626,10 @@ std::string kernel_build_options(const SceneFeatures& features, const Integrator
     text += " -D WP_ROULETTE_DEPTH=" + std::to_string(options.roulette_depth);
     if (options.roulette_rule == RouletteRule::Mitsuba) // only then: the default builds as it was
         text += " -D WP_ROULETTE_RULE=1";
+    else if (options.roulette_rule == RouletteRule::Sqrt)
+        text += " -D WP_ROULETTE_RULE=2";
+    else if (options.roulette_rule == RouletteRule::Relative)
+        text += " -D WP_ROULETTE_RULE=3";
     if (options.mis == MisStrategy::LightOnly) // only then: the default builds are as they were
         text += " -D WP_MIS_STRATEGY=1";
     if (options.path_types != kAllPathTypes) // only then is anything tracked (path_type.h)

@@ -4,7 +4,9 @@
 // of the smooth dielectric's Fresnel choice and of the weights. Glass entered
 // from outside and left from inside (some of those by total internal
 // reflection), and diffuse floors, one of them bright enough to meet Mitsuba's
-// 0.95 cap; below and from the roulette depth on.
+// 0.95 cap; below and from the roulette depth on. The same slots under
+// Cycles' rule (sqrt of the throughput) and the relative rule (the throughput
+// over the first bounce's, carried in throughput.w).
 #include "render/device_scene.hpp"
 #include "rng.h"
 #include "support/kernel_test_util.hpp"
@@ -93,7 +95,11 @@ struct Expected {
     double eta_squared = 1.0, survival = 1.0;
 };
 
-Expected model(const PathIn& p, bool mitsuba, cl_uint roulette_depth) {
+// The rules, numbered as WP_ROULETTE_RULE (kernels/estimator.h).
+enum Rule { kThroughput = 0, kMitsuba = 1, kSqrt = 2, kRelative = 3 };
+
+Expected model(const PathIn& p, Rule rule, cl_uint roulette_depth) {
+    const bool mitsuba = rule == kMitsuba;
     Expected e;
     D3 weight;
     double eta_step = 1.0;
@@ -114,9 +120,13 @@ Expected model(const PathIn& p, bool mitsuba, cl_uint roulette_depth) {
     }
     const D3 beta = p.beta * weight;
     e.eta_squared = mitsuba ? p.eta_squared * eta_step * eta_step : p.eta_squared;
+    if (rule == kRelative && p.depth == 0) // the first bounce's throughput
+        e.eta_squared = max_of(beta);
     if (p.depth + 1 >= roulette_depth)
-        e.survival =
-            mitsuba ? std::min(0.95, max_of(beta) * e.eta_squared) : std::min(1.0, max_of(beta));
+        e.survival = rule == kMitsuba    ? std::min(0.95, max_of(beta) * e.eta_squared)
+                     : rule == kSqrt     ? std::min(1.0, std::sqrt(max_of(beta)))
+                     : rule == kRelative ? std::min(1.0, max_of(beta) / e.eta_squared)
+                                         : std::min(1.0, max_of(beta));
     const double u = random(p.pixel, p.sample, p.depth, WP_DIM_ROULETTE);
     e.tie = e.tie || std::fabs(u - e.survival) < 1e-5;
     e.survives = u < e.survival;
@@ -177,10 +187,10 @@ std::vector<PathIn> roulette_paths() {
 // slot against the model and returns how many went on, ended, were
 // transmitted, and were capped by 0.95 (for the coverage checks).
 struct Seen {
-    int survived = 0, ended = 0, transmitted = 0, reflected = 0, capped = 0;
+    int survived = 0, ended = 0, transmitted = 0, reflected = 0, capped = 0, below_one = 0;
 };
 
-Seen check_shade(const std::vector<PathIn>& paths, const std::string& options, bool mitsuba,
+Seen check_shade(const std::vector<PathIn>& paths, const std::string& options, Rule rule,
                  cl_uint roulette_depth) {
     const wp::DeviceScene flat = wp::flatten_scene(roulette_scene());
     const std::size_t n = paths.size();
@@ -238,7 +248,7 @@ Seen check_shade(const std::vector<PathIn>& paths, const std::string& options, b
     Seen seen;
     for (std::size_t i = 0; i < n; ++i) {
         const PathIn& p = paths[i];
-        const Expected e = model(p, mitsuba, roulette_depth);
+        const Expected e = model(p, rule, roulette_depth);
         if (e.tie)
             continue;
         INFO("slot " << i << ", primitive " << p.primitive << ", depth " << p.depth << ", survival "
@@ -250,6 +260,7 @@ Seen check_shade(const std::vector<PathIn>& paths, const std::string& options, b
         }
         ++seen.survived;
         seen.capped += e.survival == 0.95 ? 1 : 0;
+        seen.below_one += e.survival < 1.0 ? 1 : 0;
         const D3 got = from_float4(out_throughput[i]);
         CHECK(max_abs(got - e.throughput) <= 1e-5 * max_of(e.throughput));
         CHECK(std::fabs(out_throughput[i].s[3] - e.eta_squared) <= 1e-6 * e.eta_squared);
@@ -273,7 +284,8 @@ TEST_CASE("roulette: Mitsuba's rule, min(0.95, max(throughput) eta^2), with eta^
           "through the glass, against a host model",
           "[cl][shade][roulette]") {
     const std::vector<PathIn> paths = roulette_paths();
-    const Seen seen = check_shade(paths, "-D WP_ROULETTE_RULE=1 -D WP_ROULETTE_DEPTH=2", true, 2);
+    const Seen seen =
+        check_shade(paths, "-D WP_ROULETTE_RULE=1 -D WP_ROULETTE_DEPTH=2", kMitsuba, 2);
     // Every case the model separates was met.
     CHECK(seen.survived > 0);
     CHECK(seen.ended > 0);
@@ -285,9 +297,31 @@ TEST_CASE("roulette: Mitsuba's rule, min(0.95, max(throughput) eta^2), with eta^
 TEST_CASE("roulette: the default rule, min(1, max(throughput)), leaves throughput.w as it was",
           "[cl][shade][roulette]") {
     const std::vector<PathIn> paths = roulette_paths();
-    const Seen seen = check_shade(paths, "", false, 1);
+    const Seen seen = check_shade(paths, "", kThroughput, 1);
     CHECK(seen.survived > 0);
     CHECK(seen.ended > 0);
     CHECK(seen.transmitted > 0);
     CHECK(seen.reflected > 0);
+}
+
+TEST_CASE("roulette: Cycles' rule, min(1, sqrt(max(throughput))), against a host model",
+          "[cl][shade][roulette]") {
+    const std::vector<PathIn> paths = roulette_paths();
+    const Seen seen = check_shade(paths, "-D WP_ROULETTE_RULE=2", kSqrt, 1);
+    CHECK(seen.survived > 0);
+    CHECK(seen.ended > 0);
+    CHECK(seen.below_one > 0);
+}
+
+TEST_CASE("roulette: the relative rule, the throughput over the first bounce's, carried in "
+          "throughput.w, against a host model",
+          "[cl][shade][roulette]") {
+    const std::vector<PathIn> paths = roulette_paths();
+    // From bounce 1 the first bounce always goes on (the ratio is 1); from
+    // bounce 3 on it is the later bounces' share that decides.
+    const Seen seen = check_shade(paths, "-D WP_ROULETTE_RULE=3", kRelative, 1);
+    CHECK(seen.survived > 0);
+    CHECK(seen.ended > 0);
+    CHECK(seen.below_one > 0);
+    CHECK(seen.transmitted > 0);
 }

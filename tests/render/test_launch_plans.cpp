@@ -113,6 +113,9 @@ std::vector<Variant> variants() {
     o.roulette_rule = RouletteRule::Mitsuba;
     o.roulette_depth = 2;
     out.push_back({"Mitsuba's roulette rule from bounce 2", o});
+    o = {};
+    o.roulette_rule = RouletteRule::Relative; // carries the first bounce's throughput in .w
+    out.push_back({"the relative roulette rule", o});
     return out;
 }
 

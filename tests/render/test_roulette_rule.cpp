@@ -62,6 +62,27 @@ TEST_CASE("roulette rule: Mitsuba's rule and the default estimate the same image
     }
 }
 
+TEST_CASE("roulette rule: Cycles' rule and the relative rule estimate the throughput rule's image",
+          "[render][roulette][statistical]") {
+    // The Cornell box (coloured walls: the relative rule's first bounce
+    // keeps 0.45 to 0.73 of the throughput) and the hexroom (mirrors), small.
+    const std::string scenes = std::string(WAVEPATH_SOURCE_DIR) + "/scenes/";
+    for (const std::string name : {"cornell-box.json", "hexroom.json"}) {
+        Scene scene = load_scene(scenes + name);
+        scene.camera.width = 16;
+        scene.camera.height = 16;
+        IntegratorOptions throughput_rule;
+        throughput_rule.roulette_rule = RouletteRule::Throughput;
+        for (const RouletteRule rule : {RouletteRule::Sqrt, RouletteRule::Relative}) {
+            IntegratorOptions other;
+            other.roulette_rule = rule;
+            check_same_image(render(scene, 256, 7, 0, throughput_rule),
+                             render(scene, 256, 8, 0, other),
+                             name + ": the throughput rule against " + to_string(rule));
+        }
+    }
+}
+
 TEST_CASE("roulette depth: the environment's later start estimates the image of roulette from "
           "bounce 1",
           "[render][roulette][statistical]") {
