@@ -62,11 +62,18 @@ static inline int wp_bsdf_transmits(const WpMaterial* m) {
 }
 
 #define WP_BSDF_SAMPLE_ROW(KIND, Name, name, value, bsdf, glossy)                                  \
-    WP_BSDF_TRY_WRITE(KIND, name, bsdf, sample(m, wo, p, u1, u2, s))
+    WP_BSDF_TRY_WRITE(KIND, name, bsdf, sample(m, wo, p, u1, u2, u_lobe, s))
 static inline void wp_bsdf_sample(const WpMaterial* m, float3 wo, const WpShadingPoint* p, float u1,
-                                  float u2, WpBsdfSample* s) {
+                                  float u2, float u_lobe, WpBsdfSample* s) {
     WP_MATERIALS(WP_BSDF_SAMPLE_ROW)
-    wp_diffuse_sample(m, wo, p, u1, u2, s);
+    wp_diffuse_sample(m, wo, p, u1, u2, u_lobe, s);
+}
+
+/* 1 for a kind whose sample reads its third number, u_lobe (only
+ * roughdielectric): the caller draws that number only then, so that no other
+ * path pays for it. */
+static inline int wp_bsdf_samples_lobe(const WpMaterial* m) {
+    return WP_HAS_ROUGHDIELECTRIC && m->kind == WP_MATERIAL_ROUGHDIELECTRIC;
 }
 
 #define WP_BSDF_EVAL_ROW(KIND, Name, name, value, bsdf, glossy)                                    \

@@ -33,6 +33,11 @@
 #define WP_DIM_BSDF_V 6u
 #define WP_DIM_ROULETTE 7u
 #define WP_DIMS_PER_BOUNCE 8u
+/* Past the bounce's eight: the number with which a BSDF picks its lobe after
+ * its direction's microfacet normal (bsdf/roughdielectric.h picks reflection
+ * or transmission by the Fresnel reflectance there), drawn only by such a
+ * BSDF, so that every other path draws exactly the numbers it did. */
+#define WP_DIM_BSDF_LOBE 8u
 
 /* The thin lens's point on the aperture (kernels/camera.h). The camera ray
  * has no dimension of its own left at bounce 0 (the first hit samples its
@@ -68,9 +73,16 @@ static inline wp_float wp_to_unit_float(wp_uint bits) {
     return (wp_float)(bits >> 8) * (1.0f / 16777216.0f);
 }
 
+/* A bounce's eight dimensions count up from bounce * 8; those past them
+ * (WP_DIM_BSDF_LOBE) count down from the top of the counter's range, so that
+ * they never take a number of the next bounce's eight (the thin lens reads
+ * bounce 1's first pair, camera.h). */
 static inline wp_float wp_independent_random(wp_uint seed, wp_uint pixel, wp_uint sample,
                                              wp_uint bounce, wp_uint dimension) {
-    return wp_to_unit_float(wp_hash(seed, pixel, sample, bounce * WP_DIMS_PER_BOUNCE + dimension));
+    wp_uint counter = bounce * WP_DIMS_PER_BOUNCE + dimension;
+    if (dimension >= WP_DIMS_PER_BOUNCE)
+        counter = ~(counter - WP_DIMS_PER_BOUNCE);
+    return wp_to_unit_float(wp_hash(seed, pixel, sample, counter));
 }
 
 #include "sobol.h"

@@ -373,8 +373,10 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
 
     float u1 = wp_path_random(&random, WP_DIM_BSDF_U);
     float u2 = wp_path_random(&random, WP_DIM_BSDF_V);
+    float u_lobe =
+        wp_bsdf_samples_lobe(&material) ? wp_path_random(&random, WP_DIM_BSDF_LOBE) : 0.0f;
     WpBsdfSample scattered;
-    wp_bsdf_sample(&material, direction, &point, u1, u2, &scattered);
+    wp_bsdf_sample(&material, direction, &point, u1, u2, u_lobe, &scattered);
     /* Nothing sampled, or a direction on the other side of the true surface
      * than the sample's flags say (by the shading normal): absorbed. */
     int transmitted = (scattered.flags & WP_BSDF_TRANSMISSION) != 0u;

@@ -27,7 +27,8 @@
  *
  * The pairs of a bounce: (jitter x, jitter y), (light pick, roulette),
  * (light u, light v), (bsdf u, bsdf v). Dimensions past WP_DIMS_PER_BOUNCE
- * (none today) each get a pair of their own.
+ * (the BSDF's lobe number, WP_DIM_BSDF_LOBE) each get a pair of their own,
+ * of which they take the first coordinate.
  *
  * rng.h includes this file and chooses it with WP_SAMPLER; include rng.h.
  */

@@ -27,7 +27,8 @@ static inline float wp_dielectric_eta(const WpMaterial* m, const WpShadingPoint*
 }
 
 static inline void wp_dielectric_sample(const WpMaterial* m, float3 wo, const WpShadingPoint* p,
-                                        float u1, float u2, WpBsdfSample* out) {
+                                        float u1, float u2, float u_lobe, WpBsdfSample* out) {
+    (void)u_lobe; /* roughdielectric's alone (bsdf/interface.h) */
     (void)u2;
     float3 n = p->n;
     float cos_i = fmin(1.0f, fmax(0.0f, -dot(wo, n)));

@@ -19,7 +19,8 @@
 #include "sampling.h"
 
 static inline void wp_diffuse_sample(const WpMaterial* m, float3 wo, const WpShadingPoint* point,
-                                     float u1, float u2, WpBsdfSample* out) {
+                                     float u1, float u2, float u_lobe, WpBsdfSample* out) {
+    (void)u_lobe; /* roughdielectric's alone (bsdf/interface.h) */
     float3 n = point->n;
     (void)wo;
     WpBsdfSample s;

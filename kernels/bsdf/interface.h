@@ -2,10 +2,13 @@
  * dispatched by material kind in kernels/bsdf.h):
  *
  *   void wp_KIND_sample(const WpMaterial* m, float3 wo, const WpShadingPoint* p,
- *                       float u1, float u2, WpBsdfSample* s)
- *       a direction to continue the path in, from two uniform numbers, with
- *       the flags of the lobe it came from (flags 0: no direction, the path
- *       is absorbed), written to *s. (Written through a pointer, not
+ *                       float u1, float u2, float u_lobe, WpBsdfSample* s)
+ *       a direction to continue the path in, from two uniform numbers (and
+ *       u_lobe, a third, for a kind that picks its lobe after its
+ *       direction's microfacet normal: roughdielectric alone,
+ *       wp_bsdf_samples_lobe; the others ignore it), with the flags of the
+ *       lobe it came from (flags 0: no direction, the path is absorbed),
+ *       written to *s. (Written through a pointer, not
  *       returned: a struct returned by value is an sret argument, and
  *       inlining one makes LLVM emit llvm.experimental.noalias.scope.decl,
  *       which Oclgrind 21.10 cannot run.)

@@ -12,7 +12,8 @@ static inline float3 wp_reflect(float3 d, float3 n) {
 }
 
 static inline void wp_mirror_sample(const WpMaterial* m, float3 wo, const WpShadingPoint* point,
-                                    float u1, float u2, WpBsdfSample* out) {
+                                    float u1, float u2, float u_lobe, WpBsdfSample* out) {
+    (void)u_lobe; /* roughdielectric's alone (bsdf/interface.h) */
     float3 n = point->n;
     (void)u1;
     (void)u2;

@@ -46,7 +46,8 @@ static inline float3 wp_plastic_base_pi(const WpMaterial* m, float f_i, float co
 }
 
 static inline void wp_plastic_sample(const WpMaterial* m, float3 wo, const WpShadingPoint* p,
-                                     float u1, float u2, WpBsdfSample* out) {
+                                     float u1, float u2, float u_lobe, WpBsdfSample* out) {
+    (void)u_lobe; /* roughdielectric's alone (bsdf/interface.h) */
     float3 n = p->n;
     float cos_i = fmin(1.0f, -dot(wo, n));
     if (!(cos_i > 0.0f)) {

@@ -19,7 +19,8 @@
 
 static inline void wp_roughconductor_sample(const WpMaterial* m, float3 wo,
                                             const WpShadingPoint* point, float u1, float u2,
-                                            WpBsdfSample* out) {
+                                            float u_lobe, WpBsdfSample* out) {
+    (void)u_lobe; /* roughdielectric's alone (bsdf/interface.h) */
     float3 n = point->n;
     float3 t, b;
     wp_bsdf_frame(m, point, &t, &b);

@@ -17,15 +17,17 @@
  * (the (n_from / n_to)^2 of bsdf/dielectric.h; Mitsuba's radiance mode does
  * the same).
  *
- * Sampling: the side first, reflection with probability P = F(v.z) (the
- * smooth interface's reflectance, kept within [0.05, 0.95] so that neither
- * side is ever starved; 0 without an interface, eta = 1), then a normal
- * visible from v (Heitz) with the same number rescaled, and l reflected or
- * refracted about it. Mitsuba picks the side after the normal, by F(v.h), from
- * a third number that wavepath's two numbers per bounce do not have; both
- * are unbiased, with the same density in eval and pdf as in sample. The
- * weight is then F(v.h) G1(l,h) / P or (1 - F(v.h)) G1(l,h) / (1 - P) times
- * (n_from / n_to)^2.
+ * Sampling, as Mitsuba 3 does it: a normal h visible from v (Heitz) from two
+ * numbers, then the side from a third (WP_DIM_BSDF_LOBE): reflection with
+ * probability F(v.h), the microfacet's own Fresnel reflectance, and l
+ * reflected or refracted about h. The weight is then G1(l,h), times
+ * (n_from / n_to)^2 for transmission: at most 1 before that factor, whatever
+ * the angle. (Picking the side first, by the smooth interface's F(v.z) within
+ * [0.05, 0.95], as wavepath did with two numbers, weighs a sample by
+ * F(v.h) / P or (1 - F(v.h)) / (1 - P): up to 20, and 43 with the factor, for
+ * a ray inside the glass past the critical angle that a tilted microfacet
+ * lets out. Those rare bright samples were the frosted sphere's speckle on
+ * the showcase, docs/performance.md.)
  *
  * Next-event estimation sees lights on both sides of a surface that
  * transmits (kernels/lights.h), and weighs them against BSDF sampling by
@@ -38,14 +40,7 @@
 #include "bsdf/fresnel.h"
 #include "bsdf/interface.h"
 #include "bsdf/microfacet.h"
-
-/* The probability of sampling reflection for a ray at v.z with relative index eta. */
-static inline float wp_roughdielectric_reflect_probability(float cos_i, float eta) {
-    if (eta == 1.0f)
-        return 0.0f;
-    float cos_t;
-    return clamp(wp_fresnel_dielectric(cos_i, eta, &cos_t), 0.05f, 0.95f);
-}
+#include "color.h"
 
 /* The microfacet normal that takes v to l (on v's side; 0 when none does). */
 static inline float3 wp_roughdielectric_half(float3 v, float3 l, float eta) {
@@ -76,18 +71,17 @@ static inline void wp_roughdielectric_eval_local(const WpMaterial* m, float3 v, 
     float fresnel = wp_fresnel_dielectric(fmin(1.0f, v_h), eta, &cos_t);
     float g = wp_microfacet_g1(&d, v, h) * wp_microfacet_g1(&d, l, h);
     float dh = wp_microfacet_d(&d, h);
-    float p_reflect = wp_roughdielectric_reflect_probability(fmin(1.0f, v.z), eta);
     float visible = wp_microfacet_pdf_visible(&d, v, h);
     if (reflect) {
         *f_pi = m->reflectance.xyz * (WP_PI * fresnel * dh * g / (4.0f * v.z * l.z));
-        *pdf = p_reflect * visible / (4.0f * v_h);
+        *pdf = fresnel * visible / (4.0f * v_h);
     } else {
         float denominator = v_h + eta * l_h;
         float jacobian = eta * eta * fabs(l_h) / (denominator * denominator);
         /* Radiance: Walter's eta^2 cancels against (1 / eta)^2. */
         *f_pi = m->transmittance.xyz * (WP_PI * (1.0f - fresnel) * dh * g * v_h * fabs(l_h) /
                                         (v.z * fabs(l.z) * denominator * denominator));
-        *pdf = (1.0f - p_reflect) * visible * jacobian;
+        *pdf = (1.0f - fresnel) * visible * jacobian;
     }
     if (!isfinite(*pdf) || !all(isfinite(*f_pi))) {
         *f_pi = (float3)(0.0f);
@@ -97,7 +91,7 @@ static inline void wp_roughdielectric_eval_local(const WpMaterial* m, float3 v, 
 
 static inline void wp_roughdielectric_sample(const WpMaterial* m, float3 wo,
                                              const WpShadingPoint* p, float u1, float u2,
-                                             WpBsdfSample* out) {
+                                             float u_lobe, WpBsdfSample* out) {
     float3 t, b, n = p->n;
     wp_bsdf_frame(m, p, &t, &b);
     float3 v = (float3)(-dot(wo, t), -dot(wo, b), -dot(wo, n));
@@ -106,39 +100,42 @@ static inline void wp_roughdielectric_sample(const WpMaterial* m, float3 wo,
         wp_bsdf_no_sample(out);
         return;
     }
-    float p_reflect = wp_roughdielectric_reflect_probability(fmin(1.0f, v.z), eta);
-    int reflect = u1 < p_reflect;
-    float u = reflect ? u1 / p_reflect : (u1 - p_reflect) / (1.0f - p_reflect);
     WpMicrofacet d;
     wp_microfacet_of(m, &d);
-    float3 h = wp_microfacet_sample_visible(&d, v, fmin(u, 0x1.fffffep-1f), u2);
+    float3 h = wp_microfacet_sample_visible(&d, v, u1, u2);
     float v_h = dot(v, h);
     float cos_t;
+    /* 1 under total internal reflection at this microfacet: it only reflects. */
     float fresnel = wp_fresnel_dielectric(fmin(1.0f, fmax(0.0f, v_h)), eta, &cos_t);
-    float3 l;
-    if (reflect) {
-        l = 2.0f * v_h * h - v;
-    } else {
-        if (!(fresnel < 1.0f)) { /* total internal reflection at this microfacet */
-            wp_bsdf_no_sample(out);
-            return;
-        }
-        float inv_eta = 1.0f / eta;
-        l = (inv_eta * v_h - cos_t) * h - inv_eta * v;
-    }
+    int reflect = u_lobe < fresnel;
+    float inv_eta = 1.0f / eta;
+    float3 l = reflect ? 2.0f * v_h * h - v : (inv_eta * v_h - cos_t) * h - inv_eta * v;
+    float l_h = dot(l, h);
     if (!(v_h > 0.0f) || !(reflect ? l.z > 0.0f : l.z < 0.0f)) {
         wp_bsdf_no_sample(out);
         return;
     }
-    WpBsdfSample s;
-    float3 f_pi;
-    wp_roughdielectric_eval_local(m, v, l, eta, &f_pi, &s.pdf);
-    if (!(s.pdf > 0.0f)) {
+    /* The density of l: h's, times the side's probability, times the
+     * Jacobian of the map from h to l (eval_local's). */
+    float visible = wp_microfacet_pdf_visible(&d, v, h);
+    float pdf;
+    if (reflect) {
+        pdf = fresnel * visible / (4.0f * v_h);
+    } else {
+        float denominator = v_h + eta * l_h;
+        pdf = (1.0f - fresnel) * visible * eta * eta * fabs(l_h) / (denominator * denominator);
+    }
+    /* f cos / pdf: everything but l's masking cancels. */
+    float3 weight = (reflect ? m->reflectance.xyz : m->transmittance.xyz * (inv_eta * inv_eta)) *
+                    wp_microfacet_g1(&d, l, h);
+    if (!(pdf > 0.0f) || !isfinite(pdf) || wp_is_black(weight)) {
         wp_bsdf_no_sample(out);
         return;
     }
+    WpBsdfSample s;
+    s.pdf = pdf;
     s.direction = normalize(l.x * t + l.y * b + l.z * n);
-    s.weight = f_pi * (fabs(l.z) / (WP_PI * s.pdf));
+    s.weight = weight;
     s.flags = (reflect ? WP_BSDF_REFLECTION : WP_BSDF_TRANSMISSION) | WP_BSDF_GLOSSY;
     s.eta = reflect ? 1.0f : eta;
     *out = s;

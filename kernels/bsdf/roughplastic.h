@@ -87,7 +87,8 @@ static inline void wp_roughplastic_eval_local(const WpMaterial* m, float3 v, flo
 }
 
 static inline void wp_roughplastic_sample(const WpMaterial* m, float3 wo, const WpShadingPoint* p,
-                                          float u1, float u2, WpBsdfSample* out) {
+                                          float u1, float u2, float u_lobe, WpBsdfSample* out) {
+    (void)u_lobe; /* roughdielectric's alone (bsdf/interface.h) */
     float3 t, b, n = p->n;
     wp_make_basis(n, &t, &b);
     float3 v = (float3)(-dot(wo, t), -dot(wo, b), -dot(wo, n));

@@ -14,7 +14,8 @@
 #include "bsdf/mirror.h"
 
 static inline void wp_thindielectric_sample(const WpMaterial* m, float3 wo, const WpShadingPoint* p,
-                                            float u1, float u2, WpBsdfSample* out) {
+                                            float u1, float u2, float u_lobe, WpBsdfSample* out) {
+    (void)u_lobe; /* roughdielectric's alone (bsdf/interface.h) */
     (void)u2;
     float3 n = p->n;
     float cos_t;

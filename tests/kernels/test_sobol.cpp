@@ -277,7 +277,7 @@ TEST_CASE("sobol: a pixel's jitter points have a small L2-star discrepancy",
 // pixel; below 255, as a count with stratified margins should be. The lower
 // limit catches the other failure, two pairs stratified against each other
 // (a net puts one point in each cell: a chi-square of 0).
-TEST_CASE("sobol: pairs, bounces and pixels are independent of each other",
+TEST_CASE("sobol and independent: pairs, bounces and pixels are independent of each other",
           "[rng][sobol][statistical]") {
     struct Coordinate {
         cl_uint pixel_offset, bounce, dimension;
@@ -295,31 +295,42 @@ TEST_CASE("sobol: pairs, bounces and pixels are independent of each other",
         {"light v at bounces 3 and 4", {0, 3, WP_DIM_LIGHT_V}, {0, 4, WP_DIM_LIGHT_V}},
         {"jitter x at neighbouring pixels", {0, 0, WP_DIM_JITTER_X}, {1, 0, WP_DIM_JITTER_X}},
         {"bsdf u at neighbouring pixels", {0, 1, WP_DIM_BSDF_U}, {1, 1, WP_DIM_BSDF_U}},
+        // The lobe number, past a bounce's eight: a pair of its own (Sobol), a
+        // counter of its own (independent), never the next bounce's first
+        // number (the thin lens reads bounce 1's jitter pair).
+        {"bsdf lobe / bsdf u", {0, 1, WP_DIM_BSDF_LOBE}, {0, 1, WP_DIM_BSDF_U}},
+        {"bsdf lobe / bsdf v", {0, 1, WP_DIM_BSDF_LOBE}, {0, 1, WP_DIM_BSDF_V}},
+        {"bsdf lobe at bounce 0 / lens u", {0, 0, WP_DIM_BSDF_LOBE}, {0, 1, WP_DIM_LENS_U}},
+        {"bsdf lobe at bounces 2 and 3", {0, 2, WP_DIM_BSDF_LOBE}, {0, 3, WP_DIM_BSDF_LOBE}},
     };
     const cl_uint pixels = 2048, samples = 256, bins = 16;
-    for (const Case& c : cases) {
-        INFO(c.what);
-        Correlation correlation;
-        double chi_square = 0.0;
-        for (cl_uint p = 0; p < pixels; ++p) {
-            std::vector<double> histogram(bins * bins, 0.0);
-            for (cl_uint s = 0; s < samples; ++s) {
-                double u =
-                    wp_sobol_random(11u, 2 * p + c.a.pixel_offset, s, c.a.bounce, c.a.dimension);
-                double v =
-                    wp_sobol_random(11u, 2 * p + c.b.pixel_offset, s, c.b.bounce, c.b.dimension);
-                correlation.add(u, v);
-                histogram[std::size_t(u * bins) * bins + std::size_t(v * bins)] += 1.0;
+    for (int sampler : {WP_SAMPLER_SOBOL, WP_SAMPLER_INDEPENDENT})
+        for (const Case& c : cases) {
+            INFO("WP_SAMPLER=" << sampler << ": " << c.what);
+            auto random = [sampler](cl_uint pixel, cl_uint sample, const Coordinate& at) {
+                return sampler == WP_SAMPLER_SOBOL
+                           ? wp_sobol_random(11u, pixel, sample, at.bounce, at.dimension)
+                           : wp_independent_random(11u, pixel, sample, at.bounce, at.dimension);
+            };
+            Correlation correlation;
+            double chi_square = 0.0;
+            for (cl_uint p = 0; p < pixels; ++p) {
+                std::vector<double> histogram(bins * bins, 0.0);
+                for (cl_uint s = 0; s < samples; ++s) {
+                    double u = random(2 * p + c.a.pixel_offset, s, c.a);
+                    double v = random(2 * p + c.b.pixel_offset, s, c.b);
+                    correlation.add(u, v);
+                    histogram[std::size_t(u * bins) * bins + std::size_t(v * bins)] += 1.0;
+                }
+                const double expected = double(samples) / double(bins * bins);
+                for (double h : histogram)
+                    chi_square += (h - expected) * (h - expected) / expected;
             }
-            const double expected = double(samples) / double(bins * bins);
-            for (double h : histogram)
-                chi_square += (h - expected) * (h - expected) / expected;
+            const double n = double(pixels) * samples;
+            INFO("correlation " << correlation.r() << ", chi-square " << chi_square << " over "
+                                << pixels << " x 255 degrees of freedom");
+            CHECK(std::fabs(correlation.r()) < 5.0 / std::sqrt(n));
+            CHECK(chi_square < chi_square_limit(double(pixels) * 255.0));
+            CHECK(chi_square > double(pixels) * 240.0 - 5.0 * std::sqrt(2.0 * pixels * 255.0));
         }
-        const double n = double(pixels) * samples;
-        INFO("correlation " << correlation.r() << ", chi-square " << chi_square << " over "
-                            << pixels << " x 255 degrees of freedom");
-        CHECK(std::fabs(correlation.r()) < 5.0 / std::sqrt(n));
-        CHECK(chi_square < chi_square_limit(double(pixels) * 255.0));
-        CHECK(chi_square > double(pixels) * 240.0 - 5.0 * std::sqrt(2.0 * pixels * 255.0));
-    }
 }
