@@ -29,10 +29,12 @@ enum class LightSampling {
 // The survival probability of the throughput roulette (kernels/estimator.h,
 // WP_ROULETTE_RULE; measured in docs/performance.md, "Shading and roulette"):
 enum class RouletteRule {
-    Auto,       // Mitsuba's where the scene refracts (a dielectric or roughdielectric),
-                // throughput elsewhere (with_scene_settings; measured 2.1x the error per
-                // second by MSE on the material-rich showcase, and the same image where
-                // nothing refracts). Left unresolved, as throughput.
+    Auto,       // Mitsuba's where the scene refracts (a dielectric or roughdielectric;
+                // measured 2.1x the error per second by MSE on the material-rich
+                // showcase), relative where nothing refracts and no mirror or
+                // environment lights it (1.23x-1.33x by relMSE on the Cornell bunny),
+                // throughput elsewhere (with_scene_settings). Left unresolved, as
+                // throughput.
     Throughput, // min(1, max(throughput))
     Mitsuba,    // Mitsuba 3's: min(0.95, max(throughput) eta^2), eta^2 the squared
                 // relative indices of refraction the path crossed

@@ -140,7 +140,8 @@ TEST_CASE("roulette depth: 1, and kEnvironmentRouletteDepth in a scene lit by an
 }
 
 TEST_CASE("roulette rule: 'auto' is Mitsuba's where a dielectric or roughdielectric refracts, "
-          "throughput elsewhere, and a rule given stays",
+          "relative in a room without mirrors or an environment, throughput elsewhere, and a "
+          "rule given stays",
           "[render][roulette]") {
     const std::string scenes = std::string(WAVEPATH_SOURCE_DIR) + "/scenes/";
     const Scene showcase = load_scene(scenes + "materials/showcase.json");
@@ -164,6 +165,26 @@ TEST_CASE("roulette rule: 'auto' is Mitsuba's where a dielectric or roughdielect
         INFO("material kind " << material_kind_name(kind));
         CHECK(with_scene_settings(automatic, scene).roulette_rule == expected);
     }
+
+    // The Cornell bunny: diffuse, lit by its area light, no mirror. A mirror,
+    // an environment or glass each take the relative rule away.
+    const Scene bunny = load_scene(scenes + "cornell-bunny.json");
+    CHECK(with_scene_settings(automatic, bunny).roulette_rule == RouletteRule::Relative);
+    for (const auto& [kind, expected] :
+         {std::pair{MaterialKind::Mirror, RouletteRule::Throughput},
+          std::pair{MaterialKind::Dielectric, RouletteRule::Mitsuba},
+          std::pair{MaterialKind::RoughConductor, RouletteRule::Relative},
+          std::pair{MaterialKind::Diffuse, RouletteRule::Relative}}) {
+        Scene scene = bunny;
+        scene.materials.back().kind = kind;
+        INFO("bunny, material kind " << material_kind_name(kind));
+        CHECK(with_scene_settings(automatic, scene).roulette_rule == expected);
+    }
+    Scene bunny_outdoors = bunny;
+    Emitter sky;
+    sky.kind = EmitterKind::Constant;
+    bunny_outdoors.emitters.push_back(sky);
+    CHECK(with_scene_settings(automatic, bunny_outdoors).roulette_rule == RouletteRule::Throughput);
 
     for (const RouletteRule given : {RouletteRule::Throughput, RouletteRule::Mitsuba}) {
         IntegratorOptions options;
