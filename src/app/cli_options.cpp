@@ -129,8 +129,8 @@ void add_integrator_options(CLI::App& command, IntegratorOptions& options) {
                "indices of refraction the path crossed), 'sqrt' (Blender Cycles' min(1, "
                "sqrt(max(throughput)))), 'relative' (min(1, max(throughput) / max(throughput "
                "after the first bounce))), or 'auto': Mitsuba's where the scene has a "
-               "dielectric or roughdielectric, throughput elsewhere (docs/performance.md, "
-               "\"Shading and roulette\")");
+               "dielectric or roughdielectric, relative where no mirror or environment lights "
+               "it, throughput elsewhere (docs/performance.md, \"Shading and roulette\")");
     command
         .add_option_function<std::string>(
             "--path-types",

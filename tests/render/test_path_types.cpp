@@ -116,7 +116,10 @@ TEST_CASE("path types: in the furnace box each part has its closed form, the mir
                 CHECK(m.standard_error < 1e-6 * expected); // every sample reads Le exactly
                 CHECK(m.mean == Approx(expected).epsilon(1e-6));
             } else {
-                CHECK(std::abs(m.mean - expected) < kSigmas * m.standard_error);
+                // Plus float rounding: where roulette does not end the
+                // first bounce (the relative rule) every direct sample
+                // without next-event estimation reads rho Le exactly.
+                CHECK(std::abs(m.mean - expected) <= kSigmas * m.standard_error + 1e-6 * expected);
                 CHECK(m.standard_error < 0.02 * expected); // the test has power
             }
         }
