@@ -130,6 +130,32 @@ void walk(const DeviceArray<WpBvhNode>& nodes, std::uint32_t triangle_count, Wal
     }
 }
 
+// The primitives' boxes of a binary tree made by hand: its leaves' boxes.
+std::vector<Bounds3f> leaf_boxes(const std::vector<BinaryNode>& binary, std::uint32_t primitives) {
+    std::vector<Bounds3f> boxes(primitives);
+    for (const BinaryNode& b : binary)
+        if (b.count > 0)
+            boxes[b.offset] = b.bounds;
+    return boxes;
+}
+
+// The walk of a tree made by hand, in both orders of visit; each must reach
+// every primitive and node once.
+std::vector<Walk> walk_both_orders(const DeviceArray<WpBvhNode>& nodes,
+                                   const std::vector<BinaryNode>& binary,
+                                   std::uint32_t primitives) {
+    const std::vector<Bounds3f> boxes = leaf_boxes(binary, primitives);
+    std::vector<Walk> walks;
+    for (bool first_child_first : {false, true}) {
+        Walk& w = walks.emplace_back();
+        w.reached.assign(primitives, 0);
+        walk(nodes, primitives, w, boxes, first_child_first);
+        CHECK(std::all_of(w.reached.begin(), w.reached.end(), [](int r) { return r == 1; }));
+        CHECK(w.nodes_seen == nodes.size());
+    }
+    return walks;
+}
+
 } // namespace
 
 TEST_CASE("bvh collapse: eight-wide nodes reach every primitive once, boxes nest, full nodes",
@@ -205,19 +231,10 @@ TEST_CASE("bvh collapse: the widest inner child is opened first; the stack bound
     CHECK(root.count[7] == 0);
     CHECK(root.lower_x[7] == 124.0f);
 
-    std::vector<Bounds3f> boxes(next_primitive);
-    for (const BinaryNode& b : binary)
-        if (b.count > 0)
-            boxes[b.offset] = b.bounds;
     // The bound is the worst order's: A's rest (five leaves) walked while
     // the root's seven other children and A's seven leaves wait, 7 + 7 + 5 =
     // 19; the walk that takes the last child first holds at most 7 + 6 = 13.
-    for (bool first_child_first : {false, true}) {
-        Walk w;
-        w.reached.assign(next_primitive, 0);
-        walk(nodes, next_primitive, w, boxes, first_child_first);
-        CHECK(std::all_of(w.reached.begin(), w.reached.end(), [](int r) { return r == 1; }));
-        CHECK(w.nodes_seen == nodes.size());
+    for (const Walk& w : walk_both_orders(nodes, binary, next_primitive)) {
         CHECK(w.most_pushed <= bound);
         CHECK(w.worst == bound);
     }
@@ -286,16 +303,7 @@ TEST_CASE("bvh collapse: a lopsided tree is kept within the stack by narrower no
     CHECK(root.count[WP_BVH_WIDTH - 1] != WP_BVH_EMPTY); // full
     CHECK(root_leaves == 6);
 
-    std::vector<Bounds3f> boxes(next_primitive);
-    for (const BinaryNode& b : binary)
-        if (b.count > 0)
-            boxes[b.offset] = b.bounds;
-    for (bool first_child_first : {false, true}) {
-        Walk w;
-        w.reached.assign(next_primitive, 0);
-        walk(nodes, next_primitive, w, boxes, first_child_first);
-        CHECK(std::all_of(w.reached.begin(), w.reached.end(), [](int r) { return r == 1; }));
-        CHECK(w.nodes_seen == nodes.size());
+    for (const Walk& w : walk_both_orders(nodes, binary, next_primitive)) {
         CHECK(w.worst == bound);
         CHECK(w.narrowed > 0); // deeper down the stack did bind
     }
