@@ -64,6 +64,13 @@ static inline WP_ALWAYS_INLINE float wp_path_random(const WpPathRandom* r, wp_ui
     return wp_random(r->seed, r->pixel, r->sample, r->depth, dimension);
 }
 
+/* Whether the material emits at all (WpMaterial.emission: any kind may, and
+ * non-negative, scene/validate.cpp). */
+static inline int wp_material_emits(const WpMaterial* material) {
+    return material->emission.x != 0.0f || material->emission.y != 0.0f ||
+           material->emission.z != 0.0f;
+}
+
 /* Step 1: the emitted radiance the path sees at this surface, if it counts. */
 static inline float3 wp_shade_emission(const WpMaterial* material, const WpSurface* surface,
                                        wp_uint path_types, wp_uint flags, float3 beta, float3 sum) {
@@ -296,39 +303,47 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
     wp_uint flags = path_flags[slot];
     WpPathRandom random = {frame.seed, path_pixel[slot], path_sample[slot], depth};
 
-    float3 beta_emission = beta;
+    /* Step 1 only where the material emits: a surface that emits nothing
+     * adds beta x 0 to the radiance, so the emission's weight (a light
+     * density: four divisions and two square roots) and the radiance's store
+     * would be made for nothing at the most common hit of all, a wall after
+     * a diffuse bounce. */
+    if (wp_material_emits(&material)) {
+        float3 beta_emission = beta;
 #if WP_HAS_WEIGHED_VERTICES && WP_HAS_LIGHTS && WP_USE_NEE
-    /* After a weighed bounce from mirror_vertex (WP_PATH_GLOSSY): weighed
-     * against the light sample there: an emissive triangle here, a sphere
-     * below. */
-    if ((flags & WP_PATH_GLOSSY) && surface.front_face &&
-        wp_primitive_kind(&scene, primitive) == WP_PRIMITIVE_TRIANGLE) {
-        float4 vertex = mirror_vertex[slot];
-        WpTriangle light = scene.triangles[primitive];
-        float light_pdf = wp_light_pdf(&scene, &light, vertex.xyz, surface.position);
+        /* After a weighed bounce from mirror_vertex (WP_PATH_GLOSSY): weighed
+         * against the light sample there: an emissive triangle here, a sphere
+         * below. */
+        if ((flags & WP_PATH_GLOSSY) && surface.front_face &&
+            wp_primitive_kind(&scene, primitive) == WP_PRIMITIVE_TRIANGLE) {
+            float4 vertex = mirror_vertex[slot];
+            WpTriangle light = scene.triangles[primitive];
+            float light_pdf = wp_light_pdf(&scene, &light, vertex.xyz, surface.position);
 #if WP_HAS_EMITTERS /* the triangles are chosen with this probability (lights.h) */
-        light_pdf *= 1.0f - scene.emitter_pick;
+            light_pdf *= 1.0f - scene.emitter_pick;
 #endif
-        beta_emission *= wp_mis_bsdf_hit(vertex.w, light_pdf);
-    }
+            beta_emission *= wp_mis_bsdf_hit(vertex.w, light_pdf);
+        }
 #endif
 #if WP_HAS_WEIGHED_VERTICES && WP_HAS_SPHERE_LIGHT && WP_USE_NEE
-    /* ... and on an emitting sphere, against its cone sample there. */
-    if ((flags & WP_PATH_GLOSSY) && surface.front_face &&
-        wp_primitive_kind(&scene, primitive) == WP_PRIMITIVE_SPHERE)
-        beta_emission *=
-            wp_mis_bsdf_hit(mirror_vertex[slot].w,
-                            wp_sphere_light_pick_pdf(&scene, primitive - scene.triangle_count,
-                                                     mirror_vertex[slot].xyz));
+        /* ... and on an emitting sphere, against its cone sample there. */
+        if ((flags & WP_PATH_GLOSSY) && surface.front_face &&
+            wp_primitive_kind(&scene, primitive) == WP_PRIMITIVE_SPHERE)
+            beta_emission *=
+                wp_mis_bsdf_hit(mirror_vertex[slot].w,
+                                wp_sphere_light_pick_pdf(&scene, primitive - scene.triangle_count,
+                                                         mirror_vertex[slot].xyz));
 #endif
 #if WP_MIRROR_NEE /* weighed against the mirrored light sample (mirror_light.h) */
-    if (flags & (WP_PATH_PLANAR_MIRROR | WP_PATH_SPHERE_MIRROR))
-        beta_emission *= wp_mirror_emission_weight(&scene, primitive, flags, mirror_vertex[slot],
-                                                   ray_origin[slot].xyz, t, &surface, direction);
+        if (flags & (WP_PATH_PLANAR_MIRROR | WP_PATH_SPHERE_MIRROR))
+            beta_emission *=
+                wp_mirror_emission_weight(&scene, primitive, flags, mirror_vertex[slot],
+                                          ray_origin[slot].xyz, t, &surface, direction);
 #endif
-    radiance[slot] = (float4)(wp_shade_emission(&material, &surface, frame.path_types, flags,
-                                                beta_emission, radiance[slot].xyz),
-                              0.0f);
+        radiance[slot] = (float4)(wp_shade_emission(&material, &surface, frame.path_types, flags,
+                                                    beta_emission, radiance[slot].xyz),
+                                  0.0f);
+    }
     if (wp_bsdf_is_black(&material))
         return WP_SHADED_ENDS;
 #if WP_PATH_LENGTH
