@@ -55,12 +55,17 @@
 #include "stage.h"
 #include "textures/texture.h"
 
-/* The random numbers of one bounce of one path. */
+/* The random numbers of one bounce of one path: the bounce's eight, drawn
+ * together once the path is known to scatter (wp_random_bounce), and any
+ * number past them on demand. */
 typedef struct {
     wp_uint seed, pixel, sample, depth;
+    float numbers[WP_DIMS_PER_BOUNCE];
 } WpPathRandom;
 
 static inline WP_ALWAYS_INLINE float wp_path_random(const WpPathRandom* r, wp_uint dimension) {
+    if (dimension < WP_DIMS_PER_BOUNCE)
+        return r->numbers[dimension];
     return wp_random(r->seed, r->pixel, r->sample, r->depth, dimension);
 }
 
@@ -301,7 +306,11 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
     float eta_squared = throughput[slot].w; /* the roulette's (WP_ROULETTE_RULE) */
     wp_uint depth = path_depth[slot];
     wp_uint flags = path_flags[slot];
-    WpPathRandom random = {frame.seed, path_pixel[slot], path_sample[slot], depth};
+    WpPathRandom random;
+    random.seed = frame.seed;
+    random.pixel = path_pixel[slot];
+    random.sample = path_sample[slot];
+    random.depth = depth;
 
     /* Step 1 only where the material emits: a surface that emits nothing
      * adds beta x 0 to the radiance, so the emission's weight (a light
@@ -352,6 +361,8 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
     if (depth >= frame.max_depth)
         return WP_SHADED_ENDS;
 #endif
+
+    wp_random_bounce(random.seed, random.pixel, random.sample, depth, random.numbers);
 
     /* Shadow rays and reflected rays leave by the side the ray came from,
      * transmitted ones (and shadow rays towards lights behind a surface that
