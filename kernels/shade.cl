@@ -474,6 +474,24 @@ static inline void wp_queue_shaded_path(__global wp_uint* ray_queues,
 #define WP_PUSH_MIRROR_SHADOW 8u /* the mirror queue (two-leg shadow rays) */
 #define WP_PUSH_CAPPED 16u       /* counted as cut by the depth cap (no queue) */
 
+/* A hint that the 64-byte line at `address` is wanted soon: Clang's builtin,
+ * the CPU's prefetch instruction, where the kernel is compiled for a CPU
+ * (OpenCL's prefetch() compiles to nothing on PoCL 3.1; other targets may not
+ * run llvm.prefetch at all, kernels/bvh_any_hit.h); elsewhere nothing. */
+#if defined(__clang__) && (defined(__x86_64__) || defined(__aarch64__))
+#define WP_SHADE_PREFETCH(address) __builtin_prefetch((__global const char*)(address))
+#else
+#define WP_SHADE_PREFETCH(address) ((void)(address))
+#endif
+
+/* How many queue entries ahead shade asks for a path's state. The queue's
+ * slots are scattered over the pool, and on a CPU device a work-group's items
+ * run one after the other: the loads of the slot's state, each in its own
+ * buffer, stalled the kernel (the hexroom's largest sample counts sat right
+ * after them). A few entries ahead, a few hundred cycles of shading, is
+ * enough to hide them. */
+#define WP_SHADE_LOOKAHEAD 4u
+
 /* Shade kernel: one work-item per queued ray.
  *
  * Its queue pushes are compacted per work-group instead of taking one global
@@ -497,10 +515,24 @@ __kernel void shade(WP_STAGE_PARAMETERS) {
     wp_uint index = get_global_id(0);
     wp_uint item = get_local_id(0);
     wp_uint slot = 0u, push = 0u;
-    if (index < counters[launch.ray_queue]) {
+    wp_uint queued = counters[launch.ray_queue];
+    if (index < queued) {
         /* The ray queue as intersect left it, or sorted by material (shade_sort.cl). */
-        slot = launch.sorted ? shade_order[index]
-                             : wp_ray_queue(ray_queues, frame, launch.ray_queue)[index];
+        __global const wp_uint* order =
+            launch.sorted ? shade_order : wp_ray_queue(ray_queues, frame, launch.ray_queue);
+        slot = order[index];
+        if (index + WP_SHADE_LOOKAHEAD < queued) {
+            wp_uint ahead = order[index + WP_SHADE_LOOKAHEAD];
+            WP_SHADE_PREFETCH(hit_primitive + ahead);
+            WP_SHADE_PREFETCH(hit_t + ahead);
+            WP_SHADE_PREFETCH(ray_origin + ahead);
+            WP_SHADE_PREFETCH(ray_direction + ahead);
+            WP_SHADE_PREFETCH(throughput + ahead);
+            WP_SHADE_PREFETCH(path_depth + ahead);
+            WP_SHADE_PREFETCH(path_flags + ahead);
+            WP_SHADE_PREFETCH(path_pixel + ahead);
+            WP_SHADE_PREFETCH(path_sample + ahead);
+        }
         wp_uint primitive = hit_primitive[slot];
         WpShadowRay shadow;
         int outcome = wp_shade_path(WP_STAGE_ARGUMENTS, slot, primitive,
