@@ -480,8 +480,10 @@ static inline void wp_queue_shaded_path(__global wp_uint* ray_queues,
  * run llvm.prefetch at all, kernels/bvh_any_hit.h); elsewhere nothing. */
 #if defined(__clang__) && (defined(__x86_64__) || defined(__aarch64__))
 #define WP_SHADE_PREFETCH(address) __builtin_prefetch((__global const char*)(address))
+#define WP_SHADE_PREFETCH_WRITE(address) __builtin_prefetch((__global const char*)(address), 1)
 #else
 #define WP_SHADE_PREFETCH(address) ((void)(address))
+#define WP_SHADE_PREFETCH_WRITE(address) ((void)(address))
 #endif
 
 /* How many queue entries ahead shade asks for a path's state. The queue's
@@ -532,6 +534,10 @@ __kernel void shade(WP_STAGE_PARAMETERS) {
             WP_SHADE_PREFETCH(path_flags + ahead);
             WP_SHADE_PREFETCH(path_pixel + ahead);
             WP_SHADE_PREFETCH(path_sample + ahead);
+            WP_SHADE_PREFETCH_WRITE(shadow_origin + ahead);
+            WP_SHADE_PREFETCH_WRITE(shadow_direction + ahead);
+            WP_SHADE_PREFETCH_WRITE(shadow_contribution + ahead);
+            WP_SHADE_PREFETCH_WRITE(mirror_vertex + ahead);
         }
         wp_uint primitive = hit_primitive[slot];
         WpShadowRay shadow;
