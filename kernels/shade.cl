@@ -474,10 +474,11 @@ static inline void wp_queue_shaded_path(__global wp_uint* ray_queues,
 #define WP_PUSH_MIRROR_SHADOW 8u /* the mirror queue (two-leg shadow rays) */
 #define WP_PUSH_CAPPED 16u       /* counted as cut by the depth cap (no queue) */
 
-/* A hint that the 64-byte line at `address` is wanted soon: Clang's builtin,
- * the CPU's prefetch instruction, where the kernel is compiled for a CPU
- * (OpenCL's prefetch() compiles to nothing on PoCL 3.1; other targets may not
- * run llvm.prefetch at all, kernels/bvh_any_hit.h); elsewhere nothing. */
+/* A hint that the 64-byte line at `address` is wanted soon (_WRITE: to be
+ * written): Clang's builtin, the CPU's prefetch instruction, where the kernel
+ * is compiled for a CPU (OpenCL's prefetch() compiles to nothing on PoCL 3.1;
+ * other targets may not run llvm.prefetch at all, kernels/bvh_any_hit.h);
+ * elsewhere nothing. */
 #if defined(__clang__) && (defined(__x86_64__) || defined(__aarch64__))
 #define WP_SHADE_PREFETCH(address) __builtin_prefetch((__global const char*)(address))
 #define WP_SHADE_PREFETCH_WRITE(address) __builtin_prefetch((__global const char*)(address), 1)
