@@ -105,4 +105,34 @@ static inline WP_ALWAYS_INLINE wp_float wp_random(wp_uint seed, wp_uint pixel, w
 #endif
 }
 
+#ifdef __OPENCL_VERSION__
+/* The eight numbers of one bounce, numbers[d] = wp_random(seed, pixel,
+ * sample, bounce, d) for d < WP_DIMS_PER_BOUNCE, bit for bit, computed
+ * together (with the Sobol sampler as one chain of vector operations,
+ * wp_sobol_bounce_bits). A caller that reads only some of them leaves the
+ * rest to the compiler to drop. */
+static inline WP_ALWAYS_INLINE void wp_random_bounce(wp_uint seed, wp_uint pixel, wp_uint sample,
+                                                     wp_uint bounce,
+                                                     float numbers[WP_DIMS_PER_BOUNCE]) {
+#if WP_SAMPLER == WP_SAMPLER_SOBOL
+    uint4 first, second;
+    wp_sobol_bounce_bits(seed, pixel, sample, bounce, &first, &second);
+    /* wp_to_unit_float per lane: below 2^24, every value converts exactly */
+    float4 a = convert_float4(first >> 8u) * (1.0f / 16777216.0f);
+    float4 b = convert_float4(second >> 8u) * (1.0f / 16777216.0f);
+    numbers[WP_DIM_JITTER_X] = a.x;
+    numbers[WP_DIM_JITTER_Y] = b.x;
+    numbers[WP_DIM_LIGHT_PICK] = a.y;
+    numbers[WP_DIM_ROULETTE] = b.y;
+    numbers[WP_DIM_LIGHT_U] = a.z;
+    numbers[WP_DIM_LIGHT_V] = b.z;
+    numbers[WP_DIM_BSDF_U] = a.w;
+    numbers[WP_DIM_BSDF_V] = b.w;
+#else
+    for (wp_uint d = 0u; d < WP_DIMS_PER_BOUNCE; ++d)
+        numbers[d] = wp_independent_random(seed, pixel, sample, bounce, d);
+#endif
+}
+#endif
+
 #endif /* WP_RNG_H */

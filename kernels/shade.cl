@@ -55,13 +55,25 @@
 #include "stage.h"
 #include "textures/texture.h"
 
-/* The random numbers of one bounce of one path. */
+/* The random numbers of one bounce of one path: the bounce's eight, drawn
+ * together once the path is known to scatter (wp_random_bounce), and any
+ * number past them on demand. */
 typedef struct {
     wp_uint seed, pixel, sample, depth;
+    float numbers[WP_DIMS_PER_BOUNCE];
 } WpPathRandom;
 
 static inline WP_ALWAYS_INLINE float wp_path_random(const WpPathRandom* r, wp_uint dimension) {
+    if (dimension < WP_DIMS_PER_BOUNCE)
+        return r->numbers[dimension];
     return wp_random(r->seed, r->pixel, r->sample, r->depth, dimension);
+}
+
+/* Whether the material emits at all (WpMaterial.emission: any kind may, and
+ * non-negative, scene/validate.cpp). */
+static inline int wp_material_emits(const WpMaterial* material) {
+    return material->emission.x != 0.0f || material->emission.y != 0.0f ||
+           material->emission.z != 0.0f;
 }
 
 /* Step 1: the emitted radiance the path sees at this surface, if it counts. */
@@ -294,41 +306,53 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
     float eta_squared = throughput[slot].w; /* the roulette's (WP_ROULETTE_RULE) */
     wp_uint depth = path_depth[slot];
     wp_uint flags = path_flags[slot];
-    WpPathRandom random = {frame.seed, path_pixel[slot], path_sample[slot], depth};
+    WpPathRandom random;
+    random.seed = frame.seed;
+    random.pixel = path_pixel[slot];
+    random.sample = path_sample[slot];
+    random.depth = depth;
 
-    float3 beta_emission = beta;
+    /* Step 1 only where the material emits: a surface that emits nothing
+     * adds beta x 0 to the radiance, so the emission's weight (a light
+     * density: four divisions and two square roots) and the radiance's store
+     * would be made for nothing at the most common hit of all, a wall after
+     * a diffuse bounce. */
+    if (wp_material_emits(&material)) {
+        float3 beta_emission = beta;
 #if WP_HAS_WEIGHED_VERTICES && WP_HAS_LIGHTS && WP_USE_NEE
-    /* After a weighed bounce from mirror_vertex (WP_PATH_GLOSSY): weighed
-     * against the light sample there: an emissive triangle here, a sphere
-     * below. */
-    if ((flags & WP_PATH_GLOSSY) && surface.front_face &&
-        wp_primitive_kind(&scene, primitive) == WP_PRIMITIVE_TRIANGLE) {
-        float4 vertex = mirror_vertex[slot];
-        WpTriangle light = scene.triangles[primitive];
-        float light_pdf = wp_light_pdf(&scene, &light, vertex.xyz, surface.position);
+        /* After a weighed bounce from mirror_vertex (WP_PATH_GLOSSY): weighed
+         * against the light sample there: an emissive triangle here, a sphere
+         * below. */
+        if ((flags & WP_PATH_GLOSSY) && surface.front_face &&
+            wp_primitive_kind(&scene, primitive) == WP_PRIMITIVE_TRIANGLE) {
+            float4 vertex = mirror_vertex[slot];
+            WpTriangle light = scene.triangles[primitive];
+            float light_pdf = wp_light_pdf(&scene, &light, vertex.xyz, surface.position);
 #if WP_HAS_EMITTERS /* the triangles are chosen with this probability (lights.h) */
-        light_pdf *= 1.0f - scene.emitter_pick;
+            light_pdf *= 1.0f - scene.emitter_pick;
 #endif
-        beta_emission *= wp_mis_bsdf_hit(vertex.w, light_pdf);
-    }
+            beta_emission *= wp_mis_bsdf_hit(vertex.w, light_pdf);
+        }
 #endif
 #if WP_HAS_WEIGHED_VERTICES && WP_HAS_SPHERE_LIGHT && WP_USE_NEE
-    /* ... and on an emitting sphere, against its cone sample there. */
-    if ((flags & WP_PATH_GLOSSY) && surface.front_face &&
-        wp_primitive_kind(&scene, primitive) == WP_PRIMITIVE_SPHERE)
-        beta_emission *=
-            wp_mis_bsdf_hit(mirror_vertex[slot].w,
-                            wp_sphere_light_pick_pdf(&scene, primitive - scene.triangle_count,
-                                                     mirror_vertex[slot].xyz));
+        /* ... and on an emitting sphere, against its cone sample there. */
+        if ((flags & WP_PATH_GLOSSY) && surface.front_face &&
+            wp_primitive_kind(&scene, primitive) == WP_PRIMITIVE_SPHERE)
+            beta_emission *=
+                wp_mis_bsdf_hit(mirror_vertex[slot].w,
+                                wp_sphere_light_pick_pdf(&scene, primitive - scene.triangle_count,
+                                                         mirror_vertex[slot].xyz));
 #endif
 #if WP_MIRROR_NEE /* weighed against the mirrored light sample (mirror_light.h) */
-    if (flags & (WP_PATH_PLANAR_MIRROR | WP_PATH_SPHERE_MIRROR))
-        beta_emission *= wp_mirror_emission_weight(&scene, primitive, flags, mirror_vertex[slot],
-                                                   ray_origin[slot].xyz, t, &surface, direction);
+        if (flags & (WP_PATH_PLANAR_MIRROR | WP_PATH_SPHERE_MIRROR))
+            beta_emission *=
+                wp_mirror_emission_weight(&scene, primitive, flags, mirror_vertex[slot],
+                                          ray_origin[slot].xyz, t, &surface, direction);
 #endif
-    radiance[slot] = (float4)(wp_shade_emission(&material, &surface, frame.path_types, flags,
-                                                beta_emission, radiance[slot].xyz),
-                              0.0f);
+        radiance[slot] = (float4)(wp_shade_emission(&material, &surface, frame.path_types, flags,
+                                                    beta_emission, radiance[slot].xyz),
+                                  0.0f);
+    }
     if (wp_bsdf_is_black(&material))
         return WP_SHADED_ENDS;
 #if WP_PATH_LENGTH
@@ -337,6 +361,8 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
     if (depth >= frame.max_depth)
         return WP_SHADED_ENDS;
 #endif
+
+    wp_random_bounce(random.seed, random.pixel, random.sample, depth, random.numbers);
 
     /* Shadow rays and reflected rays leave by the side the ray came from,
      * transmitted ones (and shadow rays towards lights behind a surface that
@@ -448,6 +474,27 @@ static inline void wp_queue_shaded_path(__global wp_uint* ray_queues,
 #define WP_PUSH_MIRROR_SHADOW 8u /* the mirror queue (two-leg shadow rays) */
 #define WP_PUSH_CAPPED 16u       /* counted as cut by the depth cap (no queue) */
 
+/* A hint that the 64-byte line at `address` is wanted soon (_WRITE: to be
+ * written): Clang's builtin, the CPU's prefetch instruction, where the kernel
+ * is compiled for a CPU (OpenCL's prefetch() compiles to nothing on PoCL 3.1;
+ * other targets may not run llvm.prefetch at all, kernels/bvh_any_hit.h);
+ * elsewhere nothing. */
+#if defined(__clang__) && (defined(__x86_64__) || defined(__aarch64__))
+#define WP_SHADE_PREFETCH(address) __builtin_prefetch((__global const char*)(address))
+#define WP_SHADE_PREFETCH_WRITE(address) __builtin_prefetch((__global const char*)(address), 1)
+#else
+#define WP_SHADE_PREFETCH(address) ((void)(address))
+#define WP_SHADE_PREFETCH_WRITE(address) ((void)(address))
+#endif
+
+/* How many queue entries ahead shade asks for a path's state. The queue's
+ * slots are scattered over the pool, and on a CPU device a work-group's items
+ * run one after the other: the loads of the slot's state, each in its own
+ * buffer, stalled the kernel (the hexroom's largest sample counts sat right
+ * after them). A few entries ahead, a few hundred cycles of shading, is
+ * enough to hide them. */
+#define WP_SHADE_LOOKAHEAD 4u
+
 /* Shade kernel: one work-item per queued ray.
  *
  * Its queue pushes are compacted per work-group instead of taking one global
@@ -471,10 +518,28 @@ __kernel void shade(WP_STAGE_PARAMETERS) {
     wp_uint index = get_global_id(0);
     wp_uint item = get_local_id(0);
     wp_uint slot = 0u, push = 0u;
-    if (index < counters[launch.ray_queue]) {
+    wp_uint queued = counters[launch.ray_queue];
+    if (index < queued) {
         /* The ray queue as intersect left it, or sorted by material (shade_sort.cl). */
-        slot = launch.sorted ? shade_order[index]
-                             : wp_ray_queue(ray_queues, frame, launch.ray_queue)[index];
+        __global const wp_uint* order =
+            launch.sorted ? shade_order : wp_ray_queue(ray_queues, frame, launch.ray_queue);
+        slot = order[index];
+        if (index + WP_SHADE_LOOKAHEAD < queued) {
+            wp_uint ahead = order[index + WP_SHADE_LOOKAHEAD];
+            WP_SHADE_PREFETCH(hit_primitive + ahead);
+            WP_SHADE_PREFETCH(hit_t + ahead);
+            WP_SHADE_PREFETCH(ray_origin + ahead);
+            WP_SHADE_PREFETCH(ray_direction + ahead);
+            WP_SHADE_PREFETCH(throughput + ahead);
+            WP_SHADE_PREFETCH(path_depth + ahead);
+            WP_SHADE_PREFETCH(path_flags + ahead);
+            WP_SHADE_PREFETCH(path_pixel + ahead);
+            WP_SHADE_PREFETCH(path_sample + ahead);
+            WP_SHADE_PREFETCH_WRITE(shadow_origin + ahead);
+            WP_SHADE_PREFETCH_WRITE(shadow_direction + ahead);
+            WP_SHADE_PREFETCH_WRITE(shadow_contribution + ahead);
+            WP_SHADE_PREFETCH_WRITE(mirror_vertex + ahead);
+        }
         wp_uint primitive = hit_primitive[slot];
         WpShadowRay shadow;
         int outcome = wp_shade_path(WP_STAGE_ARGUMENTS, slot, primitive,

@@ -162,4 +162,69 @@ static inline wp_float wp_sobol_random(wp_uint seed, wp_uint pixel, wp_uint samp
     return wp_to_unit_float(wp_sobol_bits(seed, pixel, sample, bounce, dimension));
 }
 
+#ifdef __OPENCL_VERSION__
+/* The same bits for the four pairs of one bounce at once, pair p in lane p:
+ * *first the coordinates 0 (jitter x, light pick, light u, BSDF u), *second
+ * the coordinates 1 (jitter y, roulette, light v, BSDF v). A pair's number is
+ * a serial chain of about a hundred integer operations, which for one pair at
+ * a time the compiler leaves scalar; the four chains side by side take one
+ * chain of 4-lane operations instead. Integer arithmetic: exactly
+ * wp_sobol_bits's words. */
+static inline uint4 wp_mix32_4(uint4 x) {
+    x ^= x >> 16;
+    x *= 0x7feb352du;
+    x ^= x >> 15;
+    x *= 0x846ca68bu;
+    x ^= x >> 16;
+    return x;
+}
+
+static inline uint4 wp_reverse_bits_4(uint4 x) {
+#ifdef WP_BIT_REVERSAL_TABLE
+    return (uint4)(wp_reverse_bits(x.x), wp_reverse_bits(x.y), wp_reverse_bits(x.z),
+                   wp_reverse_bits(x.w));
+#else
+    x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
+    x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+    x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
+    x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
+    return (x >> 16) | (x << 16);
+#endif
+}
+
+static inline uint4 wp_laine_karras_permutation_4(uint4 x, uint4 seed) {
+    x += seed;
+    x ^= x * 0x6c50b47cu;
+    x ^= x * 0xb82f1e52u;
+    x ^= x * 0xc7afe638u;
+    x ^= x * 0x8d22f6e6u;
+    return x;
+}
+
+static inline uint4 wp_sobol_second_reversed_4(uint4 index) {
+    index ^= (index >> 1) & 0x55555555u;
+    index ^= (index >> 2) & 0x33333333u;
+    index ^= (index >> 4) & 0x0f0f0f0fu;
+    index ^= (index >> 8) & 0x00ff00ffu;
+    index ^= (index >> 16) & 0x0000ffffu;
+    return index;
+}
+
+static inline void wp_sobol_bounce_bits(wp_uint seed, wp_uint pixel, wp_uint sample, wp_uint bounce,
+                                        uint4* first, uint4* second) {
+    /* wp_sobol_pair_seed, its last two rounds per pair */
+    wp_uint h = wp_mix32(seed ^ 0x5b0b01d5u);
+    h = wp_mix32(h ^ pixel);
+    h = wp_mix32(h ^ bounce);
+    uint4 pair_seed = wp_mix32_4(wp_mix32_4((uint4)(h) ^ (uint4)(0u, 1u, 2u, 3u)));
+    /* wp_nested_uniform_scramble of the sample index, per pair */
+    uint4 index = wp_reverse_bits_4(wp_laine_karras_permutation_4(
+        (uint4)(wp_reverse_bits(sample)), wp_mix32_4(pair_seed ^ 0x3c6ef372u)));
+    *first = wp_reverse_bits_4(
+        wp_laine_karras_permutation_4(index, wp_mix32_4(pair_seed ^ 0xa54ff53au)));
+    *second = wp_reverse_bits_4(wp_laine_karras_permutation_4(wp_sobol_second_reversed_4(index),
+                                                              wp_mix32_4(pair_seed ^ 0x510e527fu)));
+}
+#endif
+
 #endif /* WP_SOBOL_H */

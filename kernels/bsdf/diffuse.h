@@ -18,8 +18,13 @@
 #include "estimator.h"
 #include "sampling.h"
 
-static inline void wp_diffuse_sample(const WpMaterial* m, float3 wo, const WpShadingPoint* point,
-                                     float u1, float u2, float u_lobe, WpBsdfSample* out) {
+/* Always inlined: left a call, it took the material by address, so shade
+ * copied its whole WpMaterial (416 bytes, memcpy) to private memory for every
+ * path it shaded (the hexroom's stage kernel; docs/performance.md, "The
+ * plain scenes' shade, cut"). */
+static inline WP_ALWAYS_INLINE void wp_diffuse_sample(const WpMaterial* m, float3 wo,
+                                                      const WpShadingPoint* point, float u1,
+                                                      float u2, float u_lobe, WpBsdfSample* out) {
     (void)u_lobe; /* roughdielectric's alone (bsdf/interface.h) */
     float3 n = point->n;
     (void)wo;

@@ -26,6 +26,19 @@ __kernel void randoms(uint count, __global const uint4* keys, __global const uin
 }
 )CL";
 
+const char* const kBounceSource = R"CL(
+#include "rng.h"
+__kernel void bounce_randoms(uint count, __global const uint4* keys, __global float* out) {
+    uint i = get_global_id(0);
+    if (i >= count) return;
+    uint4 k = keys[i];
+    float numbers[WP_DIMS_PER_BOUNCE];
+    wp_random_bounce(k.x, k.y, k.z, k.w, numbers);
+    for (uint d = 0u; d < WP_DIMS_PER_BOUNCE; ++d)
+        out[i * WP_DIMS_PER_BOUNCE + d] = numbers[d];
+}
+)CL";
+
 // Keys (seed, pixel, sample, bounce) and dimensions: small and huge values.
 struct Keys {
     std::vector<cl_uint4> keys;
@@ -333,4 +346,38 @@ TEST_CASE("sobol and independent: pairs, bounces and pixels are independent of e
             CHECK(chi_square < chi_square_limit(double(pixels) * 255.0));
             CHECK(chi_square > double(pixels) * 240.0 - 5.0 * std::sqrt(2.0 * pixels * 255.0));
         }
+}
+
+TEST_CASE("sobol: a bounce's eight numbers drawn at once are wp_random's, bit for bit",
+          "[cl][rng][sobol]") {
+    const Keys k = test_keys();
+    const auto count = cl_uint(k.keys.size());
+    // The last build is the Sobol sampler with Oclgrind's table reversal.
+    const std::vector<std::pair<int, std::string>> builds = {
+        {WP_SAMPLER_INDEPENDENT, ""},
+        {WP_SAMPLER_SOBOL, ""},
+        {WP_SAMPLER_SOBOL, " -D WP_BIT_REVERSAL_TABLE=1"}};
+    for (const auto& [sampler, extra] : builds) {
+        INFO("WP_SAMPLER=" << sampler << extra);
+        cl::Kernel kernel(program(kBounceSource, "sobol_bounce_test.cl",
+                                  "-D WP_SAMPLER=" + std::to_string(sampler) + extra),
+                          "bounce_randoms");
+        cl::Buffer keys = upload(k.keys);
+        cl::Buffer out = upload(std::vector<cl_float>(count * WP_DIMS_PER_BOUNCE, -1.0f));
+        set_args(kernel, count, keys, out);
+        launch(kernel, count);
+        const std::vector<cl_float> device = download<cl_float>(out, count * WP_DIMS_PER_BOUNCE);
+        int differ = 0;
+        for (cl_uint i = 0; i < count; ++i) {
+            const cl_uint4& key = k.keys[i];
+            for (cl_uint d = 0; d < WP_DIMS_PER_BOUNCE; ++d) {
+                const float host =
+                    sampler == WP_SAMPLER_SOBOL
+                        ? wp_sobol_random(key.s[0], key.s[1], key.s[2], key.s[3], d)
+                        : wp_independent_random(key.s[0], key.s[1], key.s[2], key.s[3], d);
+                differ += device[i * WP_DIMS_PER_BOUNCE + d] != host;
+            }
+        }
+        CHECK(differ == 0);
+    }
 }
