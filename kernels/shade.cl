@@ -495,6 +495,15 @@ static inline void wp_queue_shaded_path(__global wp_uint* ray_queues,
  * enough to hide them. */
 #define WP_SHADE_LOOKAHEAD 4u
 
+/* The slot at `index` of the ray queue as intersect left it, or of the queue
+ * sorted by material (shade_sort.cl). */
+static inline wp_uint wp_shade_queue_entry(__global const wp_uint* shade_order,
+                                           __global wp_uint* ray_queues, WpFrame frame,
+                                           WpLaunch launch, wp_uint index) {
+    return launch.sorted ? shade_order[index]
+                         : wp_ray_queue(ray_queues, frame, launch.ray_queue)[index];
+}
+
 /* Shade kernel: one work-item per queued ray.
  *
  * Its queue pushes are compacted per work-group instead of taking one global
@@ -520,12 +529,10 @@ __kernel void shade(WP_STAGE_PARAMETERS) {
     wp_uint slot = 0u, push = 0u;
     wp_uint queued = counters[launch.ray_queue];
     if (index < queued) {
-        /* The ray queue as intersect left it, or sorted by material (shade_sort.cl). */
-        __global const wp_uint* order =
-            launch.sorted ? shade_order : wp_ray_queue(ray_queues, frame, launch.ray_queue);
-        slot = order[index];
+        slot = wp_shade_queue_entry(shade_order, ray_queues, frame, launch, index);
         if (index + WP_SHADE_LOOKAHEAD < queued) {
-            wp_uint ahead = order[index + WP_SHADE_LOOKAHEAD];
+            wp_uint ahead = wp_shade_queue_entry(shade_order, ray_queues, frame, launch,
+                                                 index + WP_SHADE_LOOKAHEAD);
             WP_SHADE_PREFETCH(hit_primitive + ahead);
             WP_SHADE_PREFETCH(hit_t + ahead);
             WP_SHADE_PREFETCH(ray_origin + ahead);
