@@ -8,10 +8,19 @@
  * at its first hit), so every child pushed stays in range and a lane the
  * four-lane leaf test accepts is a hit as it stands. So here:
  *   - the stack holds the children alone (number and count), no distances;
- *   - a node's hit children are pushed in node order, unsorted, without a
- *     branch per child (nearest first was measured slower: most shadow
- *     segments are not blocked at all and visit every node they cross
- *     whatever the order);
+ *   - a node's hit children are pushed unsorted, without a branch per
+ *     child, last child first, so that they are visited in node order
+ *     (nearest first was measured slower: most shadow segments are not
+ *     blocked at all and visit every node they cross whatever the order).
+ *     Node order is the builder's tree order, the lower side of each split
+ *     first (src/scene/bvh.cpp); a shadow ray toward a light above its origin
+ *     (a ceiling light, the sky) meets that side first, so a blocked one
+ *     finds its blocker after fewer nodes and leaves than in the opposite
+ *     order, and the walk also moves forward through memory (children and
+ *     leaves are stored in tree order). A ray toward a light below its
+ *     origin meets the far side first, as rays toward lights above did with
+ *     the opposite order (docs/performance.md, "Any hit: children visited in
+ *     node order");
  *   - a leaf of triangles answers as soon as one of its groups of four has a
  *     lane hit (wp_leaf_triangles_occluded);
  *   - the pushed children's first cache lines are prefetched: at 10^6
@@ -43,7 +52,8 @@
 
 /* Pushes the children of node n (of `nodes`, whose leaves index `triangles`
  * up to triangle_end and other primitives past it) whose boxes the ray meets
- * at 0 <= t <= t_max, in node order. Every child is written at the top and
+ * at 0 <= t <= t_max, the last child first (so child 0 is on top, visited
+ * first). Every child is written at the top and
  * kept only if hit: straight-line code, eight stores (a missed child's write
  * lands one past the top, which the stack has room for). Then each kept
  * child's first lines are prefetched: a node's four, or a leaf's first three
@@ -60,14 +70,14 @@ static inline void wp_bvh_push_hit_children(__global const WpBvhNode* nodes,
     children[at] = n->child[i];                                                                    \
     counts[at] = n->count[i];                                                                      \
     at -= hit.lane;
-    WP_PUSH_IF_HIT(0, s0)
-    WP_PUSH_IF_HIT(1, s1)
-    WP_PUSH_IF_HIT(2, s2)
-    WP_PUSH_IF_HIT(3, s3)
-    WP_PUSH_IF_HIT(4, s4)
-    WP_PUSH_IF_HIT(5, s5)
-    WP_PUSH_IF_HIT(6, s6)
     WP_PUSH_IF_HIT(7, s7)
+    WP_PUSH_IF_HIT(6, s6)
+    WP_PUSH_IF_HIT(5, s5)
+    WP_PUSH_IF_HIT(4, s4)
+    WP_PUSH_IF_HIT(3, s3)
+    WP_PUSH_IF_HIT(2, s2)
+    WP_PUSH_IF_HIT(1, s1)
+    WP_PUSH_IF_HIT(0, s0)
 #undef WP_PUSH_IF_HIT
     *top = at;
     for (int i = first; i < at; ++i) {
