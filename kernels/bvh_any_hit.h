@@ -37,18 +37,7 @@
 #define WP_BVH_ANY_HIT_H
 
 #include "bvh.h"
-
-/* A hint that the 64-byte line at `address` is wanted soon. OpenCL's own
- * prefetch() compiles to nothing on PoCL 3.1 (no prefetch instruction in the
- * kernel's code), Clang's builtin to the CPU's prefetch instruction. Only
- * where the kernel is compiled for a CPU: for other targets the builtin
- * becomes an llvm.prefetch call that some cannot run (Oclgrind, which
- * compiles for SPIR, stops on it as an undefined function); there nothing. */
-#if defined(__clang__) && (defined(__x86_64__) || defined(__aarch64__))
-#define WP_PREFETCH_LINE(address) __builtin_prefetch((__global const char*)(address))
-#else
-#define WP_PREFETCH_LINE(address) ((void)(address))
-#endif
+#include "prefetch.h"
 
 /* Pushes the children of node n (of `nodes`, whose leaves index `triangles`
  * up to triangle_end and other primitives past it) whose boxes the ray meets

@@ -50,6 +50,7 @@
 #include "lights.h"
 #include "mirror_light.h"
 #include "path_type.h"
+#include "prefetch.h"
 #include "primitive.h"
 #include "rng.h"
 #include "stage.h"
@@ -474,19 +475,6 @@ static inline void wp_queue_shaded_path(__global wp_uint* ray_queues,
 #define WP_PUSH_MIRROR_SHADOW 8u /* the mirror queue (two-leg shadow rays) */
 #define WP_PUSH_CAPPED 16u       /* counted as cut by the depth cap (no queue) */
 
-/* A hint that the 64-byte line at `address` is wanted soon (_WRITE: to be
- * written): Clang's builtin, the CPU's prefetch instruction, where the kernel
- * is compiled for a CPU (OpenCL's prefetch() compiles to nothing on PoCL 3.1;
- * other targets may not run llvm.prefetch at all, kernels/bvh_any_hit.h);
- * elsewhere nothing. */
-#if defined(__clang__) && (defined(__x86_64__) || defined(__aarch64__))
-#define WP_SHADE_PREFETCH(address) __builtin_prefetch((__global const char*)(address))
-#define WP_SHADE_PREFETCH_WRITE(address) __builtin_prefetch((__global const char*)(address), 1)
-#else
-#define WP_SHADE_PREFETCH(address) ((void)(address))
-#define WP_SHADE_PREFETCH_WRITE(address) ((void)(address))
-#endif
-
 /* How many queue entries ahead shade asks for a path's state. The queue's
  * slots are scattered over the pool, and on a CPU device a work-group's items
  * run one after the other: the loads of the slot's state, each in its own
@@ -533,19 +521,19 @@ __kernel void shade(WP_STAGE_PARAMETERS) {
         if (index + WP_SHADE_LOOKAHEAD < queued) {
             wp_uint ahead = wp_shade_queue_entry(shade_order, ray_queues, frame, launch,
                                                  index + WP_SHADE_LOOKAHEAD);
-            WP_SHADE_PREFETCH(hit_primitive + ahead);
-            WP_SHADE_PREFETCH(hit_t + ahead);
-            WP_SHADE_PREFETCH(ray_origin + ahead);
-            WP_SHADE_PREFETCH(ray_direction + ahead);
-            WP_SHADE_PREFETCH(throughput + ahead);
-            WP_SHADE_PREFETCH(path_depth + ahead);
-            WP_SHADE_PREFETCH(path_flags + ahead);
-            WP_SHADE_PREFETCH(path_pixel + ahead);
-            WP_SHADE_PREFETCH(path_sample + ahead);
-            WP_SHADE_PREFETCH_WRITE(shadow_origin + ahead);
-            WP_SHADE_PREFETCH_WRITE(shadow_direction + ahead);
-            WP_SHADE_PREFETCH_WRITE(shadow_contribution + ahead);
-            WP_SHADE_PREFETCH_WRITE(mirror_vertex + ahead);
+            WP_PREFETCH_LINE(hit_primitive + ahead);
+            WP_PREFETCH_LINE(hit_t + ahead);
+            WP_PREFETCH_LINE(ray_origin + ahead);
+            WP_PREFETCH_LINE(ray_direction + ahead);
+            WP_PREFETCH_LINE(throughput + ahead);
+            WP_PREFETCH_LINE(path_depth + ahead);
+            WP_PREFETCH_LINE(path_flags + ahead);
+            WP_PREFETCH_LINE(path_pixel + ahead);
+            WP_PREFETCH_LINE(path_sample + ahead);
+            WP_PREFETCH_LINE_FOR_WRITE(shadow_origin + ahead);
+            WP_PREFETCH_LINE_FOR_WRITE(shadow_direction + ahead);
+            WP_PREFETCH_LINE_FOR_WRITE(shadow_contribution + ahead);
+            WP_PREFETCH_LINE_FOR_WRITE(mirror_vertex + ahead);
         }
         wp_uint primitive = hit_primitive[slot];
         WpShadowRay shadow;
