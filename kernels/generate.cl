@@ -64,13 +64,20 @@ static inline int wp_generate_path(WP_STAGE_PARAMETERS, wp_uint slot) {
     return 1;
 }
 
+/* Generate kernel: one work-item per slot given to it. Its queue pushes are
+ * compacted per work-group (stage.h, wp_group_queue_push), so surplus
+ * work-items past the launch's count push nothing but still reach the
+ * barriers. */
 __kernel void generate(WP_STAGE_PARAMETERS) {
+    __local wp_uint place[WP_MAX_WORK_GROUP_SIZE];
+    __local wp_uint first_place;
     wp_uint index = get_global_id(0);
-    if (index >= launch.count)
-        return;
-    wp_uint slot = launch.from_finished ? finished_queue[index] : index;
-    if (!wp_generate_path(WP_STAGE_ARGUMENTS, slot))
-        return;
-    wp_queue_push(wp_ray_queue(ray_queues, frame, launch.ray_queue), counters, launch.ray_queue,
-                  slot);
+    wp_uint slot = 0u;
+    int started = 0;
+    if (index < launch.count) {
+        slot = launch.from_finished ? finished_queue[index] : index;
+        started = wp_generate_path(WP_STAGE_ARGUMENTS, slot);
+    }
+    wp_group_queue_push(wp_ray_queue(ray_queues, frame, launch.ray_queue), counters,
+                        launch.ray_queue, started, slot, place, &first_place);
 }
