@@ -385,6 +385,10 @@ void WavefrontIntegrator::trace_bounces(Film& film,
     std::uint64_t upper_bound = pool_size_; // the most rays the input queue can hold
     std::uint64_t survivors = 0;            // of those, rays that shade pushed (the rest are new)
     std::uint64_t finished_total = 0;
+    // Every slot owns its pixels and each of them gets sample_count samples
+    // (kernels/generate.cl), each finishing exactly once.
+    const std::uint64_t samples_total =
+        static_cast<std::uint64_t>(pixel_count_) * static_cast<std::uint64_t>(frame_.sample_count);
     std::size_t bounce = 0; // iterations since the last wave started (without regeneration)
     const double pixels = static_cast<double>(pixel_count_);
     static const std::array<cl_uint, 2> zeros{0, 0};
@@ -444,7 +448,7 @@ void WavefrontIntegrator::trace_bounces(Film& film,
             profiler_->resolve_completed();
         }
         if (traced == 0)
-            break; // every slot has finished all its samples
+            break; // nothing to trace (the count of finished samples below stops it sooner)
 
         if (!fused) { // the bounce kernel traced its shadow rays already
             launch(Stage::Shadow, make_launch(shadows, in), shadows);
@@ -463,6 +467,15 @@ void WavefrontIntegrator::trace_bounces(Film& film,
         finished_total += finished;
         if (on_progress)
             on_progress(static_cast<double>(finished_total) / pixels);
+        // The last sample has finished: a refill would find no slot with work,
+        // yet the iteration after it would be launched over its bound (the
+        // whole pool, without regeneration), and where intersect vectorises
+        // every surplus item traces slot 0's ray (kernels/traverse.h): once
+        // per call, a whole wave's first intersect for nothing
+        // (docs/performance.md, "The stages plan's host loop: the empty last
+        // iteration, and running ahead").
+        if (finished_total == samples_total)
+            break;
 
         // Refill: with regeneration the slots that just finished start their
         // next sample now; without, the pool waits until it has drained.

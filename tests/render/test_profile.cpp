@@ -59,6 +59,33 @@ TEST_CASE("profile: stage item counts are exact and consistent") {
     }
 }
 
+TEST_CASE("profile: a render call ends with its last sample, not with a launch over an empty "
+          "queue") {
+    // Once the last sample has finished, a refill finds no slot with work; an
+    // iteration after it would launch intersect over the whole pool (without
+    // regeneration) for nothing, and where intersect vectorises each of those
+    // items traces a ray (kernels/traverse.h). Every iteration must trace.
+    const int width = 10, height = 6;
+    for (bool regeneration : {true, false}) {
+        for (std::uint32_t pool : {0u, 37u}) {
+            INFO("regeneration " << regeneration << ", pool " << pool);
+            test::ProfiledRender r = test::profiled_render(test::hexroom(width, height), 3,
+                                                           regeneration, pool, kOclgrindDepth);
+            REQUIRE_FALSE(r.stats.queue_lengths.empty());
+            for (std::uint32_t length : r.stats.queue_lengths)
+                CHECK(length > 0);
+            std::uint64_t launches = 0;
+            for (const LaunchRecord& record : r.profiler.records())
+                if (record.stage == Stage::Intersect) {
+                    ++launches;
+                    CHECK(record.items > 0);
+                }
+            CHECK(launches == r.stats.iterations);
+            CHECK(r.film.total_samples() == std::uint64_t{width} * height * 3);
+        }
+    }
+}
+
 TEST_CASE("profile: every diffuse hit below a light sends exactly one shadow ray") {
     // A floor seen through a narrow view, lit from above: every camera ray
     // hits the floor, every floor point sees the light's front, and bounce
