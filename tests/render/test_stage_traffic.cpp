@@ -24,6 +24,7 @@ std::string code_of(std::string_view file) {
 // What the source does with `buffer`: read by an index that is not an
 // assignment's target (or by `+=`), by a scalar load (wp_load_xyz, wp_load_w)
 // or through a pointer to an element; written by an assignment, a queue push
+// (one item's or a work-group's)
 // or through a pointer to an element that is not const (per-component updates
 // such as `sum[0] += add[0]`, which also read it).
 int source_access(const std::string& code, const std::string& buffer) {
@@ -40,8 +41,8 @@ int source_access(const std::string& code, const std::string& buffer) {
         through_pointer;
     const bool written =
         std::regex_search(code, std::regex(index + R"(\s*(\+=|=[^=]))")) ||
-        std::regex_search(
-            code, std::regex(R"(wp_queue_push\(\s*(wp_ray_queue\(\s*)?)" + buffer + "\\b")) ||
+        std::regex_search(code, std::regex(R"(wp_(group_)?queue_push\(\s*(wp_ray_queue\(\s*)?)" +
+                                           buffer + "\\b")) ||
         through_pointer;
     return (read ? 1 : 0) | (written ? 2 : 0);
 }
