@@ -106,6 +106,8 @@ static inline WP_ALWAYS_INLINE wp_float wp_random(wp_uint seed, wp_uint pixel, w
 }
 
 #ifdef __OPENCL_VERSION__
+#include "computed_here.h"
+
 /* The eight numbers of one bounce, numbers[d] = wp_random(seed, pixel,
  * sample, bounce, d) for d < WP_DIMS_PER_BOUNCE, bit for bit, computed
  * together (with the Sobol sampler as one chain of vector operations,
@@ -120,6 +122,8 @@ static inline WP_ALWAYS_INLINE void wp_random_bounce(wp_uint seed, wp_uint pixel
     /* wp_to_unit_float per lane: below 2^24, every value converts exactly */
     float4 a = convert_float4(first >> 8u) * (1.0f / 16777216.0f);
     float4 b = convert_float4(second >> 8u) * (1.0f / 16777216.0f);
+    WP_COMPUTED_HERE(a);
+    WP_COMPUTED_HERE(b);
     numbers[WP_DIM_JITTER_X] = a.x;
     numbers[WP_DIM_JITTER_Y] = b.x;
     numbers[WP_DIM_LIGHT_PICK] = a.y;
