@@ -244,7 +244,7 @@ static inline void wp_shade_aovs(const WpMaterial* material, const WpSurface* su
 #define WP_SHADED_GOES_ON 1 /* scattered: it traces its next ray */
 #define WP_SHADED_CAPPED 2  /* cut at frame.max_depth: finished, and counted */
 
-/* The random numbers of the bounce at slot's path vertex (wp_random_bounce),
+/* The random numbers of the bounce at slot's path vertex (wp_random_bounce_pairs),
  * for wp_shade_path. They depend on the path alone (its pixel, sample and
  * depth), not on what the ray hit, so a caller draws them before it has the
  * hit: with the Sobol sampler they are a chain of some 14 dependent 32-bit
@@ -256,21 +256,24 @@ static inline void wp_shade_aovs(const WpMaterial* material, const WpSurface* su
  * work-items' chains overlap in part (docs/performance.md, issue #34's
  * "shade's random numbers drawn first"). WP_COMPUTED_HERE (rng.h) keeps the
  * compiler from sinking them back to their first use. */
-static inline WP_ALWAYS_INLINE void
-wp_shade_numbers(WpFrame frame, __global const wp_uint* path_pixel,
-                 __global const wp_uint* path_sample, __global const wp_uint* path_depth,
-                 wp_uint slot, float numbers[WP_DIMS_PER_BOUNCE]) {
-    wp_random_bounce(frame.seed, path_pixel[slot], path_sample[slot], path_depth[slot], numbers);
+static inline WP_ALWAYS_INLINE void wp_shade_numbers(WpFrame frame,
+                                                     __global const wp_uint* path_pixel,
+                                                     __global const wp_uint* path_sample,
+                                                     __global const wp_uint* path_depth,
+                                                     wp_uint slot, float4* first, float4* second) {
+    wp_random_bounce_pairs(frame.seed, path_pixel[slot], path_sample[slot], path_depth[slot], first,
+                           second);
 }
 
 /* Shade's work for one path: slot's ray hit `primitive` at distance t, and
- * `numbers` are its bounce's (wp_shade_numbers; a ray that missed reads
- * none). Updates the slot's path state, leaves the shadow ray it made (if
- * any) in *shadow, and says what became of the path (WP_SHADED_*). It bumps
- * no counter and pushes onto no queue, so that the caller can do both for a
+ * `first` and `second` are its bounce's numbers (wp_shade_numbers; a ray
+ * that missed reads none), by value: a pointer to them would keep them in
+ * memory where the call is not inlined (the GPU targets' private memory). Updates the slot's path
+ * state, leaves the shadow ray it made (if any) in *shadow, and says what became of the path
+ * (WP_SHADED_*). It bumps no counter and pushes onto no queue, so that the caller can do both for a
  * whole work-group at once (the shade kernel below). */
 static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primitive, float t,
-                                const float numbers[WP_DIMS_PER_BOUNCE], WpShadowRay* shadow) {
+                                float4 first, float4 second, WpShadowRay* shadow) {
     shadow->made = 0;
 #if WP_MIRROR_NEE
     shadow->mirror_made = 0;
@@ -298,8 +301,7 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
     random.pixel = path_pixel[slot];
     random.sample = path_sample[slot];
     random.depth = depth;
-    for (wp_uint d = 0u; d < WP_DIMS_PER_BOUNCE; ++d)
-        random.numbers[d] = numbers[d];
+    wp_bounce_numbers(first, second, random.numbers);
 
     WP_SCENE_VIEW(scene);
     float3 direction = ray_direction[slot].xyz;
@@ -543,12 +545,12 @@ __kernel void shade(WP_STAGE_PARAMETERS) {
      * (wp_shade_numbers), alone in this region: the loop PoCL makes of it
      * runs the chains back to back, and the processor overlaps them in part.
      * Not for rays that missed (they read none). */
-    float numbers[WP_DIMS_PER_BOUNCE];
+    float4 first = (float4)(0.0f), second = (float4)(0.0f);
     if (index < queued) {
         slot = wp_shade_queue_entry(shade_order, ray_queues, frame, launch, index);
         primitive = hit_primitive[slot];
         if (primitive != WP_NO_HIT)
-            wp_shade_numbers(frame, path_pixel, path_sample, path_depth, slot, numbers);
+            wp_shade_numbers(frame, path_pixel, path_sample, path_depth, slot, &first, &second);
     }
     barrier(CLK_LOCAL_MEM_FENCE);
 
@@ -571,8 +573,9 @@ __kernel void shade(WP_STAGE_PARAMETERS) {
             WP_PREFETCH_LINE_FOR_WRITE(mirror_vertex + ahead);
         }
         WpShadowRay shadow;
-        int outcome = wp_shade_path(WP_STAGE_ARGUMENTS, slot, primitive,
-                                    primitive == WP_NO_HIT ? 0.0f : hit_t[slot], numbers, &shadow);
+        int outcome =
+            wp_shade_path(WP_STAGE_ARGUMENTS, slot, primitive,
+                          primitive == WP_NO_HIT ? 0.0f : hit_t[slot], first, second, &shadow);
         push = outcome == WP_SHADED_GOES_ON ? WP_PUSH_NEXT_RAY : WP_PUSH_FINISHED;
         if (outcome == WP_SHADED_CAPPED)
             push |= WP_PUSH_CAPPED;
