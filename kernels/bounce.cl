@@ -18,11 +18,14 @@ __kernel void bounce(WP_FUSED_PARAMETERS) {
         return;
     wp_uint slot = wp_ray_queue(ray_queues, frame, launch.ray_queue)[index];
     WP_SCENE_VIEW(scene);
+    /* Drawn before the traversal, which hides their latency (shade.cl). */
+    float4 first, second;
+    wp_shade_numbers(frame, path_pixel, path_sample, path_depth, slot, &first, &second);
     float t;
     wp_uint primitive = wp_closest_hit(&scene, wp_load_xyz(ray_origin, slot),
                                        wp_load_xyz(ray_direction, slot), INFINITY, &t);
     WpShadowRay shadow;
-    int outcome = wp_shade_path(WP_STAGE_ARGUMENTS, slot, primitive, t, &shadow);
+    int outcome = wp_shade_path(WP_STAGE_ARGUMENTS, slot, primitive, t, first, second, &shadow);
     if (shadow.made) {
         atomic_inc(&counters[WP_COUNTER_SHADOW_RAYS]);
         wp_trace_shadow_ray(&scene, &shadow, radiance, slot);

@@ -106,32 +106,65 @@ static inline WP_ALWAYS_INLINE wp_float wp_random(wp_uint seed, wp_uint pixel, w
 }
 
 #ifdef __OPENCL_VERSION__
-/* The eight numbers of one bounce, numbers[d] = wp_random(seed, pixel,
- * sample, bounce, d) for d < WP_DIMS_PER_BOUNCE, bit for bit, computed
- * together (with the Sobol sampler as one chain of vector operations,
- * wp_sobol_bounce_bits). A caller that reads only some of them leaves the
- * rest to the compiler to drop. */
+#include "computed_here.h"
+
+/* The eight numbers of one bounce as two float4s, pair p of the bounce
+ * (sobol.h) in lane p: *first holds the pairs' coordinates 0 (jitter x,
+ * light pick, light u, BSDF u), *second their coordinates 1 (jitter y,
+ * roulette, light v, BSDF v); each is wp_random(seed, pixel, sample, bounce,
+ * d) of its dimension d, bit for bit, computed together (with the Sobol
+ * sampler as one chain of vector operations, wp_sobol_bounce_bits). The
+ * Sobol numbers are computed where this is called (WP_COMPUTED_HERE: the
+ * compiler would sink them to their first use), so that a caller can draw
+ * them early and the processor overlap their latency with other work; the
+ * independent sampler's are left to the compiler (pinned, its jitter pair
+ * would be computed for callers that read none of it). */
+static inline WP_ALWAYS_INLINE void wp_random_bounce_pairs(wp_uint seed, wp_uint pixel,
+                                                           wp_uint sample, wp_uint bounce,
+                                                           float4* first, float4* second) {
+#if WP_SAMPLER == WP_SAMPLER_SOBOL
+    uint4 a, b;
+    wp_sobol_bounce_bits(seed, pixel, sample, bounce, &a, &b);
+    /* wp_to_unit_float per lane: below 2^24, every value converts exactly */
+    *first = convert_float4(a >> 8u) * (1.0f / 16777216.0f);
+    *second = convert_float4(b >> 8u) * (1.0f / 16777216.0f);
+    WP_COMPUTED_HERE(*first);
+    WP_COMPUTED_HERE(*second);
+#else
+    *first = (float4)(wp_independent_random(seed, pixel, sample, bounce, WP_DIM_JITTER_X),
+                      wp_independent_random(seed, pixel, sample, bounce, WP_DIM_LIGHT_PICK),
+                      wp_independent_random(seed, pixel, sample, bounce, WP_DIM_LIGHT_U),
+                      wp_independent_random(seed, pixel, sample, bounce, WP_DIM_BSDF_U));
+    *second = (float4)(wp_independent_random(seed, pixel, sample, bounce, WP_DIM_JITTER_Y),
+                       wp_independent_random(seed, pixel, sample, bounce, WP_DIM_ROULETTE),
+                       wp_independent_random(seed, pixel, sample, bounce, WP_DIM_LIGHT_V),
+                       wp_independent_random(seed, pixel, sample, bounce, WP_DIM_BSDF_V));
+#endif
+}
+
+/* wp_random_bounce_pairs's numbers by dimension: numbers[d] = wp_random(seed,
+ * pixel, sample, bounce, d) for d < WP_DIMS_PER_BOUNCE. */
+static inline WP_ALWAYS_INLINE void wp_bounce_numbers(float4 first, float4 second,
+                                                      float numbers[WP_DIMS_PER_BOUNCE]) {
+    numbers[WP_DIM_JITTER_X] = first.x;
+    numbers[WP_DIM_JITTER_Y] = second.x;
+    numbers[WP_DIM_LIGHT_PICK] = first.y;
+    numbers[WP_DIM_ROULETTE] = second.y;
+    numbers[WP_DIM_LIGHT_U] = first.z;
+    numbers[WP_DIM_LIGHT_V] = second.z;
+    numbers[WP_DIM_BSDF_U] = first.w;
+    numbers[WP_DIM_BSDF_V] = second.w;
+}
+
+/* The eight numbers of one bounce by dimension (wp_random_bounce_pairs). A
+ * caller that reads only some of them leaves the rest to the compiler to
+ * drop. */
 static inline WP_ALWAYS_INLINE void wp_random_bounce(wp_uint seed, wp_uint pixel, wp_uint sample,
                                                      wp_uint bounce,
                                                      float numbers[WP_DIMS_PER_BOUNCE]) {
-#if WP_SAMPLER == WP_SAMPLER_SOBOL
-    uint4 first, second;
-    wp_sobol_bounce_bits(seed, pixel, sample, bounce, &first, &second);
-    /* wp_to_unit_float per lane: below 2^24, every value converts exactly */
-    float4 a = convert_float4(first >> 8u) * (1.0f / 16777216.0f);
-    float4 b = convert_float4(second >> 8u) * (1.0f / 16777216.0f);
-    numbers[WP_DIM_JITTER_X] = a.x;
-    numbers[WP_DIM_JITTER_Y] = b.x;
-    numbers[WP_DIM_LIGHT_PICK] = a.y;
-    numbers[WP_DIM_ROULETTE] = b.y;
-    numbers[WP_DIM_LIGHT_U] = a.z;
-    numbers[WP_DIM_LIGHT_V] = b.z;
-    numbers[WP_DIM_BSDF_U] = a.w;
-    numbers[WP_DIM_BSDF_V] = b.w;
-#else
-    for (wp_uint d = 0u; d < WP_DIMS_PER_BOUNCE; ++d)
-        numbers[d] = wp_independent_random(seed, pixel, sample, bounce, d);
-#endif
+    float4 first, second;
+    wp_random_bounce_pairs(seed, pixel, sample, bounce, &first, &second);
+    wp_bounce_numbers(first, second, numbers);
 }
 #endif
 

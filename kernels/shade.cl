@@ -57,8 +57,8 @@
 #include "textures/texture.h"
 
 /* The random numbers of one bounce of one path: the bounce's eight, drawn
- * together once the path is known to scatter (wp_random_bounce), and any
- * number past them on demand. */
+ * together before the hit is shaded (wp_shade_numbers), and any number past
+ * them on demand. */
 typedef struct {
     wp_uint seed, pixel, sample, depth;
     float numbers[WP_DIMS_PER_BOUNCE];
@@ -244,13 +244,36 @@ static inline void wp_shade_aovs(const WpMaterial* material, const WpSurface* su
 #define WP_SHADED_GOES_ON 1 /* scattered: it traces its next ray */
 #define WP_SHADED_CAPPED 2  /* cut at frame.max_depth: finished, and counted */
 
-/* Shade's work for one path: slot's ray hit `primitive` at distance t.
- * Updates the slot's path state, leaves the shadow ray it made (if any) in
- * *shadow, and says what became of the path (WP_SHADED_*). It bumps no
- * counter and pushes onto no queue, so that the caller can do both for a
+/* The random numbers of the bounce at slot's path vertex (wp_random_bounce_pairs),
+ * for wp_shade_path. They depend on the path alone (its pixel, sample and
+ * depth), not on what the ray hit, so a caller draws them before it has the
+ * hit: with the Sobol sampler they are a chain of some 14 dependent 32-bit
+ * multiplies (hundreds of cycles of latency on a CPU), which drawn where the
+ * light sample waits for them stalled it (a third of the hexroom's shade).
+ * Drawn early the processor overlaps them with other work: the fused
+ * kernels draw them before the traversal; the shade kernel draws a whole
+ * work-group's before a barrier, in a loop of their own where consecutive
+ * work-items' chains overlap in part (docs/performance.md, issue #34's
+ * "shade's random numbers drawn first"). WP_COMPUTED_HERE (rng.h) keeps the
+ * compiler from sinking them back to their first use. */
+static inline WP_ALWAYS_INLINE void wp_shade_numbers(WpFrame frame,
+                                                     __global const wp_uint* path_pixel,
+                                                     __global const wp_uint* path_sample,
+                                                     __global const wp_uint* path_depth,
+                                                     wp_uint slot, float4* first, float4* second) {
+    wp_random_bounce_pairs(frame.seed, path_pixel[slot], path_sample[slot], path_depth[slot], first,
+                           second);
+}
+
+/* Shade's work for one path: slot's ray hit `primitive` at distance t, and
+ * `first` and `second` are its bounce's numbers (wp_shade_numbers; a ray
+ * that missed reads none), by value: a pointer to them would keep them in
+ * memory where the call is not inlined (the GPU targets' private memory). Updates the slot's path
+ * state, leaves the shadow ray it made (if any) in *shadow, and says what became of the path
+ * (WP_SHADED_*). It bumps no counter and pushes onto no queue, so that the caller can do both for a
  * whole work-group at once (the shade kernel below). */
 static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primitive, float t,
-                                WpShadowRay* shadow) {
+                                float4 first, float4 second, WpShadowRay* shadow) {
     shadow->made = 0;
 #if WP_MIRROR_NEE
     shadow->mirror_made = 0;
@@ -271,6 +294,14 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
 #endif
         return WP_SHADED_ENDS;
     }
+
+    wp_uint depth = path_depth[slot];
+    WpPathRandom random;
+    random.seed = frame.seed;
+    random.pixel = path_pixel[slot];
+    random.sample = path_sample[slot];
+    random.depth = depth;
+    wp_bounce_numbers(first, second, random.numbers);
 
     WP_SCENE_VIEW(scene);
     float3 direction = ray_direction[slot].xyz;
@@ -305,13 +336,7 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
 
     float3 beta = throughput[slot].xyz;
     float eta_squared = throughput[slot].w; /* the roulette's (WP_ROULETTE_RULE) */
-    wp_uint depth = path_depth[slot];
     wp_uint flags = path_flags[slot];
-    WpPathRandom random;
-    random.seed = frame.seed;
-    random.pixel = path_pixel[slot];
-    random.sample = path_sample[slot];
-    random.depth = depth;
 
     /* Step 1 only where the material emits: a surface that emits nothing
      * adds beta x 0 to the radiance, so the emission's weight (a light
@@ -362,8 +387,6 @@ static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primi
     if (depth >= frame.max_depth)
         return WP_SHADED_ENDS;
 #endif
-
-    wp_random_bounce(random.seed, random.pixel, random.sample, depth, random.numbers);
 
     /* Shadow rays and reflected rays leave by the side the ray came from,
      * transmitted ones (and shadow rays towards lights behind a surface that
@@ -502,6 +525,8 @@ static inline wp_uint wp_shade_queue_entry(__global const wp_uint* shade_order,
  * shading's work-item loop (PoCL splits the kernel into one loop per region
  * between barriers, and an atomic stops its vectoriser; on PoCL 3.1 the
  * float3 code still does, docs/profiling.md "Vectorising shade").
+ * Before the shading, a region of its own draws the work-items' random
+ * numbers (wp_shade_numbers).
  * Surplus work-items (past the queue's end) shade nothing and push nothing,
  * but reach the barriers like the rest. Which place a slot takes in a queue
  * changes nothing that is computed: every slot owns its own pixels. */
@@ -514,10 +539,22 @@ __kernel void shade(WP_STAGE_PARAMETERS) {
 
     wp_uint index = get_global_id(0);
     wp_uint item = get_local_id(0);
-    wp_uint slot = 0u, push = 0u;
+    wp_uint slot = 0u, push = 0u, primitive = WP_NO_HIT;
     wp_uint queued = counters[launch.ray_queue];
+    /* First the group's random numbers, each work-item's for its own path
+     * (wp_shade_numbers), alone in this region: the loop PoCL makes of it
+     * runs the chains back to back, and the processor overlaps them in part.
+     * Not for rays that missed (they read none). */
+    float4 first = (float4)(0.0f), second = (float4)(0.0f);
     if (index < queued) {
         slot = wp_shade_queue_entry(shade_order, ray_queues, frame, launch, index);
+        primitive = hit_primitive[slot];
+        if (primitive != WP_NO_HIT)
+            wp_shade_numbers(frame, path_pixel, path_sample, path_depth, slot, &first, &second);
+    }
+    barrier(CLK_LOCAL_MEM_FENCE);
+
+    if (index < queued) {
         if (index + WP_SHADE_LOOKAHEAD < queued) {
             wp_uint ahead = wp_shade_queue_entry(shade_order, ray_queues, frame, launch,
                                                  index + WP_SHADE_LOOKAHEAD);
@@ -535,10 +572,10 @@ __kernel void shade(WP_STAGE_PARAMETERS) {
             WP_PREFETCH_LINE_FOR_WRITE(shadow_contribution + ahead);
             WP_PREFETCH_LINE_FOR_WRITE(mirror_vertex + ahead);
         }
-        wp_uint primitive = hit_primitive[slot];
         WpShadowRay shadow;
-        int outcome = wp_shade_path(WP_STAGE_ARGUMENTS, slot, primitive,
-                                    primitive == WP_NO_HIT ? 0.0f : hit_t[slot], &shadow);
+        int outcome =
+            wp_shade_path(WP_STAGE_ARGUMENTS, slot, primitive,
+                          primitive == WP_NO_HIT ? 0.0f : hit_t[slot], first, second, &shadow);
         push = outcome == WP_SHADED_GOES_ON ? WP_PUSH_NEXT_RAY : WP_PUSH_FINISHED;
         if (outcome == WP_SHADED_CAPPED)
             push |= WP_PUSH_CAPPED;

@@ -28,12 +28,16 @@ __kernel void wave(WP_FUSED_PARAMETERS) {
             break;
         int goes_on = 1;
         while (goes_on) {
+            /* Drawn before the traversal, which hides their latency (shade.cl). */
+            float4 first, second;
+            wp_shade_numbers(frame, path_pixel, path_sample, path_depth, slot, &first, &second);
             float t;
             wp_uint primitive = wp_closest_hit(&scene, wp_load_xyz(ray_origin, slot),
                                                wp_load_xyz(ray_direction, slot), INFINITY, &t);
             ++rays;
             WpShadowRay shadow;
-            int outcome = wp_shade_path(WP_STAGE_ARGUMENTS, slot, primitive, t, &shadow);
+            int outcome =
+                wp_shade_path(WP_STAGE_ARGUMENTS, slot, primitive, t, first, second, &shadow);
             if (outcome == WP_SHADED_CAPPED)
                 atomic_inc(&counters[WP_COUNTER_CAPPED]);
             goes_on = outcome == WP_SHADED_GOES_ON;
