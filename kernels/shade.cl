@@ -268,9 +268,10 @@ static inline WP_ALWAYS_INLINE void wp_shade_numbers(WpFrame frame,
 /* Shade's work for one path: slot's ray hit `primitive` at distance t, and
  * `first` and `second` are its bounce's numbers (wp_shade_numbers; a ray
  * that missed reads none), by value: a pointer to them would keep them in
- * memory where the call is not inlined (the GPU targets' private memory). Updates the slot's path
- * state, leaves the shadow ray it made (if any) in *shadow, and says what became of the path
- * (WP_SHADED_*). It bumps no counter and pushes onto no queue, so that the caller can do both for a
+ * memory where the call is not inlined (the GPU targets' private memory).
+ * Updates the slot's path state, leaves the shadow ray it made (if any) in
+ * *shadow, and says what became of the path (WP_SHADED_*). It bumps no
+ * counter and pushes onto no queue, so that the caller can do both for a
  * whole work-group at once (the shade kernel below). */
 static inline int wp_shade_path(WP_STAGE_PARAMETERS, wp_uint slot, wp_uint primitive, float t,
                                 float4 first, float4 second, WpShadowRay* shadow) {
