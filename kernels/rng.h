@@ -155,17 +155,6 @@ static inline WP_ALWAYS_INLINE void wp_bounce_numbers(float4 first, float4 secon
     numbers[WP_DIM_BSDF_U] = first.w;
     numbers[WP_DIM_BSDF_V] = second.w;
 }
-
-/* The eight numbers of one bounce by dimension (wp_random_bounce_pairs). A
- * caller that reads only some of them leaves the rest to the compiler to
- * drop. */
-static inline WP_ALWAYS_INLINE void wp_random_bounce(wp_uint seed, wp_uint pixel, wp_uint sample,
-                                                     wp_uint bounce,
-                                                     float numbers[WP_DIMS_PER_BOUNCE]) {
-    float4 first, second;
-    wp_random_bounce_pairs(seed, pixel, sample, bounce, &first, &second);
-    wp_bounce_numbers(first, second, numbers);
-}
 #endif
 
 #endif /* WP_RNG_H */

@@ -32,8 +32,10 @@ __kernel void bounce_randoms(uint count, __global const uint4* keys, __global fl
     uint i = get_global_id(0);
     if (i >= count) return;
     uint4 k = keys[i];
+    float4 first, second;
+    wp_random_bounce_pairs(k.x, k.y, k.z, k.w, &first, &second);
     float numbers[WP_DIMS_PER_BOUNCE];
-    wp_random_bounce(k.x, k.y, k.z, k.w, numbers);
+    wp_bounce_numbers(first, second, numbers);
     for (uint d = 0u; d < WP_DIMS_PER_BOUNCE; ++d)
         out[i * WP_DIMS_PER_BOUNCE + d] = numbers[d];
 }
