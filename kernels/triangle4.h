@@ -103,10 +103,13 @@ static inline int4 wp_triangle4_test(const WpShearedRay* ray, float4 p0x, float4
 
 /* wp_triangle4_test on the four triangles group .. group + 3 of a leaf whose
  * last triangle is `last`: lanes past the leaf's end test its last triangle
- * again and are dropped from the result (0 in their lane). */
-static inline int4 wp_triangle4_group_test(__global const WpTriangle* triangles, wp_uint group,
-                                           wp_uint last, const WpShearedRay* ray, float t_max,
-                                           float4* T, float4* det) {
+ * again and are dropped from the result (0 in their lane). Always inlined:
+ * with two callers in a kernel (the closest-hit and any-hit walks) PoCL kept
+ * it out of line, and each call passed T and det back through memory. */
+static inline WP_ALWAYS_INLINE int4 wp_triangle4_group_test(__global const WpTriangle* triangles,
+                                                            wp_uint group, wp_uint last,
+                                                            const WpShearedRay* ray, float t_max,
+                                                            float4* T, float4* det) {
     __global const WpTriangle* t0 = &triangles[group];
     __global const WpTriangle* t1 = &triangles[min(group + 1u, last)];
     __global const WpTriangle* t2 = &triangles[min(group + 2u, last)];
