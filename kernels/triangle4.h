@@ -36,11 +36,17 @@ static inline float4 wp_min4(float4 a, float4 b) {
 
 /* wp_triangle_test on four triangles, lane i the triangle with corners
  * (p0x.si, p0y.si, p0z.si) and so on: sets *T and *det to the lanes' scaled
- * distances and edge sums and returns the lanes (-1, else 0) that the test
- * accepts with bound t_max. */
+ * distances and edge sums and returns the lanes (-1, else 0) among `lanes`
+ * that the test accepts with bound t_max.
+ *
+ * The sliver guard can only reject, so it is computed only where some lane
+ * of `lanes` has passed the edge and range tests: most groups a ray reaches
+ * have none, and the guard (a dependent chain of 18 maxima) was the larger
+ * part of the test. The lanes' answers are the same as testing all three. */
 static inline int4 wp_triangle4_test(const WpShearedRay* ray, float4 p0x, float4 p0y, float4 p0z,
                                      float4 p1x, float4 p1y, float4 p1z, float4 p2x, float4 p2y,
-                                     float4 p2z, float t_max, float4* T_out, float4* det_out) {
+                                     float4 p2z, float t_max, int4 lanes, float4* T_out,
+                                     float4* det_out) {
     int kx = ray->kx, ky = ray->ky, kz = ray->kz;
     float4 az = wp_axis4(p0x, p0y, p0z, kz) - ray->oz;
     float4 bz = wp_axis4(p1x, p1y, p1z, kz) - ray->oz;
@@ -64,6 +70,17 @@ static inline int4 wp_triangle4_test(const WpShearedRay* ray, float4 p0x, float4
     int4 negative = (u < 0.0f) | (v < 0.0f) | (w < 0.0f);
     int4 positive = (u > 0.0f) | (v > 0.0f) | (w > 0.0f);
     int4 inside = ~(negative & positive);
+    float4 det = u + v + w;
+
+    float4 T = u * (ray->sz * az) + v * (ray->sz * bz) + w * (ray->sz * cz);
+    float4 bound = t_max * det;
+    int4 in_range = select((det != 0.0f) & ~((T >= 0.0f) | (T <= bound)),
+                           ~((T <= 0.0f) | (T >= bound)), det > 0.0f);
+    *T_out = T;
+    *det_out = det;
+    int4 candidates = lanes & inside & in_range;
+    if (!any(candidates))
+        return (int4)(0);
 
     /* The sliver guard (triangle.h), the same maxima and minima. */
     float4 m = wp_max4(a_x, -a_x);
@@ -81,23 +98,18 @@ static inline int4 wp_triangle4_test(const WpShearedRay* ray, float4 p0x, float4
     float4 low_y = wp_min4(wp_min4(ay, by), cy);
     float4 high_y = wp_max4(wp_max4(ay, by), cy);
     int4 in_box = ~((low_x > slack) | (high_x < -slack) | (low_y > slack) | (high_y < -slack));
-    float4 det = u + v + w;
-
-    float4 T = u * (ray->sz * az) + v * (ray->sz * bz) + w * (ray->sz * cz);
-    float4 bound = t_max * det;
-    int4 in_range = select((det != 0.0f) & ~((T >= 0.0f) | (T <= bound)),
-                           ~((T <= 0.0f) | (T >= bound)), det > 0.0f);
-    *T_out = T;
-    *det_out = det;
-    return inside & in_box & in_range;
+    return candidates & in_box;
 }
 
 /* wp_triangle4_test on the four triangles group .. group + 3 of a leaf whose
  * last triangle is `last`: lanes past the leaf's end test its last triangle
- * again and are dropped from the result (0 in their lane). */
-static inline int4 wp_triangle4_group_test(__global const WpTriangle* triangles, wp_uint group,
-                                           wp_uint last, const WpShearedRay* ray, float t_max,
-                                           float4* T, float4* det) {
+ * again and are dropped from the result (0 in their lane). Always inlined:
+ * with two callers in a kernel (the closest-hit and any-hit walks) PoCL kept
+ * it out of line, and each call passed T and det back through memory. */
+static inline WP_ALWAYS_INLINE int4 wp_triangle4_group_test(__global const WpTriangle* triangles,
+                                                            wp_uint group, wp_uint last,
+                                                            const WpShearedRay* ray, float t_max,
+                                                            float4* T, float4* det) {
     __global const WpTriangle* t0 = &triangles[group];
     __global const WpTriangle* t1 = &triangles[min(group + 1u, last)];
     __global const WpTriangle* t2 = &triangles[min(group + 2u, last)];
@@ -105,14 +117,13 @@ static inline int4 wp_triangle4_group_test(__global const WpTriangle* triangles,
     float4 a0 = t0->v0, a1 = t1->v0, a2 = t2->v0, a3 = t3->v0;
     float4 b0 = t0->v1, b1 = t1->v1, b2 = t2->v1, b3 = t3->v1;
     float4 c0 = t0->v2, c1 = t1->v2, c2 = t2->v2, c3 = t3->v2;
-    int4 found =
-        wp_triangle4_test(ray, (float4)(a0.x, a1.x, a2.x, a3.x), (float4)(a0.y, a1.y, a2.y, a3.y),
-                          (float4)(a0.z, a1.z, a2.z, a3.z), (float4)(b0.x, b1.x, b2.x, b3.x),
-                          (float4)(b0.y, b1.y, b2.y, b3.y), (float4)(b0.z, b1.z, b2.z, b3.z),
-                          (float4)(c0.x, c1.x, c2.x, c3.x), (float4)(c0.y, c1.y, c2.y, c3.y),
-                          (float4)(c0.z, c1.z, c2.z, c3.z), t_max, T, det);
     wp_uint lanes = min(last - group + 1u, 4u);
-    return found & ((int4)(0, 1, 2, 3) < (int4)((int)lanes));
+    return wp_triangle4_test(ray, (float4)(a0.x, a1.x, a2.x, a3.x),
+                             (float4)(a0.y, a1.y, a2.y, a3.y), (float4)(a0.z, a1.z, a2.z, a3.z),
+                             (float4)(b0.x, b1.x, b2.x, b3.x), (float4)(b0.y, b1.y, b2.y, b3.y),
+                             (float4)(b0.z, b1.z, b2.z, b3.z), (float4)(c0.x, c1.x, c2.x, c3.x),
+                             (float4)(c0.y, c1.y, c2.y, c3.y), (float4)(c0.z, c1.z, c2.z, c3.z),
+                             t_max, (int4)(0, 1, 2, 3) < (int4)((int)lanes), T, det);
 }
 
 /* The triangles first .. first + count - 1 of `triangles` hit by the ray at
