@@ -145,6 +145,9 @@ enum { WP_MATERIALS(WP_MATERIAL_ENUMERATOR) WP_MATERIAL_KIND_COUNT };
     6u /* the mirror queue: two-leg shadow rays (mirror_light.h) */
 #define WP_COUNTER_COUNT 8u
 
+/* The most bounces the tail kernel (tail.cl) traces a path in one launch. */
+#define WP_TAIL_BOUNCES 32u
+
 /* The keys shade's queue is sorted by (kernels/shade_sort.cl, with
  * --shade-order sorted): the material kind a ray hit, or
  * WP_SHADE_KEY_MISS for a ray that left the scene. */
@@ -593,6 +596,8 @@ typedef struct {
     /* the ray queue sorted by what was hit, and its counts per key (kernels/shade_sort.cl) */     \
     X(shade_order, wp_uint, 1, 0, 0)                                                               \
     X(shade_key_counts, wp_uint, 0, 0, 2u * WP_SHADE_KEY_COUNT)                                    \
+    /* tail.cl: entry k - 1 counts the paths that traced k rays in one tail launch */              \
+    X(tail_lengths, wp_uint, 0, 0, WP_TAIL_BOUNCES)                                                \
     /* the film of the current batch of iterations, per pixel (kernels/accumulate.cl) */           \
     X(film_sum, wp_float4, 0, 1, 0)                                                                \
     X(film_sum_squares, wp_float4, 0, 1, 0)                                                        \

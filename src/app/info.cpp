@@ -381,6 +381,13 @@ int run_info(const InfoCommand& command) {
                 plan.iterations_per_flush, plan.samples_per_call);
     std::printf("shade order: %s (%s)\n", plan.sorted_shading ? "sorted" : "arrival",
                 plan.shade_order_why.c_str());
+    if (integrator.tail_rays() > 0)
+        std::printf("a wave's tail: its paths traced on in one launch once at most %u rays are "
+                    "left, for this pool of %u slots (by default %u, at most a sixteenth of the "
+                    "pool; kernels/tail.cl)\n",
+                    integrator.tail_rays(), integrator.pool_size(), kDefaultTailRays);
+    else
+        std::printf("a wave's tail: a launch of each stage per bounce\n");
     std::printf("work-groups of %zu work-items; path slots: %s\n", integrator.work_group_size(),
                 command.integrator.pool_size == 0
                     ? "one per pixel"

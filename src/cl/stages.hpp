@@ -17,12 +17,13 @@
     X(Accumulate, accumulate)                                                                      \
     /* the fused kernels of the launch plans (LaunchPlan, render/integrator_options.hpp) */        \
     X(Bounce, bounce)                                                                              \
-    X(Wave, wave)
+    X(Wave, wave)                                                                                  \
+    X(Tail, tail) /* a wave's last bounces, in the stages and bounce plans */
 
 namespace wp {
 
 #define WP_STAGE_NAME(enum_name, name) #name,
-inline constexpr std::array<std::string_view, 8> kStageKernelNames = {
+inline constexpr std::array<std::string_view, 9> kStageKernelNames = {
     WP_STAGE_KERNELS(WP_STAGE_NAME)};
 #undef WP_STAGE_NAME
 

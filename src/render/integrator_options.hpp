@@ -178,6 +178,14 @@ struct IntegratorOptions {
     // render/device_buffers.hpp) at some cost in parallelism.
     std::uint32_t pool_size = 0;
     LaunchPlan launch_plan = LaunchPlan::Auto;
+    // The stages and bounce plans without regeneration: once a wave has at
+    // most this many rays left, the tail kernel (kernels/tail.cl) traces its
+    // paths on in one launch (another where they cross a fold of the film)
+    // instead of a launch of every stage and a host sync per bounce; the
+    // image is the same bit for bit. Unset: kDefaultTailRays, at most a
+    // sixteenth of the pool (tail_rays_for, render/wavefront.hpp). 0: never.
+    // WAVEPATH_TAIL_RAYS overrides either (for measuring).
+    std::optional<std::uint32_t> tail_rays;
     // Sorted needs the stages plan (a fused kernel shades each ray in the
     // work-item that traced it): it makes `auto` pick that plan.
     ShadeOrder shade_order = ShadeOrder::Auto;

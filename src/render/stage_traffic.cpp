@@ -129,6 +129,12 @@ constexpr std::array<BufferAccess, 14> kWave{{{"path_task", RW},
                                               {"aov_normal", RW},
                                               {"aov_depth", RW}}};
 
+// kernels/tail.cl, per ray (an item is a bounce, as in kBounce): the same
+// accesses as a bounce; the path's state stays in cache between its
+// bounces, so this overcounts. tail_lengths is one atomic per path, like the
+// counters.
+constexpr std::array<BufferAccess, 13> kTail = kBounce;
+
 } // namespace
 
 std::span<const BufferAccess> stage_buffer_accesses(Stage stage) {
@@ -149,6 +155,8 @@ std::span<const BufferAccess> stage_buffer_accesses(Stage stage) {
         return kBounce;
     case Stage::Wave:
         return kWave;
+    case Stage::Tail:
+        return kTail;
     case Stage::Transfer:
         break;
     }

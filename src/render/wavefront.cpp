@@ -89,6 +89,14 @@ void check_scene_memory(const DeviceInfo& device, const DeviceScene& scene) {
 
 } // namespace
 
+std::uint32_t tail_rays_for(std::optional<std::uint32_t> option, std::uint32_t pool_size) {
+    if (const char* text = std::getenv("WAVEPATH_TAIL_RAYS"))
+        return static_cast<std::uint32_t>(std::strtoul(text, nullptr, 10));
+    if (option)
+        return *option;
+    return std::min(kDefaultTailRays, pool_size / 16u);
+}
+
 ChosenLaunchPlan choose_launch_plan(LaunchPlan requested, const DeviceInfo& device,
                                     bool vectorised_tracing, std::optional<bool> regeneration,
                                     ShadeOrder shade_order) {
@@ -202,6 +210,11 @@ WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const PreparedSc
     plan_ = choose_launch_plan(options_.launch_plan, device_.info,
                                compiled.fixed_counts && !compiled.bvh, options_.regeneration,
                                options_.shade_order);
+    // The wave's tail in one launch (kernels/tail.cl): only where waves have
+    // tails (without regeneration the queue drains; with it, it refills), and
+    // not with the sort, whose point is shade's order; never in the wave plan.
+    if (plan_.plan != LaunchPlan::Wave && !plan_.regeneration && !plan_.sorted_shading)
+        tail_rays_ = tail_rays_for(options_.tail_rays, pool_size_);
     check_scene_memory(device_.info, scene);
     program_ = build_wavefront_program(device_.context, device_.info.device, build_options,
                                        options_.program_cache);
@@ -247,8 +260,11 @@ WavefrontIntegrator::WavefrontIntegrator(DeviceContext& device, const PreparedSc
 
 std::string WavefrontIntegrator::launch_summary() const {
     return to_string(plan_.plan) + (plan_.sorted_shading ? ", shade sorted by material" : "") +
-           (plan_.regeneration ? ", regeneration" : ", one wave at a time") + ", pool " +
-           std::to_string(pool_size_) + ", work-groups of " + std::to_string(group_size_);
+           (plan_.regeneration ? ", regeneration" : ", one wave at a time") +
+           (tail_rays_ > 0 ? ", its tail in one launch from " + std::to_string(tail_rays_) + " rays"
+                           : "") +
+           ", pool " + std::to_string(pool_size_) + ", work-groups of " +
+           std::to_string(group_size_);
 }
 
 void WavefrontIntegrator::clear_film() {
@@ -362,6 +378,10 @@ void WavefrontIntegrator::trace_bounces(Film& film,
     // or intersect, (the sort's two,) shade.
     const std::size_t ray_launches = fused ? 1 : plan_.sorted_shading ? 4 : 2;
     cl::CommandQueue& q = device_.queue;
+    // The wave's tail in one launch (kernels/tail.cl): without regeneration
+    // (with it the queue refills and has no tail), and not with the sort,
+    // whose point is shade's order.
+    const std::uint32_t tail_rays = tail_rays_;
 
     // The two ray queues swap roles every iteration: intersect and shade read
     // queue `in`, shade pushes survivors onto the other one, and generate
@@ -404,6 +424,77 @@ void WavefrontIntegrator::trace_bounces(Film& film,
                                  sizeof(cl_uint) * WP_COUNTER_MIRROR_SHADOW_RAYS, sizeof(cl_uint),
                                  zeros.data());
         const auto bound = static_cast<std::uint32_t>(upper_bound);
+        if (bound > 0 && bound <= tail_rays) {
+            // At most `bound` rays are left of this wave: the tail kernel
+            // traces them on for the iterations until the next fold of the
+            // film (or WP_TAIL_BOUNCES), so that every path ends in the film
+            // batch it ends in under the stages plan.
+            const std::uint32_t span = std::min<std::uint32_t>(
+                plan_.iterations_per_flush -
+                    static_cast<std::uint32_t>(iteration % plan_.iterations_per_flush),
+                WP_TAIL_BOUNCES);
+            static const std::array<cl_uint, WP_TAIL_BOUNCES> no_lengths{};
+            q.enqueueWriteBuffer(buffers_.tail_lengths, CL_FALSE, 0, sizeof(no_lengths),
+                                 no_lengths.data());
+            launch(Stage::Tail, make_launch(span, in), bound);
+            std::optional<std::size_t> record;
+            if (profiler_)
+                record = profiler_->last_record();
+            std::array<cl_uint, WP_COUNTER_MIRROR_SHADOW_RAYS + 1> counts{};
+            read(buffers_.counters, 4 * sizeof(cl_uint), counts.data(), false);
+            std::array<cl_uint, WP_TAIL_BOUNCES> lengths{};
+            read(buffers_.tail_lengths, sizeof(lengths), lengths.data(), true);
+            const std::uint32_t started = counts[in];
+            const std::uint32_t next = counts[out];
+            const std::uint32_t finished = counts[WP_COUNTER_FINISHED];
+            // The rays of each bounce: the paths that traced more than b.
+            std::uint32_t bounces = 0;
+            std::uint64_t rays = 0, live = started;
+            for (std::uint32_t b = 0; b < span && live > 0; ++b) {
+                if (stats_.rays_per_bounce.size() <= bounce)
+                    stats_.rays_per_bounce.resize(bounce + 1, 0);
+                stats_.rays_per_bounce[bounce++] += live;
+                rays += live;
+                live -= lengths[b];
+                ++bounces;
+            }
+            stats_.iterations += 1;
+            stats_.queue_lengths.push_back(static_cast<std::uint32_t>(rays));
+            stats_.camera_rays += started - survivors;
+            stats_.bounce_rays += rays - (started - survivors);
+            stats_.shadow_rays += counts[WP_COUNTER_SHADOW_RAYS];
+            if (profiler_) {
+                profiler_->set_items(*record, rays);
+                if (generate_record != kNoRecord)
+                    profiler_->set_items(generate_record, started - survivors);
+                generate_record = kNoRecord;
+                profiler_->resolve_completed();
+            }
+            if (started == 0)
+                break;
+            launch(Stage::Accumulate, make_launch(finished, in), finished);
+            finished_total += finished;
+            if (on_progress)
+                on_progress(static_cast<double>(finished_total) / pixels);
+            if (finished_total == samples_total)
+                break;
+            upper_bound = next;
+            if (next == 0) { // the wave has ended: the next one starts
+                launch(Stage::Generate, make_launch(pool_size_, out), pool_size_);
+                upper_bound += pool_size_;
+                bounce = 0;
+                if (profiler_)
+                    generate_record = profiler_->last_record();
+            }
+            survivors = next;
+            in = out;
+            // The tail ran the stages plan's iterations [iteration, iteration
+            // + bounces); the film is folded where that plan folds it.
+            iteration += bounces - 1;
+            if ((iteration + 1) % plan_.iterations_per_flush == 0)
+                flush_film(film);
+            continue;
+        }
         // The records of this iteration's ray launches (intersect and shade,
         // or bounce), whose item counts the sync below gives.
         std::optional<std::size_t> first_ray_record;

@@ -74,6 +74,19 @@ ChosenLaunchPlan choose_launch_plan(LaunchPlan requested, const DeviceInfo& devi
                                     std::optional<bool> regeneration = std::nullopt,
                                     ShadeOrder shade_order = ShadeOrder::Auto);
 
+// The stages and bounce plans hand a wave's last paths to the tail kernel
+// (kernels/tail.cl) once at most this many rays are left: on the two-core
+// PoCL machine the tail kernel, which runs scalar, costs about 5x the
+// vectorised stages per ray, and a stage iteration of a few rays about
+// 0.4 ms of launches and sync (docs/performance.md, "2026-12-08: a wave's
+// tail in one launch").
+inline constexpr std::uint32_t kDefaultTailRays = 512;
+// The threshold a render uses: WAVEPATH_TAIL_RAYS if set (for measuring),
+// else IntegratorOptions::tail_rays if set, else kDefaultTailRays but at
+// most a sixteenth of the pool, so that a small pool still runs its first
+// bounces through the stage kernels. 0: never.
+std::uint32_t tail_rays_for(std::optional<std::uint32_t> option, std::uint32_t pool_size);
+
 // The features the integrator gives `scene` under `options` (analyse_features,
 // then the traversal and shadow culling asked for), and those its kernels are
 // compiled for: these, or every feature with --general.
@@ -116,6 +129,9 @@ class WavefrontIntegrator {
     // `wavepath info` and the image metadata give it.
     std::string launch_summary() const;
     std::size_t work_group_size() const { return group_size_; }
+    // The live rays from which the tail kernel finishes a wave (0: never;
+    // tail_rays_for).
+    std::uint32_t tail_rays() const { return tail_rays_; }
     // The self-check's verdict, if one was asked for and applied: the
     // specialised and general options differ (render/self_check.hpp).
     const std::optional<SelfCheckVerdict>& self_check() const { return self_check_; }
@@ -172,6 +188,7 @@ class WavefrontIntegrator {
     WpFrame frame_{};
     std::uint32_t pixel_count_ = 0;
     std::uint32_t pool_size_ = 0;
+    std::uint32_t tail_rays_ = 0; // tail_rays()
     // Kernels built with WP_MIRROR_NEE: the mirror queue's two-leg shadow rays
     // go to mirror_shadow (kernels/shadow.cl) after the shadow stage.
     bool mirror_shadows_ = false;

@@ -20,7 +20,8 @@ bool traces_rays(Stage stage) {
 // The kernels that only some launch plans run (the fused kernels, the sort
 // of --shade-order sorted): rows only when they ran.
 bool optional_kernel(Stage stage) {
-    return stage == Stage::Bounce || stage == Stage::Wave || stage == Stage::ShadeSort;
+    return stage == Stage::Bounce || stage == Stage::Wave || stage == Stage::Tail ||
+           stage == Stage::ShadeSort;
 }
 
 // Queue lengths per iteration, shortened to the first and last few.

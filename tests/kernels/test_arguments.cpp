@@ -68,10 +68,11 @@ TEST_CASE("stage kernels: the host binds one buffer per listed name, and sizes t
 #undef WP_SIZE
     CHECK(path_buffer_bytes().total(3, 5) == total);
     const char* name = nullptr;
-    // (8 pixels: with 5, the fixed 88 bytes of shade_key_counts would be largest)
-    CHECK(path_buffer_bytes().largest(3, 8, &name) == 8 * sizeof(cl_float4)); // a film buffer
+    // (16 pixels and 16 slots: with 8 or fewer, the fixed 128 bytes of
+    // tail_lengths would be largest)
+    CHECK(path_buffer_bytes().largest(3, 16, &name) == 16 * sizeof(cl_float4)); // a film buffer
     CHECK(std::string(name) == "film_sum");
-    CHECK(path_buffer_bytes().largest(7, 1, &name) == 7 * sizeof(cl_float4)); // a path buffer
+    CHECK(path_buffer_bytes().largest(16, 1, &name) == 16 * sizeof(cl_float4)); // a path buffer
     CHECK(std::string(name) == "ray_origin");
 }
 

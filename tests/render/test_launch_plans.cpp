@@ -193,6 +193,93 @@ TEST_CASE("Launch plans: a Mitsuba file's max_depth renders the stages plan's im
     CHECK(shadow_rays[1] > shadow_rays[0]); // the mirror's light samples were made
 }
 
+TEST_CASE("Launch plans: a wave's tail traced in one launch (kernels/tail.cl) renders the stages "
+          "plan's image bit for bit, with the same counts and rays per bounce",
+          "[render][launch-plan][tail]") {
+    // The tail kernel runs the stage functions in the stage kernels' order
+    // per bounce, and stops where the host would fold the film (every 32
+    // iterations on a CPU), so that each path ends in the film batch it ends
+    // in without it: with several samples per call (several waves, whose
+    // samples of a pixel share float32 batches) a tail that ran across a
+    // fold would change the rounding. 320 slots; thresholds from a few rays
+    // to the whole pool (every wave traced by the tail kernel alone, its
+    // camera rays included).
+    const Scene scene = test::hexroom(20, 16);
+    const std::uint32_t spp = 6;
+    IntegratorOptions pool50;
+    pool50.pool_size = 50; // several pixels a slot: folds fall inside tails
+    IntegratorOptions no_nee;
+    no_nee.next_event_estimation = false;
+    IntegratorOptions capped;
+    capped.max_depth = 2;
+    IntegratorOptions general;
+    general.diffuse_sampling = DiffuseSampling::Report;
+    general.light_sampling = LightSampling::SolidAngle;
+    general.general_kernels = true;
+    IntegratorOptions no_mirror_nee; // the hexroom's default has mirror NEE's two-leg rays
+    no_mirror_nee.mirror_next_event = false;
+    const std::pair<const char*, IntegratorOptions> cases[] = {
+        {"default", {}},         {"pool 50", pool50},          {"no NEE", no_nee},
+        {"max depth 2", capped}, {"report, general", general}, {"no mirror NEE", no_mirror_nee}};
+    for (const auto& [name, options] : cases)
+        for (std::uint32_t per_call : {spp, 1u}) {
+            // One sample a call (the CLI's) for the first two: a call is a wave.
+            if (per_call == 1 && &options != &cases[0].second && &options != &cases[1].second)
+                continue;
+            INFO(name << ", " << per_call << " samples a call");
+            IntegratorOptions off = options;
+            off.tail_rays = 0;
+            const PlanRender reference = render_plan(scene, LaunchPlan::Stages, off, spp, per_call);
+            if (options.max_depth == 2)
+                REQUIRE(reference.stats.capped_paths > 0);
+            for (std::uint32_t tail : {3u, 40u, 320u})
+                for (LaunchPlan plan : {LaunchPlan::Stages, LaunchPlan::Bounce}) {
+                    if (plan == LaunchPlan::Bounce && tail != 40)
+                        continue; // the same host loop; once is enough
+                    INFO("tail from " << tail << " rays, " << to_string(plan));
+                    IntegratorOptions on = options;
+                    on.tail_rays = tail;
+                    const PlanRender other = render_plan(scene, plan, on, spp, per_call);
+                    // The tail kernel ran (from the whole pool it must;
+                    // from a few rays, when a wave drains that far).
+                    CHECK(other.stats.iterations <= reference.stats.iterations);
+                    if (tail == 320)
+                        CHECK(other.stats.iterations < reference.stats.iterations);
+                    check_same_counts(reference, other);
+                    CHECK(other.stats.rays_per_bounce == reference.stats.rays_per_bounce);
+                    CHECK(compare(reference.film.mean(), other.film.mean()).differing == 0);
+                    CHECK(compare(reference.film.variance_of_mean(), other.film.variance_of_mean())
+                              .differing == 0);
+                    CHECK(compare(reference.film.half_mean(1), other.film.half_mean(1)).differing ==
+                          0);
+                }
+        }
+}
+
+TEST_CASE("Launch plans: the tail's threshold is the option's, at most a sixteenth of the pool by "
+          "default, and off with regeneration, sorted shading and in the wave plan",
+          "[launch-plan][tail]") {
+    CHECK(tail_rays_for(std::nullopt, 65536) == kDefaultTailRays);
+    CHECK(tail_rays_for(std::nullopt, 320) == 20);
+    CHECK(tail_rays_for(0u, 65536) == 0);
+    CHECK(tail_rays_for(100000u, 320) == 100000);
+    const Scene scene = test::hexroom(20, 16);
+    IntegratorOptions options;
+    options.tail_rays = 40;
+    options.launch_plan = LaunchPlan::Stages;
+    CHECK(WavefrontIntegrator(test::device(), scene, options).tail_rays() == 40);
+    options.launch_plan = LaunchPlan::Bounce;
+    CHECK(WavefrontIntegrator(test::device(), scene, options).tail_rays() == 40);
+    options.launch_plan = LaunchPlan::Wave;
+    CHECK(WavefrontIntegrator(test::device(), scene, options).tail_rays() == 0);
+    options.launch_plan = LaunchPlan::Stages;
+    options.regeneration = true;
+    CHECK(WavefrontIntegrator(test::device(), scene, options).tail_rays() == 0);
+    options.regeneration = false;
+    options.shade_order = ShadeOrder::Sorted;
+    CHECK(WavefrontIntegrator(test::device(), scene, options).tail_rays() == 0);
+}
+
 TEST_CASE("Shade's work-group compaction of its queue pushes: the image and the counts do not "
           "depend on the work-group size",
           "[render][launch-plan]") {
