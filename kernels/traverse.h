@@ -56,12 +56,6 @@
 #define WP_TRACE_SURPLUS_ITEMS 0
 #endif
 
-#if defined(__clang__) || defined(__GNUC__)
-#define WP_ALWAYS_INLINE __attribute__((always_inline))
-#else
-#define WP_ALWAYS_INLINE
-#endif
-
 /* xyz of entry `index` of a float4 buffer, as three scalar loads: a float4
  * load (as `buffer[index].x` compiles to) would be a vector instruction in
  * the stage's body. */

@@ -25,8 +25,7 @@ typedef cl_float wp_float;
 typedef cl_float4 wp_float4;
 #endif
 
-/* For functions that must be inlined into their callers (the same definition
- * as traverse.h's). */
+/* For functions that must be inlined into their callers. */
 #if defined(__clang__) || defined(__GNUC__)
 #define WP_ALWAYS_INLINE __attribute__((always_inline))
 #else

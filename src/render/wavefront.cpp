@@ -90,8 +90,14 @@ void check_scene_memory(const DeviceInfo& device, const DeviceScene& scene) {
 } // namespace
 
 std::uint32_t tail_rays_for(std::optional<std::uint32_t> option, std::uint32_t pool_size) {
-    if (const char* text = std::getenv("WAVEPATH_TAIL_RAYS"))
-        return static_cast<std::uint32_t>(std::strtoul(text, nullptr, 10));
+    if (const char* text = std::getenv("WAVEPATH_TAIL_RAYS")) {
+        char* end = nullptr;
+        const unsigned long value = std::strtoul(text, &end, 10);
+        if (end == text || *end != '\0' || text[0] == '-' || value > UINT32_MAX)
+            throw std::runtime_error(std::string("WAVEPATH_TAIL_RAYS is '") + text +
+                                     "', not a number of rays (0: no tail kernel)");
+        return static_cast<std::uint32_t>(value);
+    }
     if (option)
         return *option;
     return std::min(kDefaultTailRays, pool_size / 16u);

@@ -78,8 +78,8 @@ ChosenLaunchPlan choose_launch_plan(LaunchPlan requested, const DeviceInfo& devi
 // (kernels/tail.cl) once at most this many rays are left: on the two-core
 // PoCL machine the tail kernel, which runs scalar, costs about 5x the
 // vectorised stages per ray, and a stage iteration of a few rays about
-// 0.4 ms of launches and sync (docs/performance.md, "2026-12-08: a wave's
-// tail in one launch").
+// 0.4 ms of launches and sync (docs/performance.md, "A wave's tail in one
+// launch").
 inline constexpr std::uint32_t kDefaultTailRays = 512;
 // The threshold a render uses: WAVEPATH_TAIL_RAYS if set (for measuring),
 // else IntegratorOptions::tail_rays if set, else kDefaultTailRays but at

@@ -263,6 +263,16 @@ TEST_CASE("Launch plans: the tail's threshold is the option's, at most a sixteen
     CHECK(tail_rays_for(std::nullopt, 320) == 20);
     CHECK(tail_rays_for(0u, 65536) == 0);
     CHECK(tail_rays_for(100000u, 320) == 100000);
+    // WAVEPATH_TAIL_RAYS overrides both, and a value that is not a count is
+    // refused by name rather than read as 0 (no tail).
+    ::setenv("WAVEPATH_TAIL_RAYS", "7", 1);
+    CHECK(tail_rays_for(100000u, 320) == 7);
+    for (const char* bad : {"", "x", "12x", "-3", "99999999999"}) {
+        ::setenv("WAVEPATH_TAIL_RAYS", bad, 1);
+        CHECK_THROWS_WITH(tail_rays_for(std::nullopt, 65536),
+                          Catch::Matchers::Contains("WAVEPATH_TAIL_RAYS"));
+    }
+    ::unsetenv("WAVEPATH_TAIL_RAYS");
     const Scene scene = test::hexroom(20, 16);
     IntegratorOptions options;
     options.tail_rays = 40;
