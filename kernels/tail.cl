@@ -7,8 +7,7 @@
  * host next folds the film (so a path ends in the same film batch as in the
  * stages plan), or WP_TAIL_BOUNCES.
  *
- * The same functions as the stage kernels in the same order per bounce
- * (intersect, shade, shadow, mirror shadow), as bounce.cl calls them: each
+ * Each bounce is wp_fused_bounce (fused_bounce.h), as in bounce.cl: each
  * path's radiance is the stages plan's float for float. A path that goes on
  * after launch.count bounces is pushed onto the other ray queue, an ended
  * one onto the finished queue, for accumulate (launched after this, as after
@@ -17,10 +16,8 @@
  * Counts: tail_lengths[k - 1] the paths that traced k rays here (from which
  * the host has the rays of each bounce), counters[SHADOW_RAYS] the shadow
  * rays (counted only: no shadow queue), CAPPED as shade counts it. */
-#include "shade.cl"
-#include "shadow.cl"
+#include "fused_bounce.h"
 #include "stage.h"
-#include "traverse.h"
 
 __kernel void tail(WP_FUSED_PARAMETERS) {
     wp_uint index = get_global_id(0);
@@ -31,25 +28,8 @@ __kernel void tail(WP_FUSED_PARAMETERS) {
     wp_uint rays = 0u, shadows = 0u;
     int outcome = WP_SHADED_GOES_ON;
     while (outcome == WP_SHADED_GOES_ON && rays < launch.count) {
-        /* Drawn before the traversal, which hides their latency (shade.cl). */
-        float4 first, second;
-        wp_shade_numbers(frame, path_pixel, path_sample, path_depth, slot, &first, &second);
-        float t;
-        wp_uint primitive = wp_closest_hit(&scene, wp_load_xyz(ray_origin, slot),
-                                           wp_load_xyz(ray_direction, slot), INFINITY, &t);
+        outcome = wp_fused_bounce(WP_STAGE_ARGUMENTS, &scene, slot, &shadows);
         ++rays;
-        WpShadowRay shadow;
-        outcome = wp_shade_path(WP_STAGE_ARGUMENTS, slot, primitive, t, first, second, &shadow);
-        if (shadow.made) {
-            ++shadows;
-            wp_trace_shadow_ray(&scene, &shadow, radiance, slot);
-        }
-#if WP_MIRROR_NEE /* after the plain one, as the stages plan adds them */
-        if (shadow.mirror_made) {
-            shadows += 2u; /* two legs, as the stages plan counts them */
-            wp_trace_mirror_shadow_ray(&scene, &shadow.mirror, radiance, slot);
-        }
-#endif
     }
     wp_queue_shaded_path(ray_queues, finished_queue, counters, frame, launch, slot, outcome);
     atomic_inc(&tail_lengths[rays - 1u]);
