@@ -387,7 +387,10 @@ int run_info(const InfoCommand& command) {
                     "pool; kernels/tail.cl)\n",
                     integrator.tail_rays(), integrator.pool_size(), kDefaultTailRays);
     else
-        std::printf("a wave's tail: a launch of each stage per bounce\n");
+        std::printf("a wave's tail: a launch of each stage per bounce (by default the tail "
+                    "kernel runs from a pool of %u slots, with regeneration off and arrival "
+                    "order)\n",
+                    kTailMinimumPool);
     std::printf("work-groups of %zu work-items; path slots: %s\n", integrator.work_group_size(),
                 command.integrator.pool_size == 0
                     ? "one per pixel"

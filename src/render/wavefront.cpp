@@ -100,6 +100,8 @@ std::uint32_t tail_rays_for(std::optional<std::uint32_t> option, std::uint32_t p
     }
     if (option)
         return *option;
+    if (pool_size < kTailMinimumPool)
+        return 0;
     return std::min(kDefaultTailRays, pool_size / 16u);
 }
 

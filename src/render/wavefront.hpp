@@ -81,10 +81,15 @@ ChosenLaunchPlan choose_launch_plan(LaunchPlan requested, const DeviceInfo& devi
 // 0.4 ms of launches and sync (docs/performance.md, "A wave's tail in one
 // launch").
 inline constexpr std::uint32_t kDefaultTailRays = 512;
+// No tail by default below this pool (a 64x64 image): so small a render
+// saves less on its tail's launches than the tail kernel's first build costs
+// (PoCL compiles a kernel at its first launch, once per set of build
+// options; the test suite's small renders took 130 s longer cold with it).
+inline constexpr std::uint32_t kTailMinimumPool = 4096;
 // The threshold a render uses: WAVEPATH_TAIL_RAYS if set (for measuring),
 // else IntegratorOptions::tail_rays if set, else kDefaultTailRays but at
 // most a sixteenth of the pool, so that a small pool still runs its first
-// bounces through the stage kernels. 0: never.
+// bounces through the stage kernels, and 0 below kTailMinimumPool. 0: never.
 std::uint32_t tail_rays_for(std::optional<std::uint32_t> option, std::uint32_t pool_size);
 
 // The features the integrator gives `scene` under `options` (analyse_features,

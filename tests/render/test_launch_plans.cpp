@@ -257,10 +257,14 @@ TEST_CASE("Launch plans: a wave's tail traced in one launch (kernels/tail.cl) re
 }
 
 TEST_CASE("Launch plans: the tail's threshold is the option's, at most a sixteenth of the pool by "
-          "default, and off with regeneration, sorted shading and in the wave plan",
+          "default and none for a small pool, and off with regeneration, sorted shading and in "
+          "the wave plan",
           "[launch-plan][tail]") {
     CHECK(tail_rays_for(std::nullopt, 65536) == kDefaultTailRays);
-    CHECK(tail_rays_for(std::nullopt, 320) == 20);
+    CHECK(tail_rays_for(std::nullopt, kTailMinimumPool) == kTailMinimumPool / 16);
+    CHECK(tail_rays_for(std::nullopt, kTailMinimumPool - 1) == 0);
+    CHECK(tail_rays_for(std::nullopt, 320) == 0);
+    CHECK(tail_rays_for(20u, 320) == 20);
     CHECK(tail_rays_for(0u, 65536) == 0);
     CHECK(tail_rays_for(100000u, 320) == 100000);
     // WAVEPATH_TAIL_RAYS overrides both, and a value that is not a count is
